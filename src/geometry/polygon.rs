@@ -1,0 +1,156 @@
+//! Planar polygons in 3-D: Newell normal, dominant projection, exact triangulation.
+//!
+//! ```
+//! use kepler::geometry::{Point3, polygon};
+//! let square = [
+//!     Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0),
+//!     Point3::new(1.0, 1.0, 0.0), Point3::new(0.0, 1.0, 0.0),
+//! ];
+//! let n = polygon::newell_normal(&square);
+//! assert_eq!((n.x, n.y, n.z), (0.0, 0.0, 2.0));
+//! assert_eq!(polygon::triangulate(&square, &n).unwrap().len(), 2);
+//! ```
+
+use super::predicates::{orient2d, project};
+use super::{Point3, Vector3};
+use std::cmp::Ordering;
+
+/// Twice the vector area of the polygon (Newell's method): its direction is the normal given
+/// by the right-hand rule on the vertex order, its length twice the area for a planar polygon.
+/// Computed relative to the first vertex to limit cancellation.
+///
+/// ```
+/// use kepler::geometry::{Point3, polygon::newell_normal};
+/// let tri = [Point3::new(0.0, 0.0, 0.0), Point3::new(0.0, 2.0, 0.0), Point3::new(0.0, 0.0, 2.0)];
+/// assert_eq!(newell_normal(&tri).x, 4.0);
+/// ```
+pub fn newell_normal(points: &[Point3]) -> Vector3 {
+    let Some(origin) = points.first() else {
+        return Vector3::zeros();
+    };
+    let mut n = Vector3::zeros();
+    for (i, p) in points.iter().enumerate() {
+        let q = &points[(i + 1) % points.len()];
+        n += (p - origin).cross(&(q - origin));
+    }
+    n
+}
+
+/// The coordinate axis (0, 1, 2) along which `normal` has its largest component: dropping it
+/// gives the projection of the polygon with the least distortion.
+///
+/// ```
+/// use kepler::geometry::{Vector3, polygon::dominant_axis};
+/// assert_eq!(dominant_axis(&Vector3::new(0.1, -0.9, 0.3)), 1);
+/// ```
+pub fn dominant_axis(normal: &Vector3) -> usize {
+    let a = normal.abs();
+    if a.x >= a.y && a.x >= a.z {
+        0
+    } else if a.y >= a.z {
+        1
+    } else {
+        2
+    }
+}
+
+/// The polygon could not be triangulated: it is not simple (it crosses or overlaps itself).
+///
+/// ```
+/// use kepler::geometry::polygon::NotSimple;
+/// assert_eq!(NotSimple.to_string(), "the polygon is not simple");
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+#[error("the polygon is not simple")]
+pub struct NotSimple;
+
+/// Triangulates a simple polygon (convex or not) whose vertex order turns counter-clockwise
+/// around `normal`, returning index triples into `points` with the same orientation.
+///
+/// Strictly convex polygons get a fan from the first vertex; others are cut into ears in the
+/// projection that drops [`dominant_axis`]. Every decision is an exact `orient2d`, so the
+/// triangles cover the polygon exactly. Written by hand because geo's spade triangulation
+/// snaps vertices within an absolute radius and its earcut uses inexact tests.
+///
+/// ```
+/// use kepler::geometry::{Point3, polygon::{newell_normal, triangulate}};
+/// // An L-shape: not convex, still 4 triangles for 6 vertices.
+/// let l: Vec<Point3> = [(0., 0.), (2., 0.), (2., 1.), (1., 1.), (1., 2.), (0., 2.)]
+///     .iter().map(|&(x, y)| Point3::new(x, y, 0.0)).collect();
+/// let tris = triangulate(&l, &newell_normal(&l)).unwrap();
+/// assert_eq!(tris.len(), 4);
+/// ```
+pub fn triangulate(points: &[Point3], normal: &Vector3) -> Result<Vec<[usize; 3]>, NotSimple> {
+    let n = points.len();
+    if n < 3 {
+        return Err(NotSimple);
+    }
+    let axis = dominant_axis(normal);
+    // Orientations in the projection carry the sign of the dropped normal component.
+    let want = if normal[axis] >= 0.0 {
+        Ordering::Greater
+    } else {
+        Ordering::Less
+    };
+    let p: Vec<[f64; 2]> = points.iter().map(|q| project(q, axis)).collect();
+    if n == 3 {
+        return Ok(vec![[0, 1, 2]]);
+    }
+    let turns_convex = (0..n).all(|i| orient2d(p[(i + n - 1) % n], p[i], p[(i + 1) % n]) == want);
+    let fan_positive = (1..n - 1).all(|i| orient2d(p[0], p[i], p[i + 1]) == want);
+    if turns_convex && fan_positive {
+        return Ok((1..n - 1).map(|i| [0, i, i + 1]).collect());
+    }
+    ear_clip(&p, want)
+}
+
+/// Ear clipping with exact predicates: an ear is a strictly convex vertex whose triangle holds
+/// no other remaining vertex, not even on its boundary.
+fn ear_clip(p: &[[f64; 2]], want: Ordering) -> Result<Vec<[usize; 3]>, NotSimple> {
+    let mut ring: Vec<usize> = (0..p.len()).collect();
+    let mut tris = Vec::with_capacity(p.len() - 2);
+    let inside_closed = |a: [f64; 2], b: [f64; 2], c: [f64; 2], q: [f64; 2]| {
+        let not_out = |o: Ordering| o == want || o == Ordering::Equal;
+        not_out(orient2d(a, b, q)) && not_out(orient2d(b, c, q)) && not_out(orient2d(c, a, q))
+    };
+    while ring.len() > 3 {
+        let m = ring.len();
+        let ear = (0..m).find(|&i| {
+            let (a, b, c) = (ring[(i + m - 1) % m], ring[i], ring[(i + 1) % m]);
+            orient2d(p[a], p[b], p[c]) == want
+                && ring
+                    .iter()
+                    .filter(|&&j| j != a && j != b && j != c)
+                    .all(|&j| !inside_closed(p[a], p[b], p[c], p[j]))
+        });
+        let Some(i) = ear else {
+            // Only a chain of collinear vertices can remain in a simple polygon.
+            return if (0..m).all(|i| {
+                orient2d(p[ring[(i + m - 1) % m]], p[ring[i]], p[ring[(i + 1) % m]])
+                    == Ordering::Equal
+            }) {
+                Ok(tris)
+            } else {
+                Err(NotSimple)
+            };
+        };
+        tris.push([ring[(i + m - 1) % m], ring[i], ring[(i + 1) % m]]);
+        ring.remove(i);
+    }
+    if orient2d(p[ring[0]], p[ring[1]], p[ring[2]]) == want {
+        tris.push([ring[0], ring[1], ring[2]]);
+    }
+    Ok(tris)
+}
+
+/// Twice the signed area of the triangle `(a, b, c)` as a vector (its normal times twice its
+/// area).
+///
+/// ```
+/// use kepler::geometry::{Point3, polygon::triangle_normal};
+/// let n = triangle_normal(&Point3::origin(), &Point3::new(1.0, 0.0, 0.0), &Point3::new(0.0, 1.0, 0.0));
+/// assert_eq!(n.z, 1.0);
+/// ```
+pub fn triangle_normal(a: &Point3, b: &Point3, c: &Point3) -> Vector3 {
+    (b - a).cross(&(c - a))
+}

@@ -1,0 +1,252 @@
+//! A face: a planar polygon with its plane equation and Franklin's texture coordinate system.
+
+use crate::geometry::{Point3, Vector3};
+use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion};
+
+/// The plane `a·x + b·y + c·z + d = 0` of a face (Franklin's face equation), with
+/// `(a, b, c)` the unit outward normal.
+///
+/// The plane is a fast, rounded description used for texture coordinates and cheap filters;
+/// exact decisions use the face's vertices with the exact predicates instead.
+///
+/// ```
+/// use kepler::mesh::Plane;
+/// use kepler::geometry::{Point3, Vector3};
+/// let p = Plane::new(Vector3::new(0.0, 0.0, 1.0), -2.0);
+/// assert_eq!(p.evaluate(&Point3::new(5.0, 5.0, 3.0)), 1.0);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Plane {
+    /// Unit outward normal `(a, b, c)`.
+    pub normal: Vector3,
+    /// The constant `d`.
+    pub d: f64,
+}
+
+impl Plane {
+    /// A plane from its unit normal and constant.
+    ///
+    /// ```
+    /// use kepler::{mesh::Plane, geometry::Vector3};
+    /// assert_eq!(Plane::new(Vector3::x(), 1.0).d, 1.0);
+    /// ```
+    pub fn new(normal: Vector3, d: f64) -> Plane {
+        Plane { normal, d }
+    }
+
+    /// `a·x + b·y + c·z + d`: the signed distance of `p` from the plane, positive outside.
+    ///
+    /// ```
+    /// use kepler::{mesh::Plane, geometry::{Point3, Vector3}};
+    /// assert_eq!(Plane::new(Vector3::x(), -1.0).evaluate(&Point3::new(3.0, 0.0, 0.0)), 2.0);
+    /// ```
+    pub fn evaluate(&self, p: &Point3) -> f64 {
+        self.normal.dot(&p.coords) + self.d
+    }
+}
+
+/// Franklin's texture coordinate system of a face (1981, "Definitions and data structure").
+///
+/// - Origin: the point of the face plane closest to the 3-D origin.
+/// - Unit x-vector: in the plane, with no z component; `(1, 0, 0)` for a horizontal face.
+/// - Unit y-vector: in the plane, with a positive z component; `(0, 1, 0)` for a horizontal
+///   face.
+///
+/// For a non-horizontal face the x-vector is `ẑ × n` normalised, so `x × y = n` and a face
+/// whose vertices turn counter-clockwise around its outward normal also turns
+/// counter-clockwise in texture coordinates. A horizontal face (all vertices with exactly the
+/// same z) uses the paper's fixed axes, so a downward-facing horizontal face turns clockwise
+/// in texture coordinates (the paper's parity). The third texture coordinate `w` is the
+/// distance along `x × y`, zero on the plane.
+///
+/// ```
+/// use kepler::{mesh::TextureFrame, geometry::{Point3, Vector3}};
+/// // The wall y = 2 facing -y: x-vector (1, 0, 0), y-vector (0, 0, 1), origin (0, 2, 0).
+/// let f = TextureFrame::new(&Vector3::new(0.0, -1.0, 0.0), -2.0, false);
+/// let t = f.to_texture(&Point3::new(3.0, 2.0, 5.0));
+/// assert!((t.x - 3.0).abs() < 1e-15 && (t.y - 5.0).abs() < 1e-15 && t.z.abs() < 1e-15);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TextureFrame {
+    /// Texture → global coordinates.
+    to_global: Isometry3<f64>,
+    /// Global → texture coordinates.
+    to_texture: Isometry3<f64>,
+}
+
+impl TextureFrame {
+    /// The frame of the plane `normal·x + d = 0` (`normal` a unit vector); `horizontal` when
+    /// the face's vertices all have exactly the same z.
+    ///
+    /// ```
+    /// use kepler::{mesh::TextureFrame, geometry::Vector3};
+    /// let f = TextureFrame::new(&Vector3::z(), -1.0, true);
+    /// assert_eq!(f.x_axis(), Vector3::x());
+    /// assert_eq!(f.origin().z, 1.0);
+    /// ```
+    pub fn new(normal: &Vector3, d: f64, horizontal: bool) -> TextureFrame {
+        let (x, y) = if horizontal || (normal.x == 0.0 && normal.y == 0.0) {
+            (Vector3::x(), Vector3::y())
+        } else {
+            let x = Vector3::new(-normal.y, normal.x, 0.0).normalize();
+            (x, normal.cross(&x))
+        };
+        let w = x.cross(&y);
+        let rotation = Rotation3::from_matrix_unchecked(Matrix3::from_columns(&[x, y, w]));
+        let origin = normal * -d;
+        let to_global = Isometry3::from_parts(
+            Translation3::from(origin),
+            UnitQuaternion::from_rotation_matrix(&rotation),
+        );
+        TextureFrame {
+            to_global,
+            to_texture: to_global.inverse(),
+        }
+    }
+
+    /// The origin: the point of the face plane closest to the 3-D origin.
+    ///
+    /// ```
+    /// use kepler::{mesh::TextureFrame, geometry::Vector3};
+    /// assert_eq!(TextureFrame::new(&Vector3::x(), -4.0, false).origin().x, 4.0);
+    /// ```
+    pub fn origin(&self) -> Point3 {
+        Point3::from(self.to_global.translation.vector)
+    }
+
+    /// The unit x-vector of the texture system, in global coordinates.
+    ///
+    /// ```
+    /// use kepler::{mesh::TextureFrame, geometry::Vector3};
+    /// assert_eq!(TextureFrame::new(&Vector3::z(), 0.0, true).x_axis(), Vector3::x());
+    /// ```
+    pub fn x_axis(&self) -> Vector3 {
+        self.to_global.rotation * Vector3::x()
+    }
+
+    /// The unit y-vector of the texture system, in global coordinates.
+    ///
+    /// ```
+    /// use kepler::{mesh::TextureFrame, geometry::Vector3};
+    /// let f = TextureFrame::new(&Vector3::new(1.0, 0.0, 0.0), 0.0, false);
+    /// assert!((f.y_axis() - Vector3::z()).norm() < 1e-15);
+    /// ```
+    pub fn y_axis(&self) -> Vector3 {
+        self.to_global.rotation * Vector3::y()
+    }
+
+    /// Global → texture coordinates `(x, y, w)`; `w` is zero on the face plane.
+    ///
+    /// ```
+    /// use kepler::{mesh::TextureFrame, geometry::{Point3, Vector3}};
+    /// let f = TextureFrame::new(&Vector3::z(), -1.0, true);
+    /// assert_eq!(f.to_texture(&Point3::new(2.0, 3.0, 1.0)), Point3::new(2.0, 3.0, 0.0));
+    /// ```
+    pub fn to_texture(&self, p: &Point3) -> Point3 {
+        self.to_texture * p
+    }
+
+    /// Texture `(x, y, w)` → global coordinates.
+    ///
+    /// ```
+    /// use kepler::{mesh::TextureFrame, geometry::{Point3, Vector3}};
+    /// let f = TextureFrame::new(&Vector3::z(), -1.0, true);
+    /// assert_eq!(f.to_global(&Point3::new(2.0, 3.0, 0.0)), Point3::new(2.0, 3.0, 1.0));
+    /// ```
+    pub fn to_global(&self, t: &Point3) -> Point3 {
+        self.to_global * t
+    }
+
+    /// The texture → global transform.
+    ///
+    /// ```
+    /// use kepler::{mesh::TextureFrame, geometry::Vector3};
+    /// let f = TextureFrame::new(&Vector3::z(), 0.0, true);
+    /// assert_eq!(f.texture_to_global().translation.vector, Vector3::zeros());
+    /// ```
+    pub fn texture_to_global(&self) -> &Isometry3<f64> {
+        &self.to_global
+    }
+
+    /// The global → texture transform.
+    ///
+    /// ```
+    /// use kepler::{mesh::TextureFrame, geometry::Vector3};
+    /// let f = TextureFrame::new(&Vector3::z(), -2.0, true);
+    /// assert_eq!(f.global_to_texture().translation.vector.z, -2.0);
+    /// ```
+    pub fn global_to_texture(&self) -> &Isometry3<f64> {
+        &self.to_texture
+    }
+}
+
+/// A face of a [`Mesh`](super::Mesh): the indices of its vertices in order (counter-clockwise
+/// seen from outside), its plane and its texture coordinate system.
+///
+/// ```
+/// use kepler::solids;
+/// let cube = solids::cube(1.0);
+/// let top = cube.faces().iter().find(|f| f.plane().normal.z > 0.5).unwrap();
+/// assert_eq!(top.vertices().len(), 4);
+/// assert_eq!(top.texture().x_axis(), kepler::geometry::Vector3::x());
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct Face {
+    pub(crate) vertices: Vec<u32>,
+    pub(crate) plane: Plane,
+    pub(crate) texture: TextureFrame,
+    pub(crate) area: f64,
+    pub(crate) triangles: std::ops::Range<usize>,
+}
+
+impl Face {
+    /// Indices of the face's vertices in the mesh, in order.
+    ///
+    /// ```
+    /// let t = kepler::solids::tetrahedron(1.0);
+    /// assert_eq!(t.faces()[0].vertices().len(), 3);
+    /// ```
+    pub fn vertices(&self) -> &[u32] {
+        &self.vertices
+    }
+
+    /// The face's plane equation.
+    ///
+    /// ```
+    /// let c = kepler::solids::cube(2.0);
+    /// assert!(c.faces().iter().all(|f| (f.plane().d + 1.0).abs() < 1e-15));
+    /// ```
+    pub fn plane(&self) -> &Plane {
+        &self.plane
+    }
+
+    /// The face's texture coordinate system.
+    ///
+    /// ```
+    /// let c = kepler::solids::cube(2.0);
+    /// assert!(c.faces().iter().all(|f| f.texture().y_axis().z >= 0.0));
+    /// ```
+    pub fn texture(&self) -> &TextureFrame {
+        &self.texture
+    }
+
+    /// The face's area.
+    ///
+    /// ```
+    /// let c = kepler::solids::cube(2.0);
+    /// assert!(c.faces().iter().all(|f| f.area() == 4.0));
+    /// ```
+    pub fn area(&self) -> f64 {
+        self.area
+    }
+
+    /// The range of this face's triangles in [`Mesh::triangles`](super::Mesh::triangles).
+    ///
+    /// ```
+    /// let c = kepler::solids::cube(2.0);
+    /// assert_eq!(c.faces()[0].triangle_range().len(), 2);
+    /// ```
+    pub fn triangle_range(&self) -> std::ops::Range<usize> {
+        self.triangles.clone()
+    }
+}
