@@ -16,7 +16,7 @@
 //!
 //! ```
 //! use kepler::solids;
-//! let cube = solids::cube(2.0);
+//! let cube = solids::cube(2.0).unwrap();
 //! assert_eq!(cube.faces().len(), 6);
 //! assert!((cube.volume() - 8.0).abs() < 1e-12);
 //! ```

@@ -1,1 +1,52 @@
-fn main() {}
+//! The `kepler` command line.
+
+use anyhow::Result;
+use clap::{Parser, Subcommand};
+use kepler::scene::{file, report::BoundsReport};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// kepler: exact visibility for scenes of polyhedra.
+#[derive(Parser)]
+#[command(name = "kepler", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Print each object's faces, vertices, CBOX, INBOX, tribox and how tightly they fit.
+    Bounds {
+        /// A scene file (.toml) or a mesh file (.obj, .stl, .off).
+        scene: PathBuf,
+        /// Print JSON instead of a table.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Command::Bounds { scene, json } => {
+            let scene = file::load(&scene)?;
+            let report = BoundsReport::of(&scene);
+            if json {
+                println!("{}", serde_json::to_string_pretty(&report)?);
+            } else {
+                print!("{}", report.table());
+            }
+        }
+    }
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    match run(Cli::parse()) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}

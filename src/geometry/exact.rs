@@ -1,1 +1,316 @@
-//! placeholder
+//! Exact arithmetic on doubles: error-free transformations and expansion sums.
+//!
+//! These are Shewchuk's (1997) building blocks, written by hand because the `robust` crate
+//! exposes only its four predicates (orient2d/3d, incircle, insphere), not the expansion
+//! arithmetic under them. A sum of doubles is represented exactly as an *expansion*: a list of
+//! doubles whose magnitudes increase and whose bits do not overlap, so that its sign is the sign
+//! of its largest component and its value rounds from the top.
+//!
+//! Every function assumes finite inputs whose partial sums do not overflow (magnitudes well
+//! below `f64::MAX`); with infinities or NaN the results are meaningless but nothing panics.
+//!
+//! ```
+//! use kepler::geometry::exact::{accurate_sum, sum_sign, two_sum};
+//! use std::cmp::Ordering;
+//! assert_eq!(two_sum(1.0, 1e-20), (1.0, 1e-20));
+//! // 0.1 + 0.2 - 0.3 is not zero in doubles, and the exact sum of these doubles is positive.
+//! assert_eq!(sum_sign(&[0.1, 0.2, -0.3]), Ordering::Greater);
+//! assert_eq!(accurate_sum(&[1e20, 1.0, -1e20]), 1.0);
+//! ```
+
+use std::cmp::Ordering;
+
+/// Unit roundoff of `f64`: half the gap between 1 and the next double.
+const UNIT_ROUNDOFF: f64 = f64::EPSILON / 2.0;
+
+/// Expansions of at most this many components are built on the stack.
+const STACK_TERMS: usize = 32;
+
+/// The rounded sum `s = fl(a + b)` and its exact error `e`, so that `a + b = s + e` exactly
+/// (Knuth's branch-free TwoSum).
+///
+/// ```
+/// use kepler::geometry::exact::two_sum;
+/// let (s, e) = two_sum(0.1, 0.2);
+/// assert_eq!(s, 0.1 + 0.2);
+/// assert!(e != 0.0 && e.abs() <= f64::EPSILON * s.abs());
+/// ```
+#[inline]
+pub fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    let bb = s - a;
+    let e = (a - (s - bb)) + (b - bb);
+    (s, e)
+}
+
+/// The smallest double that is at least the exact sum `a + b`.
+///
+/// ```
+/// use kepler::geometry::exact::add_round_up;
+/// assert_eq!(add_round_up(1.0, 2.0), 3.0);
+/// assert_eq!(add_round_up(1.0, 1e-30), 1.0f64.next_up());
+/// assert_eq!(add_round_up(1.0, -1e-30), 1.0);
+/// ```
+#[inline]
+pub fn add_round_up(a: f64, b: f64) -> f64 {
+    let (s, e) = two_sum(a, b);
+    if e > 0.0 { s.next_up() } else { s }
+}
+
+/// The largest double that is at most the exact sum `a + b`.
+///
+/// ```
+/// use kepler::geometry::exact::add_round_down;
+/// assert_eq!(add_round_down(1.0, 2.0), 3.0);
+/// assert_eq!(add_round_down(1.0, -1e-30), 1.0f64.next_down());
+/// assert_eq!(add_round_down(1.0, 1e-30), 1.0);
+/// ```
+#[inline]
+pub fn add_round_down(a: f64, b: f64) -> f64 {
+    let (s, e) = two_sum(a, b);
+    if e < 0.0 { s.next_down() } else { s }
+}
+
+/// The exact sign of the real sum of `terms`.
+///
+/// A floating-point filter decides almost every call: the recursively rounded sum is trusted
+/// when its magnitude exceeds a bound on its accumulated rounding error. Otherwise the sum is
+/// rebuilt exactly as an expansion and its sign is the sign of its largest component.
+///
+/// ```
+/// use kepler::geometry::exact::sum_sign;
+/// use std::cmp::Ordering;
+/// assert_eq!(sum_sign(&[1e100, 1.0, -1e100]), Ordering::Greater);
+/// assert_eq!(sum_sign(&[0.5, 0.25, -0.75]), Ordering::Equal);
+/// assert_eq!(sum_sign(&[]), Ordering::Equal);
+/// ```
+pub fn sum_sign(terms: &[f64]) -> Ordering {
+    let mut sum = 0.0;
+    let mut magnitude = 0.0;
+    for &t in terms {
+        sum += t;
+        magnitude += t.abs();
+    }
+    // |sum - exact| <= gamma_(n-1) * (exact sum of |t|) <= (n-1) u / (1 - 2(n-1)u) * magnitude;
+    // the factor 2n absorbs the denominators and the rounding of the product, and adding
+    // MIN_POSITIVE covers a product that underflows.
+    let bound = (2 * terms.len()) as f64 * UNIT_ROUNDOFF * magnitude + f64::MIN_POSITIVE;
+    if sum > bound {
+        Ordering::Greater
+    } else if sum < -bound {
+        Ordering::Less
+    } else if magnitude == 0.0 {
+        Ordering::Equal
+    } else {
+        with_expansion(terms, |e| sign_of(e.last().copied().unwrap_or(0.0)))
+    }
+}
+
+/// The exact sum of `terms` rounded to the nearest double (ties to even).
+///
+/// One or two terms are rounded correctly by a single addition. Longer sums use a compensated
+/// sum (TwoSum cascade) whose rounding is certified correct by an a-posteriori error bound;
+/// only when the bound cannot certify it (a near half-way case, or heavy cancellation) is the
+/// sum rebuilt exactly as an expansion and rounded from the top (as `math.fsum` does).
+///
+/// ```
+/// use kepler::geometry::exact::accurate_sum;
+/// assert_eq!(accurate_sum(&[1.0, 1e-30, -1.0]), 1e-30);
+/// // The doubles nearest 0.1, 0.2 and 0.3 sum exactly to 2^-55 (not to 0.1 + 0.2 - 0.3 = 2^-54).
+/// assert_eq!(accurate_sum(&[0.1, 0.2, -0.3]), 2.0f64.powi(-55));
+/// // 1 + 2^-53 is half-way between 1 and the next double; the last term breaks the tie.
+/// assert_eq!(accurate_sum(&[1.0, 2f64.powi(-53), 2f64.powi(-300)]), 1.0f64.next_up());
+/// assert_eq!(accurate_sum(&[]), 0.0);
+/// ```
+pub fn accurate_sum(terms: &[f64]) -> f64 {
+    match *terms {
+        [] => 0.0,
+        [a] => a,
+        [a, b] => a + b,
+        [first, ref rest @ ..] => {
+            // TwoSum cascade: exact sum = sum + (sum of the errors e_i).
+            let mut sum = first;
+            let mut err = 0.0;
+            let mut err_magnitude = 0.0;
+            for &t in rest {
+                let (s, e) = two_sum(sum, t);
+                sum = s;
+                err += e;
+                err_magnitude += e.abs();
+            }
+            if err_magnitude == 0.0 {
+                return sum;
+            }
+            // exact = result + k + d, where d = (sum of the e_i) - err is the rounding error of
+            // `err`: |d| <= gamma_(n-2) * sum |e_i| <= delta. `result` is the correct rounding
+            // when |k + d| stays below half the gap to its nearer neighbour; 2 delta absorbs
+            // the rounding of the test itself.
+            let (result, k) = two_sum(sum, err);
+            let delta = terms.len() as f64 * UNIT_ROUNDOFF * err_magnitude;
+            if k.abs() + 2.0 * delta < min_half_gap(result) {
+                result
+            } else {
+                with_expansion(terms, round_expansion)
+            }
+        }
+    }
+}
+
+/// Half the smaller of the two gaps between `x` and its neighbouring doubles, when `x` is
+/// normal and not tiny (|x| >= 2^-895); 0 otherwise, so that callers fall back to exact code.
+#[inline]
+fn min_half_gap(x: f64) -> f64 {
+    const MANTISSA: u64 = (1 << 52) - 1;
+    let bits = x.to_bits() & !(1 << 63);
+    let biased_exponent = bits >> 52;
+    if !(128..0x7ff).contains(&biased_exponent) {
+        return 0.0;
+    }
+    // 2^E for |x| in [2^E, 2^(E+1)): the gap above is 2^(E-52); below a power of two it halves.
+    let power = f64::from_bits(biased_exponent << 52);
+    if bits & MANTISSA == 0 {
+        power * 2f64.powi(-54)
+    } else {
+        power * 2f64.powi(-53)
+    }
+}
+
+/// The sign of a double as an ordering (NaN counts as zero).
+#[inline]
+fn sign_of(x: f64) -> Ordering {
+    if x > 0.0 {
+        Ordering::Greater
+    } else if x < 0.0 {
+        Ordering::Less
+    } else {
+        Ordering::Equal
+    }
+}
+
+/// Builds the exact expansion of the sum of `terms` (nonzero components, nonoverlapping,
+/// increasing magnitude) in a buffer on the stack when it is short, and hands it to `f`.
+fn with_expansion<R>(terms: &[f64], f: impl FnOnce(&[f64]) -> R) -> R {
+    if terms.len() <= STACK_TERMS {
+        let mut buf = [0.0; STACK_TERMS];
+        let n = grow_expansion(terms, &mut buf);
+        f(&buf[..n])
+    } else {
+        let mut buf = vec![0.0; terms.len()];
+        let n = grow_expansion(terms, &mut buf);
+        f(&buf[..n])
+    }
+}
+
+/// Shewchuk's Grow-Expansion with zero elimination, term by term (the `msum` loop of Python's
+/// `math.fsum`). `buf` must hold `terms.len()` doubles; returns the number of components.
+fn grow_expansion(terms: &[f64], buf: &mut [f64]) -> usize {
+    let mut len = 0;
+    for &t in terms {
+        let mut x = t;
+        let mut kept = 0;
+        for i in 0..len {
+            let mut y = buf[i];
+            if x.abs() < y.abs() {
+                std::mem::swap(&mut x, &mut y);
+            }
+            // Fast TwoSum, valid since |x| >= |y|.
+            let hi = x + y;
+            let lo = y - (hi - x);
+            if lo != 0.0 {
+                buf[kept] = lo;
+                kept += 1;
+            }
+            x = hi;
+        }
+        if x != 0.0 {
+            buf[kept] = x;
+            kept += 1;
+        }
+        len = kept;
+    }
+    len
+}
+
+/// Rounds an expansion (nonzero, nonoverlapping, increasing magnitude) to the nearest double,
+/// ties to even, by summing from the top until the sum becomes inexact, then correcting a
+/// half-way case that the lower components break (the final step of CPython's `math.fsum`).
+fn round_expansion(e: &[f64]) -> f64 {
+    let Some((&top, rest)) = e.split_last() else {
+        return 0.0;
+    };
+    let mut hi = top;
+    let mut lo = 0.0;
+    let mut n = rest.len();
+    while n > 0 {
+        let x = hi;
+        let y = e[n - 1];
+        n -= 1;
+        hi = x + y;
+        let yr = hi - x;
+        lo = y - yr;
+        if lo != 0.0 {
+            break;
+        }
+    }
+    if n > 0 && ((lo < 0.0 && e[n - 1] < 0.0) || (lo > 0.0 && e[n - 1] > 0.0)) {
+        let y = lo * 2.0;
+        let x = hi + y;
+        let yr = x - hi;
+        if y == yr {
+            hi = x;
+        }
+    }
+    hi
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn expansion_is_nonoverlapping_and_increasing() {
+        let terms = [1e300, 1.0, -1e300, 1e-300, 3.0, 2f64.powi(-60)];
+        let mut buf = [0.0; 6];
+        let n = grow_expansion(&terms, &mut buf);
+        let e = &buf[..n];
+        assert!(e.windows(2).all(|w| w[0].abs() < w[1].abs()));
+        assert!(e.iter().all(|&c| c != 0.0));
+        assert_eq!(round_expansion(e), 4.0);
+    }
+
+    #[test]
+    fn min_half_gap_is_half_the_smaller_gap() {
+        for x in [1.0, 1.5, 3.0, 1e300, -7.25e-200, 2f64.powi(-800)] {
+            let h = min_half_gap(x);
+            let a = x.abs();
+            assert_eq!(h, (a.next_up() - a).min(a - a.next_down()) / 2.0);
+        }
+        assert_eq!(min_half_gap(0.0), 0.0);
+        assert_eq!(min_half_gap(1e-300), 0.0);
+        assert_eq!(min_half_gap(f64::INFINITY), 0.0);
+        assert_eq!(min_half_gap(f64::NAN), 0.0);
+    }
+
+    #[test]
+    fn fsum_half_way_correction() {
+        // 1 + 2^-53 is half-way between 1 and 1 + 2^-52; the tiny term breaks the tie upward.
+        assert_eq!(
+            accurate_sum(&[1.0, 2f64.powi(-53), 2f64.powi(-200), 0.0, 0.0]),
+            1.0f64.next_up()
+        );
+        assert_eq!(
+            accurate_sum(&[1.0, 2f64.powi(-53), -(2f64.powi(-200)), 0.0]),
+            1.0
+        );
+    }
+
+    #[test]
+    fn long_slices_use_the_heap_buffer() {
+        let mut terms: Vec<f64> = (0..40).map(|i| 2f64.powi(i * 30 - 600)).collect();
+        let negated: Vec<f64> = terms.iter().map(|t| -t).collect();
+        terms.extend(negated);
+        terms.push(-(2f64.powi(-700)));
+        assert_eq!(sum_sign(&terms), Ordering::Less);
+        assert_eq!(accurate_sum(&terms), -(2f64.powi(-700)));
+    }
+}

@@ -9,6 +9,7 @@
 //! assert_eq!(p.x + p.y, 3.0);
 //! ```
 
+pub mod aabb;
 pub mod exact;
 
 /// A point in 3-D space, in `f64`.
@@ -17,3 +18,5 @@ pub type Point3 = nalgebra::Point3<f64>;
 pub type Vector3 = nalgebra::Vector3<f64>;
 pub mod polygon;
 pub mod predicates;
+
+pub use aabb::Aabb;

@@ -101,7 +101,73 @@ pub fn triangulate(points: &[Point3], normal: &Vector3) -> Result<Vec<[usize; 3]
     if turns_convex && fan_positive {
         return Ok((1..n - 1).map(|i| [0, i, i + 1]).collect());
     }
+    if !is_simple(&p) {
+        return Err(NotSimple);
+    }
     ear_clip(&p, want)
+}
+
+/// Whether the closed polyline `p` is simple: no two non-adjacent edges meet and no two
+/// adjacent edges fold back onto each other (exact, `O(n²)`).
+///
+/// ```
+/// use kepler::geometry::polygon::is_simple;
+/// assert!(is_simple(&[[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [1.0, 1.0], [1.0, 2.0], [0.0, 2.0]]));
+/// // A bow tie crosses itself.
+/// assert!(!is_simple(&[[0.0, 0.0], [1.0, 1.0], [1.0, 0.0], [0.0, 1.0]]));
+/// ```
+pub fn is_simple(p: &[[f64; 2]]) -> bool {
+    let n = p.len();
+    let edge = |i: usize| (p[i], p[(i + 1) % n]);
+    for i in 0..n {
+        let (a, b) = edge(i);
+        let c = p[(i + 2) % n];
+        // Adjacent edges a→b→c fold back when c lies on the ray from b through a.
+        if orient2d(a, b, c) == Ordering::Equal && folds_back(a, b, c) {
+            return false;
+        }
+        for j in i + 2..n {
+            if i == 0 && j == n - 1 {
+                continue;
+            }
+            let (c, d) = edge(j);
+            if segments_meet(a, b, c, d) {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+/// For collinear `a`, `b`, `c`: whether `c` lies on the same side of `b` as `a` (compared
+/// coordinate-wise, exactly).
+fn folds_back(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> bool {
+    let k = if a[0] != b[0] { 0 } else { 1 };
+    (a[k] - b[k]).signum() == (c[k] - b[k]).signum() && c[k] != b[k]
+}
+
+/// Whether the closed segments `ab` and `cd` share a point (exact).
+///
+/// ```
+/// use kepler::geometry::polygon::segments_meet;
+/// assert!(segments_meet([0.0, 0.0], [2.0, 2.0], [0.0, 2.0], [2.0, 0.0]));
+/// assert!(segments_meet([0.0, 0.0], [1.0, 0.0], [1.0, 0.0], [2.0, 5.0]));
+/// assert!(!segments_meet([0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [3.0, 0.0]));
+/// ```
+pub fn segments_meet(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
+    let (o1, o2) = (orient2d(a, b, c), orient2d(a, b, d));
+    let (o3, o4) = (orient2d(c, d, a), orient2d(c, d, b));
+    let between = |p: [f64; 2], q: [f64; 2], r: [f64; 2]| {
+        (0..2).all(|k| p[k].min(q[k]) <= r[k] && r[k] <= p[k].max(q[k]))
+    };
+    if [o1, o2, o3, o4].iter().all(|&o| o != Ordering::Equal) {
+        return o1 != o2 && o3 != o4;
+    }
+    // An endpoint on the other segment's line: they meet only at such an endpoint.
+    (o1 == Ordering::Equal && between(a, b, c))
+        || (o2 == Ordering::Equal && between(a, b, d))
+        || (o3 == Ordering::Equal && between(c, d, a))
+        || (o4 == Ordering::Equal && between(c, d, b))
 }
 
 /// Ear clipping with exact predicates: an ear is a strictly convex vertex whose triangle holds

@@ -40,7 +40,11 @@ fn sign(v: f64) -> Ordering {
 /// assert_eq!(orient3d(&o, &x, &y, &Point3::new(0.0, 0.0, 1.0)), Ordering::Less);
 /// ```
 pub fn orient3d(a: &Point3, b: &Point3, c: &Point3, d: &Point3) -> Ordering {
-    let p = |q: &Point3| Coord3D { x: q.x, y: q.y, z: q.z };
+    let p = |q: &Point3| Coord3D {
+        x: q.x,
+        y: q.y,
+        z: q.z,
+    };
     sign(robust::orient3d(p(a), p(b), p(c), p(d)))
 }
 
@@ -85,4 +89,74 @@ pub fn project(p: &Point3, axis: usize) -> [f64; 2] {
 /// ```
 pub fn collinear(a: &Point3, b: &Point3, c: &Point3) -> bool {
     (0..3).all(|k| orient2d(project(a, k), project(b, k), project(c, k)) == Ordering::Equal)
+}
+
+/// Whether the triangle `t` meets the *open* box `b` (its interior), decided exactly.
+///
+/// By the separating-axis theorem, a triangle and a box have disjoint interiors exactly when
+/// one of these weakly separates them: a coordinate axis, the triangle's plane, or (for the
+/// nine edge-by-axis directions) a line through an edge of the triangle's projection along a
+/// coordinate axis, with the projected box on its far side. Each test is a comparison,
+/// an `orient3d` or an `orient2d` on input coordinates, so the answer is exact. Touching the
+/// box's boundary does not count as meeting it. The box must have positive volume and the
+/// triangle must not be degenerate (collinear).
+///
+/// ```
+/// use kepler::geometry::{Aabb, Point3, predicates::triangle_meets_open_box};
+/// let b = Aabb::new(Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 1.0, 1.0));
+/// let touching = [Point3::new(1.0, 0.0, 0.0), Point3::new(1.0, 1.0, 0.0), Point3::new(1.0, 0.0, 1.0)];
+/// assert!(!triangle_meets_open_box(&touching, &b));
+/// let piercing = [Point3::new(0.5, 0.5, -1.0), Point3::new(0.5, 0.5, 2.0), Point3::new(3.0, 3.0, 0.5)];
+/// assert!(triangle_meets_open_box(&piercing, &b));
+/// ```
+pub fn triangle_meets_open_box(t: &[Point3; 3], b: &super::Aabb) -> bool {
+    // Coordinate axes.
+    for k in 0..3 {
+        if t.iter().all(|p| p[k] <= b.min[k]) || t.iter().all(|p| p[k] >= b.max[k]) {
+            return false;
+        }
+    }
+    let corners = b.corners();
+    // The triangle's plane (skipped for a degenerate triangle, whose orient3d vanishes).
+    if !collinear(&t[0], &t[1], &t[2]) {
+        let signs = corners.map(|q| orient3d(&t[0], &t[1], &t[2], &q));
+        if signs.iter().all(|&s| s != Ordering::Less)
+            || signs.iter().all(|&s| s != Ordering::Greater)
+        {
+            return false;
+        }
+    }
+    // Edge lines of the projections along each axis.
+    for k in 0..3 {
+        let p = t.map(|q| project(&q, k));
+        let rect = [0usize, 1, 2, 3].map(|i| {
+            let q = corners[match k {
+                0 => [0, 2, 4, 6][i],
+                1 => [0, 1, 4, 5][i],
+                _ => [0, 1, 2, 3][i],
+            }];
+            project(&q, k)
+        });
+        let area = orient2d(p[0], p[1], p[2]);
+        for e in 0..3 {
+            let (u, v, w) = (p[e], p[(e + 1) % 3], p[(e + 2) % 3]);
+            if u == v {
+                continue;
+            }
+            let beyond = |side: Ordering| {
+                rect.iter()
+                    .all(|&q| matches!(orient2d(u, v, q), o if o == side || o == Ordering::Equal))
+            };
+            let separated = if area == Ordering::Equal {
+                // The projection is a segment: either side of its line separates.
+                beyond(Ordering::Less) || beyond(Ordering::Greater)
+            } else {
+                beyond(orient2d(u, v, w).reverse())
+            };
+            if separated {
+                return false;
+            }
+        }
+    }
+    true
 }

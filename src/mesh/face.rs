@@ -62,7 +62,7 @@ impl Plane {
 /// ```
 /// use kepler::{mesh::TextureFrame, geometry::{Point3, Vector3}};
 /// // The wall y = 2 facing -y: x-vector (1, 0, 0), y-vector (0, 0, 1), origin (0, 2, 0).
-/// let f = TextureFrame::new(&Vector3::new(0.0, -1.0, 0.0), -2.0, false);
+/// let f = TextureFrame::new(&Vector3::new(0.0, -1.0, 0.0), 2.0, false);
 /// let t = f.to_texture(&Point3::new(3.0, 2.0, 5.0));
 /// assert!((t.x - 3.0).abs() < 1e-15 && (t.y - 5.0).abs() < 1e-15 && t.z.abs() < 1e-15);
 /// ```
@@ -185,7 +185,7 @@ impl TextureFrame {
 ///
 /// ```
 /// use kepler::solids;
-/// let cube = solids::cube(1.0);
+/// let cube = solids::cube(1.0).unwrap();
 /// let top = cube.faces().iter().find(|f| f.plane().normal.z > 0.5).unwrap();
 /// assert_eq!(top.vertices().len(), 4);
 /// assert_eq!(top.texture().x_axis(), kepler::geometry::Vector3::x());
@@ -203,7 +203,7 @@ impl Face {
     /// Indices of the face's vertices in the mesh, in order.
     ///
     /// ```
-    /// let t = kepler::solids::tetrahedron(1.0);
+    /// let t = kepler::solids::tetrahedron(1.0).unwrap();
     /// assert_eq!(t.faces()[0].vertices().len(), 3);
     /// ```
     pub fn vertices(&self) -> &[u32] {
@@ -213,7 +213,7 @@ impl Face {
     /// The face's plane equation.
     ///
     /// ```
-    /// let c = kepler::solids::cube(2.0);
+    /// let c = kepler::solids::cube(2.0).unwrap();
     /// assert!(c.faces().iter().all(|f| (f.plane().d + 1.0).abs() < 1e-15));
     /// ```
     pub fn plane(&self) -> &Plane {
@@ -223,7 +223,7 @@ impl Face {
     /// The face's texture coordinate system.
     ///
     /// ```
-    /// let c = kepler::solids::cube(2.0);
+    /// let c = kepler::solids::cube(2.0).unwrap();
     /// assert!(c.faces().iter().all(|f| f.texture().y_axis().z >= 0.0));
     /// ```
     pub fn texture(&self) -> &TextureFrame {
@@ -233,7 +233,7 @@ impl Face {
     /// The face's area.
     ///
     /// ```
-    /// let c = kepler::solids::cube(2.0);
+    /// let c = kepler::solids::cube(2.0).unwrap();
     /// assert!(c.faces().iter().all(|f| f.area() == 4.0));
     /// ```
     pub fn area(&self) -> f64 {
@@ -243,7 +243,7 @@ impl Face {
     /// The range of this face's triangles in [`Mesh::triangles`](super::Mesh::triangles).
     ///
     /// ```
-    /// let c = kepler::solids::cube(2.0);
+    /// let c = kepler::solids::cube(2.0).unwrap();
     /// assert_eq!(c.faces()[0].triangle_range().len(), 2);
     /// ```
     pub fn triangle_range(&self) -> std::ops::Range<usize> {

@@ -18,11 +18,15 @@
 //! assert!((tet.volume() - 1.0 / 6.0).abs() < 1e-15);
 //! ```
 
+mod containment;
 mod face;
 mod topology;
+mod tree;
 
+pub use containment::{Containment, classify_point, classify_point_brute_force};
 pub use face::{Face, Plane, TextureFrame};
 pub use topology::Topology;
+pub use tree::TriangleTree;
 
 use crate::geometry::polygon::{newell_normal, triangulate};
 use crate::geometry::predicates::{MAX_COORDINATE, collinear};
@@ -57,7 +61,9 @@ pub enum MeshError {
         vertex: usize,
     },
     /// A coordinate is larger in magnitude than [`MAX_COORDINATE`].
-    #[error("vertex {vertex} has a coordinate larger than 1e100 in magnitude (exact predicates could overflow)")]
+    #[error(
+        "vertex {vertex} has a coordinate larger than 1e100 in magnitude (exact predicates could overflow)"
+    )]
     OutOfRange {
         /// The vertex.
         vertex: usize,
@@ -100,7 +106,9 @@ pub enum MeshError {
         face: usize,
     },
     /// A face is not planar within [`PLANARITY_TOLERANCE`].
-    #[error("face {face} is not planar: a vertex is {deviation:.3e} of the face's size off its plane (tolerance 1e-6)")]
+    #[error(
+        "face {face} is not planar: a vertex is {deviation:.3e} of the face's size off its plane (tolerance 1e-6)"
+    )]
     NonPlanar {
         /// The face.
         face: usize,
@@ -122,7 +130,7 @@ pub enum MeshError {
 /// planes, texture systems and triangulations, and its edge [`Topology`].
 ///
 /// ```
-/// let c = kepler::solids::cube(1.0);
+/// let c = kepler::solids::cube(1.0).unwrap();
 /// assert_eq!((c.vertices().len(), c.faces().len(), c.triangles().len()), (8, 6, 12));
 /// assert_eq!(c.surface_area(), 6.0);
 /// ```
@@ -183,7 +191,7 @@ impl Mesh {
     /// The vertices, without duplicates.
     ///
     /// ```
-    /// assert_eq!(kepler::solids::tetrahedron(1.0).vertices().len(), 4);
+    /// assert_eq!(kepler::solids::tetrahedron(1.0).unwrap().vertices().len(), 4);
     /// ```
     pub fn vertices(&self) -> &[Point3] {
         &self.vertices
@@ -192,7 +200,7 @@ impl Mesh {
     /// The faces.
     ///
     /// ```
-    /// assert_eq!(kepler::solids::octahedron(1.0).faces().len(), 8);
+    /// assert_eq!(kepler::solids::octahedron(1.0).unwrap().faces().len(), 8);
     /// ```
     pub fn faces(&self) -> &[Face] {
         &self.faces
@@ -202,7 +210,7 @@ impl Mesh {
     /// like their faces. Exact predicates treat a face as these triangles.
     ///
     /// ```
-    /// assert_eq!(kepler::solids::dodecahedron(1.0).triangles().len(), 36);
+    /// assert_eq!(kepler::solids::dodecahedron(1.0).unwrap().triangles().len(), 36);
     /// ```
     pub fn triangles(&self) -> &[[u32; 3]] {
         &self.triangles
@@ -211,7 +219,7 @@ impl Mesh {
     /// The three corners of triangle `t`.
     ///
     /// ```
-    /// let c = kepler::solids::cube(1.0);
+    /// let c = kepler::solids::cube(1.0).unwrap();
     /// let [a, b, d] = c.triangle(0);
     /// assert!((b - a).cross(&(d - a)).norm() > 0.0);
     /// ```
@@ -222,7 +230,7 @@ impl Mesh {
     /// The edge structure: closed, consistently oriented, boundary and non-manifold edges.
     ///
     /// ```
-    /// assert!(kepler::solids::cube(1.0).topology().closed);
+    /// assert!(kepler::solids::cube(1.0).unwrap().topology().closed);
     /// ```
     pub fn topology(&self) -> Topology {
         self.topology
@@ -231,7 +239,7 @@ impl Mesh {
     /// Whether the mesh bounds a solid: closed and consistently oriented.
     ///
     /// ```
-    /// assert!(kepler::solids::cube(1.0).is_solid());
+    /// assert!(kepler::solids::cube(1.0).unwrap().is_solid());
     /// ```
     pub fn is_solid(&self) -> bool {
         self.topology.closed && self.topology.consistently_oriented
@@ -257,7 +265,7 @@ impl Mesh {
     /// only for closed meshes.
     ///
     /// ```
-    /// assert!((kepler::solids::cube(3.0).volume() - 27.0).abs() < 1e-12);
+    /// assert!((kepler::solids::cube(3.0).unwrap().volume() - 27.0).abs() < 1e-12);
     /// ```
     pub fn volume(&self) -> f64 {
         let Some(o) = self.vertices.first() else {
@@ -277,7 +285,7 @@ impl Mesh {
     /// The total area of the faces.
     ///
     /// ```
-    /// assert_eq!(kepler::solids::cube(2.0).surface_area(), 24.0);
+    /// assert_eq!(kepler::solids::cube(2.0).unwrap().surface_area(), 24.0);
     /// ```
     pub fn surface_area(&self) -> f64 {
         self.faces.iter().map(Face::area).sum()
@@ -286,7 +294,7 @@ impl Mesh {
     /// The vertices of face `f`, in order.
     ///
     /// ```
-    /// let c = kepler::solids::cube(1.0);
+    /// let c = kepler::solids::cube(1.0).unwrap();
     /// assert_eq!(c.face_points(0).count(), 4);
     /// ```
     pub fn face_points(&self, f: usize) -> impl Iterator<Item = Point3> + '_ {
@@ -302,7 +310,7 @@ impl Mesh {
     ///
     /// ```
     /// use nalgebra::Matrix4;
-    /// let c = kepler::solids::cube(1.0);
+    /// let c = kepler::solids::cube(1.0).unwrap();
     /// let m = Matrix4::new_nonuniform_scaling(&nalgebra::Vector3::new(2.0, 3.0, -1.0));
     /// let t = c.transformed(&m).unwrap();
     /// assert!((t.volume() - 6.0).abs() < 1e-12);
@@ -312,11 +320,7 @@ impl Mesh {
         if !det.is_finite() || det == 0.0 || m.iter().any(|x| !x.is_finite()) {
             return Err(MeshError::SingularTransform);
         }
-        let vertices = self
-            .vertices
-            .iter()
-            .map(|p| m.transform_point(p))
-            .collect();
+        let vertices = self.vertices.iter().map(|p| m.transform_point(p)).collect();
         let faces = self
             .faces
             .iter()
@@ -335,7 +339,9 @@ impl Mesh {
 /// Merges vertices with exactly equal coordinates (`-0.0` equals `0.0`) after checking that
 /// they are finite and in range; returns the distinct vertices in first-seen order, the map
 /// from input index to output index, and how many were merged.
-fn merge_duplicates(mut vertices: Vec<Point3>) -> Result<(Vec<Point3>, Vec<u32>, usize), MeshError> {
+fn merge_duplicates(
+    mut vertices: Vec<Point3>,
+) -> Result<(Vec<Point3>, Vec<u32>, usize), MeshError> {
     for (i, p) in vertices.iter_mut().enumerate() {
         if p.iter().any(|c| !c.is_finite()) {
             return Err(MeshError::NonFinite { vertex: i });
@@ -418,7 +424,10 @@ fn build_face(
         .fold(0.0, f64::max)
         / diameter;
     if deviation > PLANARITY_TOLERANCE {
-        return Err(MeshError::NonPlanar { face: fi, deviation });
+        return Err(MeshError::NonPlanar {
+            face: fi,
+            deviation,
+        });
     }
     let local = triangulate(&pts, &normal).map_err(|_| MeshError::NotSimple { face: fi })?;
     let tris: Vec<[u32; 3]> = local.iter().map(|t| t.map(|k| idx[k])).collect();

@@ -8,7 +8,7 @@
 /// with an inside, and only such a mesh gets an INBOX.
 ///
 /// ```
-/// let t = kepler::solids::cube(1.0).topology();
+/// let t = kepler::solids::cube(1.0).unwrap().topology();
 /// assert!(t.closed && t.consistently_oriented);
 /// assert_eq!((t.edges, t.boundary_edges, t.nonmanifold_edges), (12, 0, 0));
 /// ```

@@ -1,0 +1,1472 @@
+//! The tribox of Crosnier and Rossignac (1999): the intersection of 18 half-spaces, the slabs
+//! bounding the projections of a point set on 9 fixed directions, and its boundary.
+//!
+//! The directions, in the paper's order, are x, y, z, x+y, x+z, y+z, x−z, y−x, z−y. They are
+//! *unnormalised*: the projection of (x, y, z) on x+y is x+y. Plane `2d` is the lower bound of
+//! direction `d` (outward normal −d) and plane `2d+1` its upper bound (outward normal +d); this
+//! is the order of [`TriboxBounds::to_array18`] and of the faces of a [`Tribox`].
+//!
+//! # Exactness
+//! Axis bounds are coordinates, hence exact. A diagonal bound is the smallest double at least
+//! (largest at most) the exact extreme projection, so no input point is ever cut off.
+//! [`TriboxBounds::contains_point`] decides every inequality exactly. The boundary is evaluated
+//! by the paper's corner classification with every sign decided exactly
+//! ([`sum_sign`](crate::geometry::exact::sum_sign)) and every vertex coordinate rounded
+//! faithfully from an exact sum of at most a few bounds
+//! ([`accurate_sum`](crate::geometry::exact::accurate_sum)).
+//!
+//! # Boundary evaluation (paper section 3)
+//! Each of the 8 corners of the block B (the axis-aligned box) is reflected to the canonical
+//! corner (max x, max y, max z) by coordinate signs. There the six planes are the principal
+//! planes h_A: X ≤ α_A, h_B: Y ≤ α_B, h_C: Z ≤ α_C and the chamfer planes h_AB: X+Y ≤ α_AB,
+//! h_AC: X+Z ≤ α_AC, h_BC: Y+Z ≤ α_BC, each α the maximum of its signed combination. A chamfer
+//! with α_AB ≥ α_A + α_B cannot cut the block and is *clamped*: its effective bound is the
+//! two-term sum α_A + α_B, kept symbolic so that later formulas cancel exactly. The point p
+//! where the three chamfers meet is then outside at most one principal plane: case 1 (inside
+//! all), case 2 (beyond h_A), case 3 (beyond h_B), case 4 (beyond h_C). Each corner yields four
+//! vertices and one sub-list per incident face; face loops concatenate their corners' sub-lists.
+//!
+//! ```
+//! use kepler::bounds::tribox::TriboxBounds;
+//! use kepler::geometry::Point3;
+//! let pts = [Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 1.0, 1.0), Point3::new(1.0, 0.0, 0.0)];
+//! let bounds = TriboxBounds::from_points(&pts);
+//! assert!(pts.iter().all(|p| bounds.contains_point(p)));
+//! let tribox = bounds.boundary().cleaned();
+//! assert_eq!(tribox.vertices().len(), 3);
+//! assert_eq!(tribox.face_count(), 2); // a flat triangle: its two sides
+//! assert_eq!(tribox.volume(), 0.0);
+//! ```
+
+use std::cmp::Ordering;
+use std::sync::OnceLock;
+
+use rayon::prelude::*;
+use serde::{Serialize, Serializer};
+
+use crate::geometry::exact::{accurate_sum, sum_sign, two_sum};
+use crate::geometry::{Point3, Vector3};
+
+/// The 9 directions, in the paper's order, as integer vectors.
+const DIRS: [[i8; 3]; 9] = [
+    [1, 0, 0],
+    [0, 1, 0],
+    [0, 0, 1],
+    [1, 1, 0],
+    [1, 0, 1],
+    [0, 1, 1],
+    [1, 0, -1],
+    [-1, 1, 0],
+    [0, -1, 1],
+];
+
+/// The two coordinates (with the sign of the second) whose sum is each diagonal direction.
+const DIAGONAL_AXES: [(usize, usize, bool); 6] = [
+    (0, 1, false),
+    (0, 2, false),
+    (1, 2, false),
+    (0, 2, true),
+    (1, 0, true),
+    (2, 1, true),
+];
+
+/// The most vertices a raw boundary has: four per corner.
+const MAX_VERTICES: usize = 32;
+/// The longest face loop: 4 corners × 2 vertices (principal) or 2 corners × 4 (chamfer).
+const MAX_FACE: usize = 8;
+
+/// The outward normal of plane `j` as an integer vector.
+const fn normal(j: usize) -> [i8; 3] {
+    let d = DIRS[j / 2];
+    if j % 2 == 1 { d } else { [-d[0], -d[1], -d[2]] }
+}
+
+/// The plane whose outward normal is `w` (evaluated at compile time only).
+const fn plane_of(w: [i8; 3]) -> u8 {
+    let mut j = 0;
+    while j < 18 {
+        let n = normal(j);
+        if n[0] == w[0] && n[1] == w[1] && n[2] == w[2] {
+            return j as u8;
+        }
+        j += 1;
+    }
+    panic!("not a tribox normal")
+}
+
+/// The signs (sx, sy, sz) of corner `c`: bit i set means the minimum along axis i.
+const fn corner_signs(c: usize) -> [i8; 3] {
+    [
+        if c & 1 == 0 { 1 } else { -1 },
+        if c & 2 == 0 { 1 } else { -1 },
+        if c & 4 == 0 { 1 } else { -1 },
+    ]
+}
+
+/// The corner with signs `s`.
+const fn corner_of(s: [i8; 3]) -> usize {
+    (s[0] < 0) as usize | ((s[1] < 0) as usize) << 1 | ((s[2] < 0) as usize) << 2
+}
+
+/// Local planes of the canonical corner: A, B, C, AB, AC, BC, as vectors in the reflected frame.
+const LOCAL_AXES: [[i8; 3]; 6] = [
+    [1, 0, 0],
+    [0, 1, 0],
+    [0, 0, 1],
+    [1, 1, 0],
+    [1, 0, 1],
+    [0, 1, 1],
+];
+const A: usize = 0;
+const B: usize = 1;
+const C: usize = 2;
+const AB: usize = 3;
+const AC: usize = 4;
+const BC: usize = 5;
+
+/// `CORNER_PLANES[c][k]`: the global plane of local plane k (A, B, C, AB, AC, BC) at corner c.
+const CORNER_PLANES: [[u8; 6]; 8] = {
+    let mut t = [[0u8; 6]; 8];
+    let mut c = 0;
+    while c < 8 {
+        let s = corner_signs(c);
+        let mut k = 0;
+        while k < 6 {
+            let l = LOCAL_AXES[k];
+            t[c][k] = plane_of([l[0] * s[0], l[1] * s[1], l[2] * s[2]]);
+            k += 1;
+        }
+        c += 1;
+    }
+    t
+};
+
+/// `CHAMFER_PARENTS[j]`: for a chamfer plane j (6..18), the two principal planes whose normals
+/// add up to its normal (its bound is redundant when at least the sum of theirs).
+const CHAMFER_PARENTS: [[u8; 2]; 18] = {
+    let mut t = [[0u8; 2]; 18];
+    let mut j = 6;
+    while j < 18 {
+        let n = normal(j);
+        let mut found = 0;
+        let mut i = 0;
+        while i < 3 {
+            if n[i] != 0 {
+                let mut e = [0i8; 3];
+                e[i] = n[i];
+                t[j][found] = plane_of(e);
+                found += 1;
+            }
+            i += 1;
+        }
+        j += 1;
+    }
+    t
+};
+
+/// `FACE_CORNERS[j]`: the (corner, local plane) pairs incident to plane j, counter-clockwise
+/// seen from outside; principal planes have 4, chamfer planes 2 (their order is then immaterial).
+const FACE_CORNERS: [([(u8, u8); 4], u8); 18] = {
+    let mut t = [([(0u8, 0u8); 4], 0u8); 18];
+    let mut j = 0;
+    while j < 18 {
+        let n = normal(j);
+        if j < 6 {
+            let i = j / 2;
+            // Offset of a corner from the face centre, rotated by +90° about n each step.
+            let mut r = [1i8; 3];
+            r[i] = 0;
+            let mut step = 0;
+            while step < 4 {
+                let s = [n[0] + r[0], n[1] + r[1], n[2] + r[2]];
+                t[j].0[step] = (corner_of(s) as u8, i as u8);
+                r = [
+                    n[1] * r[2] - n[2] * r[1],
+                    n[2] * r[0] - n[0] * r[2],
+                    n[0] * r[1] - n[1] * r[0],
+                ];
+                step += 1;
+            }
+            t[j].1 = 4;
+        } else {
+            let free = if n[0] == 0 {
+                0
+            } else if n[1] == 0 {
+                1
+            } else {
+                2
+            };
+            let local = [BC, AC, AB][free];
+            let mut s = n;
+            s[free] = 1;
+            t[j].0[0] = (corner_of(s) as u8, local as u8);
+            s[free] = -1;
+            t[j].0[1] = (corner_of(s) as u8, local as u8);
+            t[j].1 = 2;
+        }
+        j += 1;
+    }
+    t
+};
+
+/// Per case (1..4, index case − 1): the local planes defining each of the corner's 4 vertex
+/// slots, and each local face's sub-list of slots (counter-clockwise seen from outside in the
+/// canonical frame). Case 1 slots: v1, v2, v3, p; case 2 slots: v1, v3, v2', v3'' (the paper's
+/// q2 = A∩AC∩BC and q3 = A∩AB∩BC).
+struct CaseTable {
+    slot_planes: [[usize; 3]; 4],
+    sub_lists: [([u8; 4], u8); 6],
+}
+
+const CASE1: CaseTable = CaseTable {
+    slot_planes: [[C, AC, BC], [A, AB, AC], [B, AB, BC], [AB, AC, BC]],
+    // A: [v2]; B: [v3]; C: [v1]; AB: [v3, p, v2]; AC: [v2, p, v1]; BC: [v1, p, v3].
+    sub_lists: [
+        ([1, 0, 0, 0], 1),
+        ([2, 0, 0, 0], 1),
+        ([0, 0, 0, 0], 1),
+        ([2, 3, 1, 0], 3),
+        ([1, 3, 0, 0], 3),
+        ([0, 3, 2, 0], 3),
+    ],
+};
+
+const CASE2: CaseTable = CaseTable {
+    slot_planes: [[C, AC, BC], [B, AB, BC], [A, AC, BC], [A, AB, BC]],
+    // A: [q3, q2]; B: [v3]; C: [v1]; AB: [v3, q3]; AC: [q2, v1]; BC: [v1, q2, q3, v3].
+    sub_lists: [
+        ([3, 2, 0, 0], 2),
+        ([1, 0, 0, 0], 1),
+        ([0, 0, 0, 0], 1),
+        ([1, 3, 0, 0], 2),
+        ([2, 0, 0, 0], 2),
+        ([0, 2, 3, 1], 4),
+    ],
+};
+
+/// The cyclic rotation x→y→z→x of the local planes: in the rotated frame, local plane k is the
+/// original local plane `ROTATION[k]` (A' = B, B' = C, C' = A, A'B' = BC, A'C' = AB, B'C' = AC).
+/// It preserves orientation, so cases 3 and 4 are case 2 seen in the once- and twice-rotated
+/// frames.
+const ROTATION: [usize; 6] = [B, C, A, BC, AB, AC];
+const ROTATION2: [usize; 6] = [C, A, B, AC, BC, AB];
+
+const fn rotate_case(t: &CaseTable, sigma: [usize; 6]) -> CaseTable {
+    let mut slot_planes = [[0; 3]; 4];
+    let mut s = 0;
+    while s < 4 {
+        let mut k = 0;
+        while k < 3 {
+            slot_planes[s][k] = sigma[t.slot_planes[s][k]];
+            k += 1;
+        }
+        s += 1;
+    }
+    let mut sub_lists = [([0; 4], 0); 6];
+    let mut f = 0;
+    while f < 6 {
+        sub_lists[sigma[f]] = t.sub_lists[f];
+        f += 1;
+    }
+    CaseTable {
+        slot_planes,
+        sub_lists,
+    }
+}
+
+const CASES: [CaseTable; 4] = [
+    CASE1,
+    CASE2,
+    rotate_case(&CASE2, ROTATION),
+    rotate_case(&CASE2, ROTATION2),
+];
+
+/// `VERTEX_PLANES[c][case][slot]`: the global planes (ascending) defining a corner's vertex.
+const VERTEX_PLANES: [[[[u8; 3]; 4]; 4]; 8] = {
+    let mut t = [[[[0u8; 3]; 4]; 4]; 8];
+    let mut c = 0;
+    while c < 8 {
+        let mut k = 0;
+        while k < 4 {
+            let mut s = 0;
+            while s < 4 {
+                let l = CASES[k].slot_planes[s];
+                let mut p = [
+                    CORNER_PLANES[c][l[0]],
+                    CORNER_PLANES[c][l[1]],
+                    CORNER_PLANES[c][l[2]],
+                ];
+                // Sort three.
+                if p[0] > p[1] {
+                    p = [p[1], p[0], p[2]];
+                }
+                if p[1] > p[2] {
+                    p = [p[0], p[2], p[1]];
+                }
+                if p[0] > p[1] {
+                    p = [p[1], p[0], p[2]];
+                }
+                t[c][k][s] = p;
+                s += 1;
+            }
+            k += 1;
+        }
+        c += 1;
+    }
+    t
+};
+
+/// `SUB_LISTS[c][case][local]`: a corner's sub-list for a local face as global vertex indices
+/// (4c + slot), reversed at corners whose reflection reverses orientation (sx·sy·sz = −1).
+const SUB_LISTS: [[[([u8; 4], u8); 6]; 4]; 8] = {
+    let mut t = [[[([0u8; 4], 0u8); 6]; 4]; 8];
+    let mut c = 0;
+    while c < 8 {
+        let s = corner_signs(c);
+        let reverse = s[0] * s[1] * s[2] < 0;
+        let mut k = 0;
+        while k < 4 {
+            let mut f = 0;
+            while f < 6 {
+                let (list, len) = CASES[k].sub_lists[f];
+                let mut out = [0u8; 4];
+                let mut i = 0;
+                while i < len as usize {
+                    let slot = if reverse {
+                        list[len as usize - 1 - i]
+                    } else {
+                        list[i]
+                    };
+                    out[i] = 4 * c as u8 + slot;
+                    i += 1;
+                }
+                t[c][k][f] = (out, len);
+                f += 1;
+            }
+            k += 1;
+        }
+        c += 1;
+    }
+    t
+};
+
+/// Bounds of a point set along the tribox's 9 directions: the 18 parameters of its tribox.
+///
+/// Serialises (serde) as the 18 numbers of [`to_array18`](Self::to_array18).
+///
+/// ```
+/// use kepler::bounds::tribox::TriboxBounds;
+/// use kepler::geometry::Point3;
+/// let b = TriboxBounds::from_points(&[Point3::new(1.0, 2.0, 3.0), Point3::new(0.0, 0.0, 0.0)]);
+/// assert_eq!(b.max()[3], 3.0); // max of x + y
+/// assert_eq!(b.min()[8], 0.0); // min of z - y
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TriboxBounds {
+    min: [f64; 9],
+    max: [f64; 9],
+}
+
+impl Serialize for TriboxBounds {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        self.to_array18().serialize(serializer)
+    }
+}
+
+impl TriboxBounds {
+    /// The 9 directions in the paper's order: x, y, z, x+y, x+z, y+z, x−z, y−x, z−y.
+    ///
+    /// ```
+    /// use kepler::bounds::tribox::TriboxBounds;
+    /// assert_eq!(TriboxBounds::DIRECTIONS[7], [-1.0, 1.0, 0.0]); // y - x
+    /// ```
+    pub const DIRECTIONS: [[f64; 3]; 9] = {
+        let mut t = [[0.0; 3]; 9];
+        let mut d = 0;
+        while d < 9 {
+            t[d] = [DIRS[d][0] as f64, DIRS[d][1] as f64, DIRS[d][2] as f64];
+            d += 1;
+        }
+        t
+    };
+
+    /// The bounds of no point: every minimum +∞, every maximum −∞.
+    ///
+    /// ```
+    /// use kepler::bounds::tribox::TriboxBounds;
+    /// assert!(TriboxBounds::empty().is_empty());
+    /// ```
+    pub fn empty() -> Self {
+        Self {
+            min: [f64::INFINITY; 9],
+            max: [f64::NEG_INFINITY; 9],
+        }
+    }
+
+    /// The bounds of a point set, in one pass. Points with a NaN coordinate are skipped for the
+    /// directions it touches (and are then never contained).
+    ///
+    /// Each diagonal sum is rounded in `f64`; its exact error is looked at only when the rounded
+    /// sum reaches the current extreme, and the final bound is moved one ulp outward when a point
+    /// attaining it has an exact sum beyond it. The result is the exact extreme rounded outward.
+    ///
+    /// ```
+    /// use kepler::bounds::tribox::TriboxBounds;
+    /// use kepler::geometry::Point3;
+    /// let b = TriboxBounds::from_points(&[Point3::new(0.1, 0.7, 0.0)]);
+    /// assert_eq!(b.max()[3], (0.1f64 + 0.7).next_up()); // 0.1 + 0.7 rounds down in f64
+    /// assert_eq!(b.min()[3], 0.1 + 0.7);
+    /// ```
+    pub fn from_points(points: &[Point3]) -> Self {
+        let mut acc = Accumulator::new();
+        for p in points {
+            acc.add(p);
+        }
+        acc.finish()
+    }
+
+    /// [`from_points`](Self::from_points) in parallel (rayon): chunks are folded on separate
+    /// threads and their accumulators merged. Same result.
+    ///
+    /// ```
+    /// use kepler::bounds::tribox::TriboxBounds;
+    /// use kepler::geometry::Point3;
+    /// let pts: Vec<Point3> = (0..1000).map(|i| Point3::new(i as f64 * 0.1, 1.0, -0.3)).collect();
+    /// assert_eq!(TriboxBounds::par_from_points(&pts), TriboxBounds::from_points(&pts));
+    /// ```
+    pub fn par_from_points(points: &[Point3]) -> Self {
+        const CHUNK: usize = 1 << 15;
+        points
+            .par_chunks(CHUNK)
+            .map(|chunk| {
+                let mut acc = Accumulator::new();
+                for p in chunk {
+                    acc.add(p);
+                }
+                acc
+            })
+            .reduce(Accumulator::new, Accumulator::merge)
+            .finish()
+    }
+
+    /// Whether these bounds contain no point.
+    ///
+    /// ```
+    /// use kepler::bounds::tribox::TriboxBounds;
+    /// use kepler::geometry::Point3;
+    /// assert!(!TriboxBounds::from_points(&[Point3::origin()]).is_empty());
+    /// ```
+    pub fn is_empty(&self) -> bool {
+        self.min[0] > self.max[0]
+    }
+
+    /// The lower bounds, one per direction, in the order of [`DIRECTIONS`](Self::DIRECTIONS).
+    ///
+    /// ```
+    /// use kepler::bounds::tribox::TriboxBounds;
+    /// use kepler::geometry::Point3;
+    /// let b = TriboxBounds::from_points(&[Point3::new(1.0, 2.0, 4.0)]);
+    /// assert_eq!(b.min(), &[1.0, 2.0, 4.0, 3.0, 5.0, 6.0, -3.0, 1.0, 2.0]);
+    /// ```
+    pub fn min(&self) -> &[f64; 9] {
+        &self.min
+    }
+
+    /// The upper bounds, one per direction, in the order of [`DIRECTIONS`](Self::DIRECTIONS).
+    ///
+    /// ```
+    /// use kepler::bounds::tribox::TriboxBounds;
+    /// use kepler::geometry::Point3;
+    /// let b = TriboxBounds::from_points(&[Point3::new(1.0, 2.0, 4.0)]);
+    /// assert_eq!(b.max(), b.min());
+    /// ```
+    pub fn max(&self) -> &[f64; 9] {
+        &self.max
+    }
+
+    /// The 18 bounds as `[min_x, max_x, min_y, max_y, min_z, max_z, min_(x+y), max_(x+y), …,
+    /// min_(z−y), max_(z−y)]`: element `2d` / `2d+1` is the lower / upper bound of direction `d`,
+    /// which is also the index of the corresponding plane and face. This is the JSON layout.
+    ///
+    /// ```
+    /// use kepler::bounds::tribox::TriboxBounds;
+    /// use kepler::geometry::Point3;
+    /// let b = TriboxBounds::from_points(&[Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 2.0, 3.0)]);
+    /// assert_eq!(&b.to_array18()[..8], &[0.0, 1.0, 0.0, 2.0, 0.0, 3.0, 0.0, 3.0]);
+    /// assert_eq!(serde_json::to_string(&b).unwrap(),
+    ///     "[0.0,1.0,0.0,2.0,0.0,3.0,0.0,3.0,0.0,4.0,0.0,5.0,-2.0,0.0,0.0,1.0,0.0,1.0]");
+    /// ```
+    pub fn to_array18(&self) -> [f64; 18] {
+        std::array::from_fn(|j| {
+            if j % 2 == 0 {
+                self.min[j / 2]
+            } else {
+                self.max[j / 2]
+            }
+        })
+    }
+
+    /// Whether `p` satisfies all 18 inequalities, decided exactly (a point on a bounding plane
+    /// is inside). Diagonal projections are not rounded: their comparison with the bound is the
+    /// exact sign of a three-term sum.
+    ///
+    /// ```
+    /// use kepler::bounds::tribox::TriboxBounds;
+    /// use kepler::geometry::Point3;
+    /// let b = TriboxBounds::from_points(&[Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 1.0, 0.0)]);
+    /// assert!(b.contains_point(&Point3::new(0.5, 0.5, 0.0)));
+    /// assert!(!b.contains_point(&Point3::new(1.0, 0.0, 0.0))); // y - x below its minimum 0
+    /// ```
+    pub fn contains_point(&self, p: &Point3) -> bool {
+        let c = [p.x, p.y, p.z];
+        for i in 0..3 {
+            if c[i].is_nan() || c[i] < self.min[i] || c[i] > self.max[i] {
+                return false;
+            }
+        }
+        DIAGONAL_AXES.iter().enumerate().all(|(k, &(i, j, minus))| {
+            let (a, b) = (c[i], if minus { -c[j] } else { c[j] });
+            let (lo, hi) = (self.min[3 + k], self.max[3 + k]);
+            (lo == f64::NEG_INFINITY || sum_sign(&[a, b, -lo]) != Ordering::Less)
+                && (hi == f64::INFINITY || sum_sign(&[a, b, -hi]) != Ordering::Greater)
+        })
+    }
+
+    /// Whether the slabs of `self` and `other` overlap along all 9 directions (touching counts).
+    /// Disjoint slabs along one direction prove the triboxes disjoint; overlapping slabs along
+    /// all nine are the paper's interference filter (not an exact polytope test).
+    ///
+    /// ```
+    /// use kepler::bounds::tribox::TriboxBounds;
+    /// use kepler::geometry::Point3;
+    /// let a = TriboxBounds::from_points(&[Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0)]);
+    /// let b = TriboxBounds::from_points(&[Point3::new(1.0, 0.0, 0.0), Point3::new(2.0, 0.0, 0.0)]);
+    /// let c = TriboxBounds::from_points(&[Point3::new(0.0, 1.0, 0.0), Point3::new(1.0, 2.0, 0.0)]);
+    /// assert!(a.intersects(&b));
+    /// assert!(!a.intersects(&c));
+    /// ```
+    pub fn intersects(&self, other: &TriboxBounds) -> bool {
+        (0..9).all(|d| self.min[d] <= other.max[d] && other.min[d] <= self.max[d])
+    }
+
+    /// The bounds of the union of both point sets.
+    ///
+    /// ```
+    /// use kepler::bounds::tribox::TriboxBounds;
+    /// use kepler::geometry::Point3;
+    /// let p = [Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 2.0, 3.0)];
+    /// let a = TriboxBounds::from_points(&p[..1]);
+    /// let b = TriboxBounds::from_points(&p[1..]);
+    /// assert_eq!(a.union(&b), TriboxBounds::from_points(&p));
+    /// assert_eq!(a.union(&TriboxBounds::empty()), a);
+    /// ```
+    pub fn union(&self, other: &TriboxBounds) -> TriboxBounds {
+        TriboxBounds {
+            min: std::array::from_fn(|d| self.min[d].min(other.min[d])),
+            max: std::array::from_fn(|d| self.max[d].max(other.max[d])),
+        }
+    }
+
+    /// The boundary of the tribox, by the paper's corner classification. See [`Tribox`].
+    ///
+    /// ```
+    /// use kepler::bounds::tribox::TriboxBounds;
+    /// use kepler::geometry::Point3;
+    /// let b = TriboxBounds::from_points(&[Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 1.0, 1.0)]);
+    /// assert_eq!(b.boundary().cleaned().vertices().len(), 2); // a needle along (1, 1, 1)
+    /// ```
+    pub fn boundary(&self) -> Tribox {
+        Tribox::new(self)
+    }
+
+    /// The bounds as offsets of the 18 half-spaces n_j · x ≤ β_j: β_(2d) = −min_d,
+    /// β_(2d+1) = max_d (negation is exact).
+    fn offsets(&self) -> [f64; 18] {
+        std::array::from_fn(|j| {
+            if j % 2 == 0 {
+                -self.min[j / 2]
+            } else {
+                self.max[j / 2]
+            }
+        })
+    }
+
+    /// The bounds with half-space offsets `beta` (see [`offsets`](Self::offsets)).
+    fn from_offsets(beta: &[f64; 18]) -> Self {
+        TriboxBounds {
+            min: std::array::from_fn(|d| -beta[2 * d]),
+            max: std::array::from_fn(|d| beta[2 * d + 1]),
+        }
+    }
+}
+
+/// Running extremes of a point set. For the 6 diagonal directions the extremes are of the
+/// rounded sums, with a flag telling whether a point attaining the extreme has an exact sum
+/// beyond it.
+#[derive(Clone, Copy)]
+struct Accumulator {
+    min: [f64; 9],
+    max: [f64; 9],
+    below_min: [bool; 6],
+    above_max: [bool; 6],
+}
+
+impl Accumulator {
+    fn new() -> Self {
+        Accumulator {
+            min: [f64::INFINITY; 9],
+            max: [f64::NEG_INFINITY; 9],
+            below_min: [false; 6],
+            above_max: [false; 6],
+        }
+    }
+
+    #[inline(always)]
+    fn add(&mut self, p: &Point3) {
+        let (x, y, z) = (p.x, p.y, p.z);
+        for (i, v) in [x, y, z].into_iter().enumerate() {
+            if v < self.min[i] {
+                self.min[i] = v;
+            }
+            if v > self.max[i] {
+                self.max[i] = v;
+            }
+        }
+        let pairs = [(x, y), (x, z), (y, z), (x, -z), (y, -x), (z, -y)];
+        for (k, (a, b)) in pairs.into_iter().enumerate() {
+            let s = a + b;
+            if s >= self.max[3 + k] {
+                self.reach_max(k, a, b, s);
+            }
+            if s <= self.min[3 + k] {
+                self.reach_min(k, a, b, s);
+            }
+        }
+    }
+
+    #[cold]
+    fn reach_max(&mut self, k: usize, a: f64, b: f64, s: f64) {
+        let above = two_sum(a, b).1 > 0.0;
+        if s > self.max[3 + k] {
+            self.max[3 + k] = s;
+            self.above_max[k] = above;
+        } else {
+            self.above_max[k] |= above;
+        }
+    }
+
+    #[cold]
+    fn reach_min(&mut self, k: usize, a: f64, b: f64, s: f64) {
+        let below = two_sum(a, b).1 < 0.0;
+        if s < self.min[3 + k] {
+            self.min[3 + k] = s;
+            self.below_min[k] = below;
+        } else {
+            self.below_min[k] |= below;
+        }
+    }
+
+    fn merge(self, other: Self) -> Self {
+        let mut out = self;
+        for d in 0..9 {
+            out.min[d] = self.min[d].min(other.min[d]);
+            out.max[d] = self.max[d].max(other.max[d]);
+        }
+        for k in 0..6 {
+            let d = 3 + k;
+            out.below_min[k] = (self.min[d] == out.min[d] && self.below_min[k])
+                || (other.min[d] == out.min[d] && other.below_min[k]);
+            out.above_max[k] = (self.max[d] == out.max[d] && self.above_max[k])
+                || (other.max[d] == out.max[d] && other.above_max[k]);
+        }
+        out
+    }
+
+    fn finish(self) -> TriboxBounds {
+        let mut b = TriboxBounds {
+            min: self.min,
+            max: self.max,
+        };
+        for k in 0..6 {
+            if self.below_min[k] {
+                b.min[3 + k] = b.min[3 + k].next_down();
+            }
+            if self.above_max[k] {
+                b.max[3 + k] = b.max[3 + k].next_up();
+            }
+        }
+        b
+    }
+}
+
+/// A local bound of a corner, as the operations of the boundary formulas need it: a double
+/// (no chamfer of the corner is clamped) or an [`Effective`] bound.
+trait LocalBound: Copy {
+    fn neg(self) -> Self;
+    fn double(self) -> Self;
+    /// The value, for a principal bound (a single double).
+    fn value(self) -> f64;
+    /// a + b, faithfully rounded.
+    fn sum2(a: Self, b: Self) -> f64;
+    /// a + b + c, faithfully rounded.
+    fn sum3(a: Self, b: Self, c: Self) -> f64;
+    /// Whether a + b + c + d > 0, exactly.
+    fn positive4(a: Self, b: Self, c: Self, d: Self) -> bool;
+}
+
+impl LocalBound for f64 {
+    #[inline]
+    fn neg(self) -> Self {
+        -self
+    }
+    #[inline]
+    fn double(self) -> Self {
+        2.0 * self
+    }
+    #[inline]
+    fn value(self) -> f64 {
+        self
+    }
+    #[inline]
+    fn sum2(a: Self, b: Self) -> f64 {
+        a + b
+    }
+    #[inline]
+    fn sum3(a: Self, b: Self, c: Self) -> f64 {
+        accurate_sum(&[a, b, c])
+    }
+    #[inline]
+    fn positive4(a: Self, b: Self, c: Self, d: Self) -> bool {
+        sum_sign(&[a, b, c, d]) == Ordering::Greater
+    }
+}
+
+/// An effective local bound: the bound itself, or for a clamped chamfer the symbolic sum of
+/// its two principal bounds (`lo` is 0 for an unclamped bound).
+#[derive(Clone, Copy)]
+struct Effective {
+    hi: f64,
+    lo: f64,
+}
+
+impl LocalBound for Effective {
+    fn neg(self) -> Self {
+        Effective {
+            hi: -self.hi,
+            lo: -self.lo,
+        }
+    }
+    fn double(self) -> Self {
+        Effective {
+            hi: 2.0 * self.hi,
+            lo: 2.0 * self.lo,
+        }
+    }
+    fn value(self) -> f64 {
+        self.hi + self.lo
+    }
+    fn sum2(a: Self, b: Self) -> f64 {
+        accurate_sum(&[a.hi, a.lo, b.hi, b.lo])
+    }
+    fn sum3(a: Self, b: Self, c: Self) -> f64 {
+        accurate_sum(&[a.hi, a.lo, b.hi, b.lo, c.hi, c.lo])
+    }
+    fn positive4(a: Self, b: Self, c: Self, d: Self) -> bool {
+        sum_sign(&[a.hi, a.lo, b.hi, b.lo, c.hi, c.lo, d.hi, d.lo]) == Ordering::Greater
+    }
+}
+
+/// Classifies the canonical corner with local bounds `[α_A, α_B, α_C, α_AB, α_AC, α_BC]`
+/// (chamfers already clamped) and computes its four vertices in the canonical frame.
+/// Returns the case (1..4) and the vertices in the slot order of [`CASES`].
+#[inline]
+fn corner<T: LocalBound>(al: [T; 6]) -> (usize, [[f64; 3]; 4]) {
+    let [a, b, c, ab, ac, bc] = al;
+    // x_p > α_A  ⇔  α_AB + α_AC − α_BC − 2α_A > 0, and cyclically.
+    if T::positive4(ab, ac, bc.neg(), a.double().neg()) {
+        return (2, case2(al));
+    }
+    if T::positive4(ab, ac.neg(), bc, b.double().neg()) {
+        let v = case2([b, c, a, bc, ab, ac]);
+        return (3, v.map(|w| [w[2], w[0], w[1]]));
+    }
+    if T::positive4(ab.neg(), ac, bc, c.double().neg()) {
+        let v = case2([c, a, b, ac, bc, ab]);
+        return (4, v.map(|w| [w[1], w[2], w[0]]));
+    }
+    // Case 1: p inside the block. Paper eqs (2)-(7); halving is exact.
+    let v1 = [T::sum2(ac, c.neg()), T::sum2(bc, c.neg()), c.value()];
+    let v2 = [a.value(), T::sum2(ab, a.neg()), T::sum2(ac, a.neg())];
+    let v3 = [T::sum2(ab, b.neg()), b.value(), T::sum2(bc, b.neg())];
+    let p = [
+        0.5 * T::sum3(ab, ac, bc.neg()),
+        0.5 * T::sum3(ab, ac.neg(), bc),
+        0.5 * T::sum3(ab.neg(), ac, bc),
+    ];
+    (1, [v1, v2, v3, p])
+}
+
+/// Case 2 (p beyond h_A): vertices v1, v3 (eqs 5, 7), v2' = A∩AC∩BC and v3'' = A∩AB∩BC
+/// (eqs 8, 9), in the canonical frame.
+#[inline]
+fn case2<T: LocalBound>(al: [T; 6]) -> [[f64; 3]; 4] {
+    let [a, b, c, ab, ac, bc] = al;
+    let v1 = [T::sum2(ac, c.neg()), T::sum2(bc, c.neg()), c.value()];
+    let v3 = [T::sum2(ab, b.neg()), b.value(), T::sum2(bc, b.neg())];
+    let q2 = [a.value(), T::sum3(bc, ac.neg(), a), T::sum2(ac, a.neg())];
+    let q3 = [a.value(), T::sum2(ab, a.neg()), T::sum3(bc, ab.neg(), a)];
+    [v1, v3, q2, q3]
+}
+
+/// Which chamfer bounds are clamped: β_j ≥ β_p1 + β_p2 for its parent principal planes.
+fn clamped_chamfers(beta: &[f64; 18]) -> [bool; 18] {
+    std::array::from_fn(|j| {
+        j >= 6 && {
+            let [p1, p2] = CHAMFER_PARENTS[j];
+            sum_sign(&[beta[j], -beta[p1 as usize], -beta[p2 as usize]]) != Ordering::Less
+        }
+    })
+}
+
+/// The boundary of a tribox: at most 32 vertices and one face per bounding plane.
+///
+/// Face `j` lies on plane `j` (see [`TriboxBounds::to_array18`]); its loop is counter-clockwise
+/// seen from outside. As the paper's algorithm produces it ([`TriboxBounds::boundary`]), every
+/// corner contributes four vertices and every face its corners' sub-lists, so singular inputs
+/// leave repeated vertices and degenerate faces; [`cleaned`](Self::cleaned) merges exactly
+/// equal vertices and drops zero-length edges and faces left with fewer than 3 vertices.
+///
+/// Each vertex remembers three planes with independent normals through it.
+///
+/// ```
+/// use kepler::bounds::tribox::TriboxBounds;
+/// use kepler::geometry::Point3;
+/// let cube: Vec<Point3> = (0..8)
+///     .map(|i| Point3::new((i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64))
+///     .collect();
+/// let raw = TriboxBounds::from_points(&cube).boundary();
+/// assert_eq!(raw.vertices().len(), 32);
+/// let clean = raw.cleaned();
+/// assert_eq!((clean.vertices().len(), clean.face_count()), (8, 6));
+/// assert_eq!(clean.volume(), 1.0);
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Tribox {
+    bounds: TriboxBounds,
+    vertices: [Point3; MAX_VERTICES],
+    vertex_planes: [[u8; 3]; MAX_VERTICES],
+    vertex_count: u8,
+    faces: [[u8; MAX_FACE]; 18],
+    face_len: [u8; 18],
+    cases: [u8; 8],
+}
+
+impl Tribox {
+    /// The outward normals of the 18 planes (unnormalised, in the order of
+    /// [`TriboxBounds::to_array18`]).
+    ///
+    /// ```
+    /// use kepler::bounds::tribox::Tribox;
+    /// assert_eq!(Tribox::PLANE_NORMALS[0], [-1.0, 0.0, 0.0]); // min x
+    /// assert_eq!(Tribox::PLANE_NORMALS[15], [-1.0, 1.0, 0.0]); // max (y - x)
+    /// ```
+    pub const PLANE_NORMALS: [[f64; 3]; 18] = {
+        let mut t = [[0.0; 3]; 18];
+        let mut j = 0;
+        while j < 18 {
+            let n = normal(j);
+            t[j] = [n[0] as f64, n[1] as f64, n[2] as f64];
+            j += 1;
+        }
+        t
+    };
+
+    /// Evaluates the boundary of the tribox of `bounds` by the paper's corner classification.
+    /// Empty bounds give an empty boundary.
+    ///
+    /// ```
+    /// use kepler::bounds::tribox::{Tribox, TriboxBounds};
+    /// use kepler::geometry::Point3;
+    /// let b = TriboxBounds::from_points(&[Point3::new(0.0, 0.0, 0.0), Point3::new(2.0, 2.0, 2.0)]);
+    /// assert_eq!(Tribox::new(&b), b.boundary());
+    /// assert!(Tribox::new(&TriboxBounds::empty()).is_empty());
+    /// ```
+    pub fn new(bounds: &TriboxBounds) -> Tribox {
+        let mut t = Tribox {
+            bounds: *bounds,
+            vertices: [Point3::origin(); MAX_VERTICES],
+            vertex_planes: [[0; 3]; MAX_VERTICES],
+            vertex_count: 0,
+            faces: [[0; MAX_FACE]; 18],
+            face_len: [0; 18],
+            cases: [0; 8],
+        };
+        if bounds.is_empty() {
+            return t;
+        }
+        let beta = bounds.offsets();
+        let clamped = clamped_chamfers(&beta);
+        for c in 0..8 {
+            let planes = CORNER_PLANES[c];
+            let (case, local) = if clamped[planes[AB] as usize]
+                || clamped[planes[AC] as usize]
+                || clamped[planes[BC] as usize]
+            {
+                corner(std::array::from_fn(|k| {
+                    let j = planes[k] as usize;
+                    if clamped[j] {
+                        let [p1, p2] = CHAMFER_PARENTS[j];
+                        Effective {
+                            hi: beta[p1 as usize],
+                            lo: beta[p2 as usize],
+                        }
+                    } else {
+                        Effective {
+                            hi: beta[j],
+                            lo: 0.0,
+                        }
+                    }
+                }))
+            } else {
+                corner(std::array::from_fn(|k| beta[planes[k] as usize]))
+            };
+            let s = corner_signs(c).map(f64::from);
+            for (slot, v) in local.iter().enumerate() {
+                t.vertices[4 * c + slot] = Point3::new(s[0] * v[0], s[1] * v[1], s[2] * v[2]);
+            }
+            t.vertex_planes[4 * c..4 * c + 4].copy_from_slice(&VERTEX_PLANES[c][case - 1]);
+            t.cases[c] = case as u8;
+        }
+        t.vertex_count = MAX_VERTICES as u8;
+        for j in 0..18 {
+            let (list, n) = FACE_CORNERS[j];
+            let mut len = 0;
+            for &(c, local) in &list[..n as usize] {
+                let (sub, m) =
+                    SUB_LISTS[c as usize][t.cases[c as usize] as usize - 1][local as usize];
+                t.faces[j][len..len + m as usize].copy_from_slice(&sub[..m as usize]);
+                len += m as usize;
+            }
+            t.face_len[j] = len as u8;
+        }
+        t
+    }
+
+    /// The bounds this boundary was evaluated from.
+    ///
+    /// ```
+    /// use kepler::bounds::tribox::TriboxBounds;
+    /// use kepler::geometry::Point3;
+    /// let b = TriboxBounds::from_points(&[Point3::new(1.0, 2.0, 3.0)]);
+    /// assert_eq!(b.boundary().bounds(), &b);
+    /// ```
+    pub fn bounds(&self) -> &TriboxBounds {
+        &self.bounds
+    }
+
+    /// Whether the boundary has no vertex (the tribox of no point).
+    ///
+    /// ```
+    /// use kepler::bounds::tribox::TriboxBounds;
+    /// assert!(TriboxBounds::empty().boundary().is_empty());
+    /// ```
+    pub fn is_empty(&self) -> bool {
+        self.vertex_count == 0
+    }
+
+    /// The vertices.
+    ///
+    /// ```
+    /// use kepler::bounds::tribox::TriboxBounds;
+    /// use kepler::geometry::Point3;
+    /// let t = TriboxBounds::from_points(&[Point3::new(1.0, 2.0, 3.0)]).boundary().cleaned();
+    /// assert_eq!(t.vertices(), &[Point3::new(1.0, 2.0, 3.0)]);
+    /// ```
+    pub fn vertices(&self) -> &[Point3] {
+        &self.vertices[..self.vertex_count as usize]
+    }
+
+    /// For each vertex, three planes (ascending indices 0..18, independent normals) through
+    /// it. In a raw boundary a clamped chamfer may stand for its two principal planes; in a
+    /// cleaned one each listed plane passes exactly through the vertex.
+    ///
+    /// ```
+    /// use kepler::bounds::tribox::TriboxBounds;
+    /// use kepler::geometry::Point3;
+    /// let t = TriboxBounds::from_points(&[Point3::new(1.0, 2.0, 3.0)]).boundary().cleaned();
+    /// assert_eq!(t.vertex_planes(), &[[1, 3, 5]]); // max x, max y, max z
+    /// ```
+    pub fn vertex_planes(&self) -> &[[u8; 3]] {
+        &self.vertex_planes[..self.vertex_count as usize]
+    }
+
+    /// The loop of face `plane` (indices into [`vertices`](Self::vertices), counter-clockwise
+    /// seen from outside); empty for a plane index beyond 17 or a face removed by clean-up.
+    ///
+    /// ```
+    /// use kepler::bounds::tribox::TriboxBounds;
+    /// use kepler::geometry::Point3;
+    /// let b = TriboxBounds::from_points(&[Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 1.0, 1.0)]);
+    /// let t = b.boundary();
+    /// assert!(!t.face(1).is_empty());
+    /// assert!(t.cleaned().face(1).is_empty()); // a needle has no face of positive area
+    /// assert!(t.face(18).is_empty());
+    /// ```
+    pub fn face(&self, plane: usize) -> &[u8] {
+        match (self.faces.get(plane), self.face_len.get(plane)) {
+            (Some(f), Some(&n)) => &f[..n as usize],
+            _ => &[],
+        }
+    }
+
+    /// The faces that have vertices, as (plane index, loop).
+    ///
+    /// ```
+    /// use kepler::bounds::tribox::TriboxBounds;
+    /// use kepler::geometry::Point3;
+    /// let b = TriboxBounds::from_points(&[Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 1.0, 1.0)]);
+    /// assert_eq!(b.boundary().faces().count(), 18);
+    /// ```
+    pub fn faces(&self) -> impl Iterator<Item = (usize, &[u8])> + '_ {
+        (0..18)
+            .map(|j| (j, self.face(j)))
+            .filter(|(_, f)| !f.is_empty())
+    }
+
+    /// The number of faces that have vertices: on a cleaned boundary, the number of faces of
+    /// positive area (at most 18).
+    ///
+    /// ```
+    /// use kepler::bounds::tribox::TriboxBounds;
+    /// use kepler::geometry::Point3;
+    /// let b = TriboxBounds::from_points(&[Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 2.0, 3.0)]);
+    /// assert_eq!(b.boundary().face_count(), 18); // raw: every plane has its (degenerate) face
+    /// assert_eq!(TriboxBounds::from_points(&[Point3::origin()]).boundary().cleaned().face_count(), 0);
+    /// ```
+    pub fn face_count(&self) -> usize {
+        self.face_len.iter().filter(|&&n| n > 0).count()
+    }
+
+    /// The paper's case (1 to 4) of each corner of the block; corner `c` is the maximum along
+    /// axis i when bit i of `c` is clear, the minimum when it is set. All 0 when empty.
+    ///
+    /// ```
+    /// use kepler::bounds::tribox::TriboxBounds;
+    /// use kepler::geometry::Point3;
+    /// let b = TriboxBounds::from_points(&[Point3::new(1.0, 2.0, 3.0)]);
+    /// assert_eq!(b.boundary().corner_cases(), [1; 8]);
+    /// ```
+    pub fn corner_cases(&self) -> [u8; 8] {
+        self.cases
+    }
+
+    /// The enclosed volume (divergence theorem over the face loops; degenerate faces add
+    /// nothing).
+    ///
+    /// ```
+    /// use kepler::bounds::tribox::TriboxBounds;
+    /// use kepler::geometry::Point3;
+    /// // The corner tetrahedron of the unit cube: its tribox is {x, y, z ≥ 0, x+y, x+z, y+z ≤ 1},
+    /// // the tetrahedron (1/6) plus the pyramid from (½, ½, ½) over its slanted face (1/12).
+    /// let tet = [Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0),
+    ///     Point3::new(0.0, 1.0, 0.0), Point3::new(0.0, 0.0, 1.0)];
+    /// assert_eq!(TriboxBounds::from_points(&tet).boundary().volume(), 0.25);
+    /// ```
+    pub fn volume(&self) -> f64 {
+        let o = self.reference();
+        let six_v: f64 = self
+            .faces()
+            .map(|(_, f)| {
+                let p = |i: usize| self.vertices[f[i] as usize] - o;
+                let p0 = p(0);
+                (1..f.len().saturating_sub(1))
+                    .map(|i| p0.dot(&p(i).cross(&p(i + 1))))
+                    .sum::<f64>()
+            })
+            .sum();
+        six_v / 6.0
+    }
+
+    /// The total area of the faces.
+    ///
+    /// ```
+    /// use kepler::bounds::tribox::TriboxBounds;
+    /// use kepler::geometry::Point3;
+    /// // The tribox of the corner tetrahedron (see `volume`): three right triangles of area ½
+    /// // and three chamfer triangles of area √2/4.
+    /// let tet = [Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0),
+    ///     Point3::new(0.0, 1.0, 0.0), Point3::new(0.0, 0.0, 1.0)];
+    /// let area = TriboxBounds::from_points(&tet).boundary().surface_area();
+    /// assert!((area - (1.5 + 0.75 * 2f64.sqrt())).abs() < 1e-15);
+    /// ```
+    pub fn surface_area(&self) -> f64 {
+        self.faces()
+            .map(|(_, f)| {
+                let p = |i: usize| self.vertices[f[i] as usize];
+                let p0 = p(0);
+                let twice: Vector3 = (1..f.len().saturating_sub(1))
+                    .map(|i| (p(i) - p0).cross(&(p(i + 1) - p0)))
+                    .sum();
+                twice.norm() / 2.0
+            })
+            .sum()
+    }
+
+    /// A reference point for the volume: the centre of the block (or the origin when empty).
+    fn reference(&self) -> Point3 {
+        let (lo, hi) = (self.bounds.min, self.bounds.max);
+        if self.bounds.is_empty() {
+            Point3::origin()
+        } else {
+            Point3::new(
+                0.5 * lo[0] + 0.5 * hi[0],
+                0.5 * lo[1] + 0.5 * hi[1],
+                0.5 * lo[2] + 0.5 * hi[2],
+            )
+        }
+    }
+
+    /// The boundary with exactly equal vertices merged, zero-length edges removed and faces
+    /// left with fewer than 3 vertices dropped. Two vertices are merged when the exact values
+    /// of their coordinates, as sums of bounds, are equal (not when their rounded values are).
+    /// An axis-aligned box cleans to its 8 vertices and 6 faces.
+    ///
+    /// ```
+    /// use kepler::bounds::tribox::TriboxBounds;
+    /// use kepler::geometry::Point3;
+    /// // A needle along (1, 1, 1): the differences x−z, y−x, z−y are pinned to 0, so the tribox
+    /// // is the segment, although 0.1 + 0.1 and 0.7 + 0.7 are rounded.
+    /// let b = TriboxBounds::from_points(&[Point3::new(0.1, 0.1, 0.1), Point3::new(0.7, 0.7, 0.7)]);
+    /// let t = b.boundary().cleaned();
+    /// assert_eq!(t.vertices().len(), 2);
+    /// assert_eq!(t.face_count(), 0);
+    /// ```
+    pub fn cleaned(&self) -> Tribox {
+        let n = self.vertex_count as usize;
+        if n == 0 {
+            return self.clone();
+        }
+        let beta = self.bounds.offsets();
+        let clamped = clamped_chamfers(&beta);
+        let forms: Vec<VertexForm> = self.vertex_planes[..n]
+            .iter()
+            .map(|p| VertexForm::new(p, &clamped))
+            .collect();
+        // Representatives: the first vertex of each class of exactly equal vertices.
+        let mut new_index = [0u8; MAX_VERTICES];
+        let mut kept: Vec<usize> = Vec::with_capacity(n);
+        for i in 0..n {
+            let found = kept.iter().position(|&r| {
+                close(&self.vertices[r], &self.vertices[i]) && forms[r].equals(&forms[i], &beta)
+            });
+            new_index[i] = match found {
+                Some(k) => k as u8,
+                None => {
+                    kept.push(i);
+                    (kept.len() - 1) as u8
+                }
+            };
+        }
+        let mut t = self.clone();
+        for (k, &r) in kept.iter().enumerate() {
+            t.vertices[k] = self.vertices[r];
+            t.vertex_planes[k] = real_planes(&self.vertex_planes[r], &clamped);
+        }
+        t.vertex_count = kept.len() as u8;
+        for j in 0..18 {
+            let mut out = [0u8; MAX_FACE];
+            let mut len = 0;
+            for &v in self.face(j) {
+                let v = new_index[v as usize];
+                if len == 0 || out[len - 1] != v {
+                    out[len] = v;
+                    len += 1;
+                }
+            }
+            while len > 1 && out[len - 1] == out[0] {
+                len -= 1;
+            }
+            t.faces[j] = out;
+            t.face_len[j] = if len >= 3 { len as u8 } else { 0 };
+        }
+        t
+    }
+
+    /// A simplified tribox: planes moved outward by at most `tol` so that small faces vanish,
+    /// then cleaned (the paper's "small outward displacement on the bounding planes").
+    ///
+    /// Planes are taken in order 0..18. For plane j, the bound is compared with the largest
+    /// value its direction takes on the polytope of the other 17 constraints (the position at
+    /// which plane j stops touching the tribox: for a chamfer at most the block's corner). If
+    /// moving plane j there is a displacement of at most `tol`, measured along its unit normal,
+    /// and does not increase the number of faces, the bound is moved there (rounded outward).
+    /// A plane never moves inward, so the simplified tribox contains the original one and every
+    /// point it contained; `tol` is a distance in the units of the coordinates, and each plane
+    /// moves at most once. A negative or NaN `tol` moves nothing.
+    ///
+    /// ```
+    /// use kepler::bounds::tribox::TriboxBounds;
+    /// use kepler::geometry::Point3;
+    /// // A unit cube with its edge x = y = 1 shaved by 0.001: the chamfer face x + y = 1.999 is
+    /// // a thin strip.
+    /// let mut pts: Vec<Point3> = (0..8)
+    ///     .map(|i| Point3::new((i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64))
+    ///     .filter(|p| p.x + p.y < 2.0)
+    ///     .collect();
+    /// for z in [0.0, 1.0] {
+    ///     pts.push(Point3::new(1.0, 0.999, z));
+    ///     pts.push(Point3::new(0.999, 1.0, z));
+    /// }
+    /// let t = TriboxBounds::from_points(&pts).boundary();
+    /// assert_eq!(t.cleaned().face_count(), 7);
+    /// let s = t.simplified(0.01);
+    /// assert_eq!(s.face_count(), 6);
+    /// assert!(pts.iter().all(|p| s.bounds().contains_point(p)));
+    /// ```
+    pub fn simplified(&self, tol: f64) -> Tribox {
+        let mut current = self.cleaned();
+        if current.is_empty() || tol.is_nan() || tol < 0.0 {
+            return current;
+        }
+        let mut beta = self.bounds.offsets();
+        for j in 0..18 {
+            let Some(support) = support_without(j, &beta) else {
+                continue;
+            };
+            // Displacement d = support − β_j, exactly as `den·d = Σ num·β − den·β_j`.
+            let mut coef = support.num;
+            coef[j] -= support.den;
+            if sign_of_form(&coef, &beta) != Ordering::Greater {
+                continue;
+            }
+            let distance = eval_form(&coef, &beta) / f64::from(support.den) / normal_norm(j);
+            if distance.is_nan() || distance > tol {
+                continue;
+            }
+            let mut moved = beta;
+            moved[j] = round_up_form(&support, &beta);
+            let candidate = Tribox::new(&TriboxBounds::from_offsets(&moved)).cleaned();
+            if candidate.face_count() <= current.face_count() {
+                beta = moved;
+                current = candidate;
+            }
+        }
+        current
+    }
+}
+
+/// Whether two computed points may be the same exact point: each coordinate is a faithful
+/// rounding (halved at most once), so equal exact values give doubles at most two steps apart.
+fn close(p: &Point3, q: &Point3) -> bool {
+    (0..3).all(|i| {
+        let (a, b) = (p[i], q[i]);
+        b >= a.next_down().next_down() && b <= a.next_up().next_up()
+    })
+}
+
+/// The Euclidean length of plane j's normal: 1 for principal planes, √2 for chamfers.
+fn normal_norm(j: usize) -> f64 {
+    if j < 6 { 1.0 } else { std::f64::consts::SQRT_2 }
+}
+
+/// Integer 3×3 determinant.
+fn det3(m: [[i32; 3]; 3]) -> i32 {
+    m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+        - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+        + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
+}
+
+/// Integer adjugate: `adj(m) · m = det(m) · I`.
+fn adjugate(m: [[i32; 3]; 3]) -> [[i32; 3]; 3] {
+    std::array::from_fn(|i| {
+        std::array::from_fn(|k| {
+            // Cofactor (k, i).
+            let r = [(k + 1) % 3, (k + 2) % 3];
+            let c = [(i + 1) % 3, (i + 2) % 3];
+            m[r[0]][c[0]] * m[r[1]][c[1]] - m[r[0]][c[1]] * m[r[1]][c[0]]
+        })
+    })
+}
+
+/// The normals of planes p as matrix rows.
+fn normal_rows(p: [usize; 3]) -> [[i32; 3]; 3] {
+    p.map(|j| normal(j).map(i32::from))
+}
+
+/// The exact coordinates of a vertex as linear forms in the 18 offsets β: coordinate i is
+/// `Σ_k num[i][k] β_k / den`, solved from its three (effective) planes by the adjugate.
+struct VertexForm {
+    num: [[i32; 18]; 3],
+    den: i32,
+}
+
+impl VertexForm {
+    fn new(planes: &[u8; 3], clamped: &[bool; 18]) -> Self {
+        let p = planes.map(usize::from);
+        let m = normal_rows(p);
+        let adj = adjugate(m);
+        let mut num = [[0; 18]; 3];
+        for (i, row) in num.iter_mut().enumerate() {
+            for (m_idx, &j) in p.iter().enumerate() {
+                let a = adj[i][m_idx];
+                if clamped[j] {
+                    for parent in CHAMFER_PARENTS[j] {
+                        row[parent as usize] += a;
+                    }
+                } else {
+                    row[j] += a;
+                }
+            }
+        }
+        VertexForm { num, den: det3(m) }
+    }
+
+    /// Whether both forms have exactly the same value for every coordinate.
+    fn equals(&self, other: &VertexForm, beta: &[f64; 18]) -> bool {
+        (0..3).all(|i| {
+            let coef: [i32; 18] =
+                std::array::from_fn(|k| other.den * self.num[i][k] - self.den * other.num[i][k]);
+            sign_of_form(&coef, beta) == Ordering::Equal
+        })
+    }
+}
+
+/// The terms `c_k β_k` of an integer form, each coefficient split into signed powers of two so
+/// that every term is an exact double.
+fn form_terms(coef: &[i32; 18], beta: &[f64; 18]) -> Vec<f64> {
+    let mut terms = Vec::with_capacity(24);
+    for (k, &c) in coef.iter().enumerate() {
+        let mut m = c.unsigned_abs();
+        let mut scale = if c < 0 { -beta[k] } else { beta[k] };
+        while m != 0 {
+            if m & 1 == 1 {
+                terms.push(scale);
+            }
+            scale *= 2.0;
+            m >>= 1;
+        }
+    }
+    terms
+}
+
+/// The exact sign of `Σ coef_k β_k`.
+fn sign_of_form(coef: &[i32; 18], beta: &[f64; 18]) -> Ordering {
+    sum_sign(&form_terms(coef, beta))
+}
+
+/// `Σ coef_k β_k`, faithfully rounded.
+fn eval_form(coef: &[i32; 18], beta: &[f64; 18]) -> f64 {
+    accurate_sum(&form_terms(coef, beta))
+}
+
+/// Three planes from `planes` through the same point, replacing each clamped chamfer by its
+/// two principal planes (a vertex on a clamped chamfer lies on both), with independent normals.
+fn real_planes(planes: &[u8; 3], clamped: &[bool; 18]) -> [u8; 3] {
+    let mut cand: Vec<u8> = Vec::with_capacity(6);
+    for &j in planes {
+        if clamped[j as usize] {
+            cand.extend(CHAMFER_PARENTS[j as usize]);
+        } else {
+            cand.push(j);
+        }
+    }
+    cand.sort_unstable();
+    cand.dedup();
+    for a in 0..cand.len() {
+        for b in a + 1..cand.len() {
+            for c in b + 1..cand.len() {
+                let p = [cand[a], cand[b], cand[c]];
+                if det3(normal_rows(p.map(usize::from))) != 0 {
+                    return p;
+                }
+            }
+        }
+    }
+    *planes
+}
+
+/// A nonnegative combination of plane normals equal to another plane's normal:
+/// `Σ_k num_k n_k = den · n_j` with `num ≥ 0` (a dual feasible basis of the linear program
+/// "maximise n_j · x over the other 17 half-spaces").
+struct DualBasis {
+    num: [i32; 18],
+    den: i32,
+}
+
+/// For each plane j, every dual feasible basis made of three other planes with independent
+/// normals (computed once).
+fn dual_bases() -> &'static [Vec<DualBasis>; 18] {
+    static TABLE: OnceLock<[Vec<DualBasis>; 18]> = OnceLock::new();
+    TABLE.get_or_init(|| {
+        std::array::from_fn(|j| {
+            let d = normal(j).map(i32::from);
+            let mut out = Vec::new();
+            for a in 0..18 {
+                for b in a + 1..18 {
+                    for c in b + 1..18 {
+                        if a == j || b == j || c == j {
+                            continue;
+                        }
+                        // Columns are the normals: solve M λ = d with M = rowsᵀ.
+                        let rows = normal_rows([a, b, c]);
+                        let m: [[i32; 3]; 3] =
+                            std::array::from_fn(|r| std::array::from_fn(|k| rows[k][r]));
+                        let det = det3(m);
+                        if det == 0 {
+                            continue;
+                        }
+                        let adj = adjugate(m);
+                        let lambda: [i32; 3] = std::array::from_fn(|k| {
+                            (0..3).map(|r| adj[k][r] * d[r]).sum::<i32>() * det.signum()
+                        });
+                        if lambda.iter().all(|&l| l >= 0) {
+                            let mut num = [0; 18];
+                            for (k, &p) in [a, b, c].iter().enumerate() {
+                                num[p] = lambda[k];
+                            }
+                            out.push(DualBasis {
+                                num,
+                                den: det.abs(),
+                            });
+                        }
+                    }
+                }
+            }
+            out
+        })
+    })
+}
+
+/// The exact maximum of n_j · x over the polytope of the 17 half-spaces other than j, as the
+/// minimum over dual feasible bases of `Σ num_k β_k / den` (linear programming duality); `None`
+/// when unbounded (never for bounds of points).
+fn support_without(j: usize, beta: &[f64; 18]) -> Option<&'static DualBasis> {
+    let mut best: Option<&DualBasis> = None;
+    for cand in &dual_bases()[j] {
+        let better = match best {
+            None => true,
+            Some(b) => {
+                let coef: [i32; 18] =
+                    std::array::from_fn(|k| b.den * cand.num[k] - cand.den * b.num[k]);
+                sign_of_form(&coef, beta) == Ordering::Less
+            }
+        };
+        if better {
+            best = Some(cand);
+        }
+    }
+    best
+}
+
+/// The smallest double at least `Σ num_k β_k / den` (den is 1 or 2, so halving is exact).
+fn round_up_form(f: &DualBasis, beta: &[f64; 18]) -> f64 {
+    let r = eval_form(&f.num, beta) / f64::from(f.den);
+    // r is faithful: if below the exact value, the next double is at least it.
+    let mut terms = form_terms(&f.num, beta);
+    terms.push(-r * f64::from(f.den));
+    if sum_sign(&terms) == Ordering::Greater {
+        r.next_up()
+    } else {
+        r
+    }
+}

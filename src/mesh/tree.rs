@@ -1,0 +1,165 @@
+//! An R-tree (rstar) over the triangles of a mesh, for the queries the bounds need: triangles
+//! near a box, triangles above a point, and the nearest triangle.
+
+use super::Mesh;
+use crate::geometry::{Aabb, Point3, Vector3};
+use rstar::{AABB, PointDistance, RTree, RTreeObject};
+
+/// One triangle of the mesh in the tree: its index in [`Mesh::triangles`] and corners.
+#[derive(Debug, Clone, Copy)]
+struct Entry {
+    index: usize,
+    corners: [Point3; 3],
+}
+
+impl RTreeObject for Entry {
+    type Envelope = AABB<[f64; 3]>;
+    fn envelope(&self) -> Self::Envelope {
+        let b = Aabb::from_points(&self.corners);
+        AABB::from_corners(b.min, b.max)
+    }
+}
+
+impl PointDistance for Entry {
+    fn distance_2(&self, p: &[f64; 3]) -> f64 {
+        let q = closest_point_on_triangle(&Point3::from(*p), &self.corners);
+        (q - Point3::from(*p)).norm_squared()
+    }
+}
+
+/// The triangles of a mesh in a bulk-loaded R-tree.
+///
+/// ```
+/// use kepler::{mesh::TriangleTree, geometry::{Aabb, Point3}};
+/// let cube = kepler::solids::cube(2.0).unwrap();
+/// let tree = TriangleTree::new(&cube);
+/// let near_top = Aabb::new(Point3::new(-0.1, -0.1, 0.9), Point3::new(0.1, 0.1, 1.1));
+/// assert_eq!(tree.in_box(&near_top).count(), 2);
+/// assert!((tree.distance(&Point3::origin()) - 1.0).abs() < 1e-15);
+/// ```
+#[derive(Debug)]
+pub struct TriangleTree {
+    tree: RTree<Entry>,
+}
+
+impl TriangleTree {
+    /// Bulk-loads the triangles of `mesh`.
+    ///
+    /// ```
+    /// let t = kepler::mesh::TriangleTree::new(&kepler::solids::cube(1.0).unwrap());
+    /// assert_eq!(t.len(), 12);
+    /// ```
+    pub fn new(mesh: &Mesh) -> TriangleTree {
+        let entries = (0..mesh.triangles().len())
+            .map(|index| Entry {
+                index,
+                corners: mesh.triangle(index),
+            })
+            .collect();
+        TriangleTree {
+            tree: RTree::bulk_load(entries),
+        }
+    }
+
+    /// Number of triangles.
+    ///
+    /// ```
+    /// let t = kepler::mesh::TriangleTree::new(&kepler::solids::tetrahedron(1.0).unwrap());
+    /// assert_eq!(t.len(), 4);
+    /// ```
+    pub fn len(&self) -> usize {
+        self.tree.size()
+    }
+
+    /// Whether the tree holds no triangle.
+    ///
+    /// ```
+    /// let t = kepler::mesh::TriangleTree::new(&kepler::solids::tetrahedron(1.0).unwrap());
+    /// assert!(!t.is_empty());
+    /// ```
+    pub fn is_empty(&self) -> bool {
+        self.tree.size() == 0
+    }
+
+    /// Triangles (index and corners) whose bounding boxes meet the closed box `b`.
+    ///
+    /// ```
+    /// use kepler::{mesh::TriangleTree, geometry::{Aabb, Point3}};
+    /// let t = TriangleTree::new(&kepler::solids::cube(2.0).unwrap());
+    /// let inside = Aabb::new(Point3::new(-0.5, -0.5, -0.5), Point3::new(0.5, 0.5, 0.5));
+    /// assert_eq!(t.in_box(&inside).count(), 0);
+    /// ```
+    pub fn in_box(&self, b: &Aabb) -> impl Iterator<Item = (usize, [Point3; 3])> + use<> {
+        let envelope = AABB::from_corners(b.min, b.max);
+        let found: Vec<_> = self
+            .tree
+            .locate_in_envelope_intersecting(&envelope)
+            .map(|e| (e.index, e.corners))
+            .collect();
+        found.into_iter()
+    }
+
+    /// Triangles whose bounding boxes meet the vertical ray from `p` upward (`p` included).
+    ///
+    /// ```
+    /// use kepler::{mesh::TriangleTree, geometry::Point3};
+    /// let t = TriangleTree::new(&kepler::solids::cube(2.0).unwrap());
+    /// assert_eq!(t.above(&Point3::new(0.2, 0.3, 0.0)).count(), 2);
+    /// ```
+    pub fn above(&self, p: &Point3) -> impl Iterator<Item = (usize, [Point3; 3])> + use<> {
+        self.in_box(&Aabb::new(*p, Point3::new(p.x, p.y, f64::MAX)))
+    }
+
+    /// The distance from `p` to the nearest triangle (rounded, for heuristics only), or
+    /// infinity for an empty tree.
+    ///
+    /// ```
+    /// use kepler::{mesh::TriangleTree, geometry::Point3};
+    /// let t = TriangleTree::new(&kepler::solids::cube(2.0).unwrap());
+    /// assert!((t.distance(&Point3::new(0.5, 0.0, 0.0)) - 0.5).abs() < 1e-15);
+    /// ```
+    pub fn distance(&self, p: &Point3) -> f64 {
+        let q = [p.x, p.y, p.z];
+        self.tree
+            .nearest_neighbor(&q)
+            .map_or(f64::INFINITY, |e| e.distance_2(&q).sqrt())
+    }
+}
+
+/// The point of triangle `t` closest to `p` (Ericson, *Real-Time Collision Detection* §5.1.5),
+/// in rounded arithmetic.
+fn closest_point_on_triangle(p: &Point3, t: &[Point3; 3]) -> Point3 {
+    let [a, b, c] = *t;
+    let (ab, ac, ap): (Vector3, Vector3, Vector3) = (b - a, c - a, p - a);
+    let (d1, d2) = (ab.dot(&ap), ac.dot(&ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return a;
+    }
+    let bp = p - b;
+    let (d3, d4) = (ab.dot(&bp), ac.dot(&bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return b;
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        return a + ab * (d1 / (d1 - d3));
+    }
+    let cp = p - c;
+    let (d5, d6) = (ab.dot(&cp), ac.dot(&cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return c;
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        return a + ac * (d2 / (d2 - d6));
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    }
+    let denom = va + vb + vc;
+    if denom == 0.0 {
+        return a;
+    }
+    a + ab * (vb / denom) + ac * (vc / denom)
+}

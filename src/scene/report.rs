@@ -1,0 +1,255 @@
+//! The per-object bounds report behind `kepler bounds`: counts, topology, volumes, the three
+//! bounds and how tightly they fit.
+
+use super::{ObjectId, Scene};
+use crate::bounds::{Aabb, InboxMethod};
+use rayon::prelude::*;
+use serde::Serialize;
+
+/// A box as `{"min": [x, y, z], "max": [x, y, z]}`.
+///
+/// ```
+/// use kepler::scene::report::BoxReport;
+/// let b = BoxReport::from(&kepler::geometry::Aabb::new([0.0; 3].into(), [1.0; 3].into()));
+/// assert_eq!(serde_json::to_string(&b).unwrap(), r#"{"min":[0.0,0.0,0.0],"max":[1.0,1.0,1.0]}"#);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct BoxReport {
+    /// Low corner.
+    pub min: [f64; 3],
+    /// High corner.
+    pub max: [f64; 3],
+}
+
+impl From<&Aabb> for BoxReport {
+    fn from(b: &Aabb) -> Self {
+        BoxReport {
+            min: b.min,
+            max: b.max,
+        }
+    }
+}
+
+/// The tribox of an object: its 18 bounds and its boundary's size.
+///
+/// ```
+/// let s = kepler::scene::file::load("scenes/cube.toml".as_ref()).unwrap();
+/// let r = kepler::scene::report::BoundsReport::of(&s);
+/// assert_eq!(r.objects[0].tribox.faces, 6);
+/// ```
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TriboxReport {
+    /// Min then max along x, y, z, x+y, x+z, y+z, x−z, y−x, z−y (the paper's order).
+    pub bounds: Vec<f64>,
+    /// Faces of the boundary after removing zero-area faces (at most 18).
+    pub faces: usize,
+    /// Volume enclosed by the tribox.
+    pub volume: f64,
+    /// Surface area of the tribox.
+    pub surface_area: f64,
+}
+
+/// One object's line of the report. Volumes of objects that do not bound a solid are `None`.
+///
+/// ```
+/// let s = kepler::scene::file::load("scenes/cube.toml".as_ref()).unwrap();
+/// let o = &kepler::scene::report::BoundsReport::of(&s).objects[0];
+/// assert_eq!((o.faces, o.vertices, o.closed), (6, 8, true));
+/// ```
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ObjectReport {
+    /// The object's name.
+    pub name: String,
+    /// Its path of names from the top level, joined by `/`.
+    pub path: String,
+    /// Depth in the hierarchy (0 for a top-level object).
+    pub depth: usize,
+    /// Faces in the subtree.
+    pub faces: usize,
+    /// Vertices in the subtree.
+    pub vertices: usize,
+    /// Every mesh of the subtree is closed and consistently oriented.
+    pub closed: bool,
+    /// Some mesh is closed but turned inside out (its faces point inward).
+    pub inside_out: bool,
+    /// Enclosed volume.
+    pub volume: Option<f64>,
+    /// Total face area.
+    pub surface_area: f64,
+    /// The circumscribing box.
+    pub cbox: BoxReport,
+    /// The inscribing box, or `None` (no interior).
+    pub inbox: Option<BoxReport>,
+    /// How the inbox was found.
+    pub inbox_method: Option<InboxMethod>,
+    /// The tribox.
+    pub tribox: TriboxReport,
+    /// Inbox volume / object volume.
+    pub inbox_ratio: Option<f64>,
+    /// Object volume / tribox volume.
+    pub tribox_ratio: Option<f64>,
+    /// Object volume / CBOX volume.
+    pub cbox_ratio: Option<f64>,
+}
+
+/// The report for every object of a scene, depth-first: `{"objects": [...]}` in JSON.
+///
+/// ```
+/// let s = kepler::scene::file::load("scenes/cube.toml".as_ref()).unwrap();
+/// let json = serde_json::to_value(kepler::scene::report::BoundsReport::of(&s)).unwrap();
+/// assert_eq!(json["objects"][0]["inbox"]["max"][0], 0.5);
+/// ```
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BoundsReport {
+    /// One entry per object, in depth-first order.
+    pub objects: Vec<ObjectReport>,
+}
+
+impl BoundsReport {
+    /// Computes the bounds of every object (the leaves' inboxes in parallel) and reports them.
+    ///
+    /// ```
+    /// let s = kepler::scene::file::load("scenes/cube.toml".as_ref()).unwrap();
+    /// assert_eq!(kepler::scene::report::BoundsReport::of(&s).objects.len(), 1);
+    /// ```
+    pub fn of(scene: &Scene) -> BoundsReport {
+        let walk = scene.walk();
+        // Leaves first, in parallel; groups then combine cached results.
+        walk.par_iter()
+            .filter(|(id, _)| scene[*id].mesh().is_some())
+            .for_each(|(id, _)| {
+                scene.inbox(*id);
+                scene.tribox(*id);
+            });
+        let objects = walk
+            .par_iter()
+            .map(|&(id, depth)| object_report(scene, id, depth))
+            .collect();
+        BoundsReport { objects }
+    }
+
+    /// The report as an aligned text table, one line per object, names indented by depth.
+    ///
+    /// ```
+    /// let s = kepler::scene::file::load("scenes/cube.toml".as_ref()).unwrap();
+    /// let t = kepler::scene::report::BoundsReport::of(&s).table();
+    /// assert!(t.lines().next().unwrap().starts_with("object"));
+    /// ```
+    pub fn table(&self) -> String {
+        let fmt_box = |b: &BoxReport| {
+            format!(
+                "[{} {} {}]..[{} {} {}]",
+                short(b.min[0]),
+                short(b.min[1]),
+                short(b.min[2]),
+                short(b.max[0]),
+                short(b.max[1]),
+                short(b.max[2])
+            )
+        };
+        let ratio = |r: Option<f64>| r.map_or("-".to_string(), |r| format!("{r:.3}"));
+        let mut rows = vec![
+            [
+                "object",
+                "faces",
+                "vertices",
+                "solid",
+                "cbox",
+                "inbox",
+                "tribox faces",
+                "inbox/object",
+                "object/tribox",
+                "object/cbox",
+            ]
+            .map(String::from),
+        ];
+        for o in &self.objects {
+            rows.push([
+                format!("{}{}", "  ".repeat(o.depth), o.name),
+                o.faces.to_string(),
+                o.vertices.to_string(),
+                if !o.closed {
+                    "open".into()
+                } else if o.inside_out {
+                    "inside-out".into()
+                } else {
+                    "yes".into()
+                },
+                fmt_box(&o.cbox),
+                o.inbox.as_ref().map_or("empty".into(), fmt_box),
+                o.tribox.faces.to_string(),
+                ratio(o.inbox_ratio),
+                ratio(o.tribox_ratio),
+                ratio(o.cbox_ratio),
+            ]);
+        }
+        let widths: Vec<usize> = (0..10)
+            .map(|c| rows.iter().map(|r| r[c].chars().count()).max().unwrap_or(0))
+            .collect();
+        let mut out = String::new();
+        for r in &rows {
+            let line: Vec<String> = r
+                .iter()
+                .zip(&widths)
+                .enumerate()
+                .map(|(c, (cell, w))| {
+                    if c == 0 || c == 3 || c == 4 || c == 5 {
+                        format!("{cell:<w$}")
+                    } else {
+                        format!("{cell:>w$}")
+                    }
+                })
+                .collect();
+            out.push_str(line.join("  ").trim_end());
+            out.push('\n');
+        }
+        out
+    }
+}
+
+/// A compact rendering of a coordinate for the table (JSON keeps full precision).
+fn short(x: f64) -> String {
+    let s = format!("{x:.4}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" { "0".into() } else { s.into() }
+}
+
+fn object_report(scene: &Scene, id: ObjectId, depth: usize) -> ObjectReport {
+    let o = &scene[id];
+    let volume = scene.volume(id);
+    let cbox = scene.cbox(id);
+    let inbox = scene.inbox(id);
+    let bounds = scene.tribox(id);
+    let boundary = bounds.boundary().cleaned();
+    let tribox = TriboxReport {
+        bounds: bounds.to_array18().to_vec(),
+        faces: boundary.face_count(),
+        volume: boundary.volume(),
+        surface_area: boundary.surface_area(),
+    };
+    let over = |num: Option<f64>, den: f64| match num {
+        Some(n) if den > 0.0 => Some(n / den),
+        _ => None,
+    };
+    ObjectReport {
+        name: o.name().to_string(),
+        path: scene.path(id),
+        depth,
+        faces: scene.face_count(id),
+        vertices: scene.vertex_count(id),
+        closed: scene.is_solid(id),
+        inside_out: scene
+            .meshes(id)
+            .iter()
+            .any(|m| m.is_solid() && m.volume() < 0.0),
+        volume,
+        surface_area: scene.surface_area(id),
+        cbox: BoxReport::from(&cbox),
+        inbox: inbox.as_ref().map(|i| BoxReport::from(&i.aabb)),
+        inbox_method: inbox.map(|i| i.method),
+        inbox_ratio: volume.and_then(|v| over(inbox.map(|i| i.aabb.volume()), v)),
+        tribox_ratio: over(volume, tribox.volume),
+        cbox_ratio: over(volume, cbox.volume()),
+        tribox,
+    }
+}
