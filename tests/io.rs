@@ -205,7 +205,7 @@ fn obj_nan_and_inf_are_not_finite() {
 fn obj_coordinate_beyond_1e100_is_reported_at_its_line() {
     assert_eq!(
         obj_error("v 0 0 0\nv 2e100 0 0\nv 0 1 0\nf 1 2 3\n"),
-        "t.obj:2: vertex 1 has a coordinate larger than 1e100 in magnitude \
+        "t.obj:2: vertex 2 has a coordinate larger than 1e100 in magnitude \
          (exact predicates could overflow)"
     );
 }
@@ -214,7 +214,7 @@ fn obj_coordinate_beyond_1e100_is_reported_at_its_line() {
 fn obj_face_with_two_vertices() {
     assert_eq!(
         obj_error(&format!("{TRIANGLE}f 1 2 3\nf 1 2\n")),
-        "t.obj:5: face 1 has 2 vertices; a face needs at least 3"
+        "t.obj:5: face 2 has 2 vertices; a face needs at least 3"
     );
 }
 
@@ -273,7 +273,7 @@ fn obj_non_integer_and_malformed_corners() {
 fn obj_zero_area_face() {
     assert_eq!(
         obj_error("v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 4\nf 1 2 3\n"),
-        "t.obj:6: face 1 has zero area"
+        "t.obj:6: face 2 has zero area"
     );
 }
 
@@ -281,7 +281,7 @@ fn obj_zero_area_face() {
 fn obj_non_planar_face() {
     let message = obj_error("v 0 0 0\nv 1 0 0\nv 1 1 0.01\nv 0 1 0\n# quad\nf 1 2 3 4\n");
     assert!(
-        message.starts_with("t.obj:6: face 0 is not planar"),
+        message.starts_with("t.obj:6: face 1 is not planar"),
         "{message}"
     );
 }
@@ -290,7 +290,7 @@ fn obj_non_planar_face() {
 fn obj_repeated_vertex() {
     assert_eq!(
         obj_error(&format!("{TRIANGLE}f 1 2 3 2\n")),
-        "t.obj:4: face 0 visits the point (1, 0, 0) twice"
+        "t.obj:4: face 1 visits the point (1, 0, 0) twice"
     );
 }
 
@@ -519,7 +519,7 @@ fn stl_ascii_bad_numbers_and_structure() {
                 .replace("vertex 0 1 0", "vertex 4 0 0")
                 .as_bytes()
         ),
-        "t.stl:2: face 0 has zero area"
+        "t.stl:2: face 1 has zero area"
     );
 }
 
@@ -536,7 +536,7 @@ fn stl_binary_errors_name_the_triangle() {
     match stl::parse(&binary_stl(&triangles), "t.stl") {
         Err(Error::Input { path, at, message }) => {
             assert_eq!((path.as_str(), at.as_str()), ("t.stl", "triangle 5"));
-            assert_eq!(message, "face 4 has zero area");
+            assert_eq!(message, "face 5 has zero area");
         }
         other => panic!("expected an input error, got {other:?}"),
     }
@@ -737,15 +737,15 @@ fn off_bad_faces() {
     );
     assert_eq!(
         off_error(&format!("{OFF_TRIANGLE}2 0 1\n")),
-        "t.off:6: face 0 has 2 vertices; a face needs at least 3"
+        "t.off:6: face 1 has 2 vertices; a face needs at least 3"
     );
     assert_eq!(
         off_error("OFF\n4 2 0\n0 0 0\n1 0 0\n2 0 0\n0 1 0\n3 0 1 3\n# collinear\n3 0 1 2\n"),
-        "t.off:9: face 1 has zero area"
+        "t.off:9: face 2 has zero area"
     );
     let message = off_error("OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 1\n0 1 0\n4 0 1 2 3\n");
     assert!(
-        message.starts_with("t.off:7: face 0 is not planar"),
+        message.starts_with("t.off:7: face 1 is not planar"),
         "{message}"
     );
 }

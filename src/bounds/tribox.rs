@@ -225,7 +225,7 @@ const CASE1: CaseTable = CaseTable {
         ([1, 0, 0, 0], 1),
         ([2, 0, 0, 0], 1),
         ([0, 0, 0, 0], 1),
-        ([2, 3, 1, 0], 3),
+        ([1, 3, 2, 0], 3),
         ([1, 3, 0, 0], 3),
         ([0, 3, 2, 0], 3),
     ],
@@ -776,6 +776,46 @@ impl LocalBound for Effective {
     }
 }
 
+/// A tight bound as a linear form in the 18 offsets, in half-units: `Σ_k coef_k β_k / 2`.
+#[derive(Clone, Copy)]
+struct Form<'a> {
+    coef: [i32; 18],
+    beta: &'a [f64; 18],
+}
+
+impl Form<'_> {
+    fn combine(forms: &[Self]) -> [i32; 18] {
+        std::array::from_fn(|k| forms.iter().map(|f| f.coef[k]).sum())
+    }
+}
+
+impl LocalBound for Form<'_> {
+    fn neg(self) -> Self {
+        Form {
+            coef: self.coef.map(|c| -c),
+            beta: self.beta,
+        }
+    }
+    fn double(self) -> Self {
+        Form {
+            coef: self.coef.map(|c| 2 * c),
+            beta: self.beta,
+        }
+    }
+    fn value(self) -> f64 {
+        eval_form(&self.coef, self.beta) * 0.5
+    }
+    fn sum2(a: Self, b: Self) -> f64 {
+        eval_form(&Form::combine(&[a, b]), a.beta) * 0.5
+    }
+    fn sum3(a: Self, b: Self, c: Self) -> f64 {
+        eval_form(&Form::combine(&[a, b, c]), a.beta) * 0.5
+    }
+    fn positive4(a: Self, b: Self, c: Self, d: Self) -> bool {
+        sign_of_form(&Form::combine(&[a, b, c, d]), a.beta) == Ordering::Greater
+    }
+}
+
 /// Classifies the canonical corner with local bounds `[α_A, α_B, α_C, α_AB, α_AC, α_BC]`
 /// (chamfers already clamped) and computes its four vertices in the canonical frame.
 /// Returns the case (1..4) and the vertices in the slot order of [`CASES`].
@@ -892,15 +932,7 @@ impl Tribox {
     /// assert!(Tribox::new(&TriboxBounds::empty()).is_empty());
     /// ```
     pub fn new(bounds: &TriboxBounds) -> Tribox {
-        let mut t = Tribox {
-            bounds: *bounds,
-            vertices: [Point3::origin(); MAX_VERTICES],
-            vertex_planes: [[0; 3]; MAX_VERTICES],
-            vertex_count: 0,
-            faces: [[0; MAX_FACE]; 18],
-            face_len: [0; 18],
-            cases: [0; 8],
-        };
+        let mut t = Tribox::blank(bounds);
         if bounds.is_empty() {
             return t;
         }
@@ -930,26 +962,53 @@ impl Tribox {
             } else {
                 corner(std::array::from_fn(|k| beta[planes[k] as usize]))
             };
-            let s = corner_signs(c).map(f64::from);
-            for (slot, v) in local.iter().enumerate() {
-                t.vertices[4 * c + slot] = Point3::new(s[0] * v[0], s[1] * v[1], s[2] * v[2]);
-            }
-            t.vertex_planes[4 * c..4 * c + 4].copy_from_slice(&VERTEX_PLANES[c][case - 1]);
-            t.cases[c] = case as u8;
+            t.write_corner(c, case, &local);
         }
-        t.vertex_count = MAX_VERTICES as u8;
+        t.assemble_faces();
+        t
+    }
+
+    /// A boundary with no vertex and no face.
+    fn blank(bounds: &TriboxBounds) -> Tribox {
+        Tribox {
+            bounds: *bounds,
+            vertices: [Point3::origin(); MAX_VERTICES],
+            vertex_planes: [[0; 3]; MAX_VERTICES],
+            vertex_count: 0,
+            faces: [[0; MAX_FACE]; 18],
+            face_len: [0; 18],
+            cases: [0; 8],
+        }
+    }
+
+    /// Stores corner c's case and its four vertices (canonical frame) in world coordinates.
+    #[inline]
+    fn write_corner(&mut self, c: usize, case: usize, local: &[[f64; 3]; 4]) {
+        let s = corner_signs(c).map(f64::from);
+        for (slot, v) in local.iter().enumerate() {
+            // Adding +0 turns the -0 of a reflected zero into +0.
+            self.vertices[4 * c + slot] =
+                Point3::new(s[0] * v[0] + 0.0, s[1] * v[1] + 0.0, s[2] * v[2] + 0.0);
+        }
+        self.vertex_planes[4 * c..4 * c + 4].copy_from_slice(&VERTEX_PLANES[c][case - 1]);
+        self.cases[c] = case as u8;
+        self.vertex_count = MAX_VERTICES as u8;
+    }
+
+    /// Concatenates each face's sub-lists, corner by corner counter-clockwise around it.
+    #[inline]
+    fn assemble_faces(&mut self) {
         for j in 0..18 {
             let (list, n) = FACE_CORNERS[j];
             let mut len = 0;
             for &(c, local) in &list[..n as usize] {
                 let (sub, m) =
-                    SUB_LISTS[c as usize][t.cases[c as usize] as usize - 1][local as usize];
-                t.faces[j][len..len + m as usize].copy_from_slice(&sub[..m as usize]);
+                    SUB_LISTS[c as usize][self.cases[c as usize] as usize - 1][local as usize];
+                self.faces[j][len..len + m as usize].copy_from_slice(&sub[..m as usize]);
                 len += m as usize;
             }
-            t.face_len[j] = len as u8;
+            self.face_len[j] = len as u8;
         }
-        t
     }
 
     /// The bounds this boundary was evaluated from.
@@ -1126,10 +1185,18 @@ impl Tribox {
         }
     }
 
-    /// The boundary with exactly equal vertices merged, zero-length edges removed and faces
-    /// left with fewer than 3 vertices dropped. Two vertices are merged when the exact values
-    /// of their coordinates, as sums of bounds, are equal (not when their rounded values are).
-    /// An axis-aligned box cleans to its 8 vertices and 6 faces.
+    /// The exact boundary of the intersection of the 18 half-spaces, cleaned up: exactly equal
+    /// vertices merged, zero-length edges removed and faces left with fewer than 3 vertices
+    /// dropped. An axis-aligned box cleans to its 8 vertices and 6 faces.
+    ///
+    /// The corner classification presumes that every plane touches the tribox, as exact bounds
+    /// of points do; a diagonal bound rounded outward may miss it by less than an ulp and then
+    /// leave a sliver face. So each bound is first tightened to the exact maximum of its
+    /// direction over the tribox (linear programming duality: the least nonnegative combination
+    /// of other bounds, kept symbolic, as clamping does), the corners are classified with these
+    /// tight bounds, and two vertices are merged when the exact values of their coordinates, as
+    /// sums of bounds, are equal (not when their rounded values are). The result is the exact
+    /// polytope with every vertex coordinate correctly rounded.
     ///
     /// ```
     /// use kepler::bounds::tribox::TriboxBounds;
@@ -1142,22 +1209,33 @@ impl Tribox {
     /// assert_eq!(t.face_count(), 0);
     /// ```
     pub fn cleaned(&self) -> Tribox {
-        let n = self.vertex_count as usize;
-        if n == 0 {
-            return self.clone();
+        let mut raw = Tribox::blank(&self.bounds);
+        if self.bounds.is_empty() {
+            return raw;
         }
         let beta = self.bounds.offsets();
-        let clamped = clamped_chamfers(&beta);
-        let forms: Vec<VertexForm> = self.vertex_planes[..n]
+        let tight = tight_forms(&beta);
+        for c in 0..8 {
+            let planes = CORNER_PLANES[c];
+            let (case, local) = corner(std::array::from_fn(|k| Form {
+                coef: tight[planes[k] as usize],
+                beta: &beta,
+            }));
+            raw.write_corner(c, case, &local);
+        }
+        raw.assemble_faces();
+
+        let n = raw.vertex_count as usize;
+        let forms: Vec<VertexForm> = raw.vertex_planes[..n]
             .iter()
-            .map(|p| VertexForm::new(p, &clamped))
+            .map(|p| VertexForm::new(p, &tight))
             .collect();
         // Representatives: the first vertex of each class of exactly equal vertices.
         let mut new_index = [0u8; MAX_VERTICES];
         let mut kept: Vec<usize> = Vec::with_capacity(n);
         for i in 0..n {
             let found = kept.iter().position(|&r| {
-                close(&self.vertices[r], &self.vertices[i]) && forms[r].equals(&forms[i], &beta)
+                close(&raw.vertices[r], &raw.vertices[i]) && forms[r].equals(&forms[i], &beta)
             });
             new_index[i] = match found {
                 Some(k) => k as u8,
@@ -1167,16 +1245,16 @@ impl Tribox {
                 }
             };
         }
-        let mut t = self.clone();
+        let mut t = raw.clone();
         for (k, &r) in kept.iter().enumerate() {
-            t.vertices[k] = self.vertices[r];
-            t.vertex_planes[k] = real_planes(&self.vertex_planes[r], &clamped);
+            t.vertices[k] = raw.vertices[r];
+            t.vertex_planes[k] = touching_planes(&raw.vertex_planes[r], &tight);
         }
         t.vertex_count = kept.len() as u8;
         for j in 0..18 {
             let mut out = [0u8; MAX_FACE];
             let mut len = 0;
-            for &v in self.face(j) {
+            for &v in raw.face(j) {
                 let v = new_index[v as usize];
                 if len == 0 || out[len - 1] != v {
                     out[len] = v;
@@ -1255,8 +1333,9 @@ impl Tribox {
     }
 }
 
-/// Whether two computed points may be the same exact point: each coordinate is a faithful
-/// rounding (halved at most once), so equal exact values give doubles at most two steps apart.
+/// Whether two computed points may be the same exact point: each coordinate is the correct
+/// rounding of an exact sum, halved at most twice (exact but for subnormal results), so equal
+/// exact values give doubles at most two steps apart.
 fn close(p: &Point3, q: &Point3) -> bool {
     (0..3).all(|i| {
         let (a, b) = (p[i], q[i]);
@@ -1294,30 +1373,21 @@ fn normal_rows(p: [usize; 3]) -> [[i32; 3]; 3] {
 }
 
 /// The exact coordinates of a vertex as linear forms in the 18 offsets β: coordinate i is
-/// `Σ_k num[i][k] β_k / den`, solved from its three (effective) planes by the adjugate.
+/// `Σ_k num[i][k] β_k / (2 den)`, solved by the adjugate from its three planes, each at its
+/// tight offset (a form in half-units, see [`tight_forms`]).
 struct VertexForm {
     num: [[i32; 18]; 3],
     den: i32,
 }
 
 impl VertexForm {
-    fn new(planes: &[u8; 3], clamped: &[bool; 18]) -> Self {
+    fn new(planes: &[u8; 3], tight: &[[i32; 18]; 18]) -> Self {
         let p = planes.map(usize::from);
         let m = normal_rows(p);
         let adj = adjugate(m);
-        let mut num = [[0; 18]; 3];
-        for (i, row) in num.iter_mut().enumerate() {
-            for (m_idx, &j) in p.iter().enumerate() {
-                let a = adj[i][m_idx];
-                if clamped[j] {
-                    for parent in CHAMFER_PARENTS[j] {
-                        row[parent as usize] += a;
-                    }
-                } else {
-                    row[j] += a;
-                }
-            }
-        }
+        let num = std::array::from_fn(|i| {
+            std::array::from_fn(|k| (0..3).map(|r| adj[i][r] * tight[p[r]][k]).sum())
+        });
         VertexForm { num, den: det3(m) }
     }
 
@@ -1329,6 +1399,29 @@ impl VertexForm {
             sign_of_form(&coef, beta) == Ordering::Equal
         })
     }
+}
+
+/// Each bound as the exact maximum of its direction over the tribox, as a form in half-units:
+/// `tight[j]` has coefficients c with `h_j = Σ_k c_k β_k / 2`. It is `2 β_j` itself when plane j
+/// touches the tribox, otherwise the least combination of other bounds (an optimal dual
+/// basis, whose planes all touch the tribox by complementary slackness).
+fn tight_forms(beta: &[f64; 18]) -> [[i32; 18]; 18] {
+    std::array::from_fn(|j| {
+        let mut own = [0; 18];
+        own[j] = 2;
+        match support_without(j, beta) {
+            Some(basis) => {
+                let halves: [i32; 18] = std::array::from_fn(|k| basis.num[k] * 2 / basis.den);
+                let coef: [i32; 18] = std::array::from_fn(|k| halves[k] - own[k]);
+                if sign_of_form(&coef, beta) == Ordering::Less {
+                    halves
+                } else {
+                    own
+                }
+            }
+            None => own,
+        }
+    })
 }
 
 /// The terms `c_k β_k` of an integer form, each coefficient split into signed powers of two so
@@ -1359,15 +1452,17 @@ fn eval_form(coef: &[i32; 18], beta: &[f64; 18]) -> f64 {
     accurate_sum(&form_terms(coef, beta))
 }
 
-/// Three planes from `planes` through the same point, replacing each clamped chamfer by its
-/// two principal planes (a vertex on a clamped chamfer lies on both), with independent normals.
-fn real_planes(planes: &[u8; 3], clamped: &[bool; 18]) -> [u8; 3] {
-    let mut cand: Vec<u8> = Vec::with_capacity(6);
+/// Three planes with independent normals through a vertex of the cleaned boundary, each
+/// touching the tribox: a plane whose bound was tightened stands for the planes of its tight
+/// form (the vertex is on all of them, since their combination is an equality there).
+fn touching_planes(planes: &[u8; 3], tight: &[[i32; 18]; 18]) -> [u8; 3] {
+    let mut cand: Vec<u8> = Vec::with_capacity(9);
     for &j in planes {
-        if clamped[j as usize] {
-            cand.extend(CHAMFER_PARENTS[j as usize]);
-        } else {
+        let form = &tight[j as usize];
+        if form[j as usize] == 2 {
             cand.push(j);
+        } else {
+            cand.extend((0..18u8).filter(|&k| form[k as usize] != 0));
         }
     }
     cand.sort_unstable();

@@ -1,7 +1,7 @@
 //! A face: a planar polygon with its plane equation and Franklin's texture coordinate system.
 
 use crate::geometry::{Point3, Vector3};
-use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion};
+use nalgebra::{Matrix3, Matrix4};
 
 /// The plane `a·x + b·y + c·z + d = 0` of a face (Franklin's face equation), with
 /// `(a, b, c)` the unit outward normal.
@@ -68,10 +68,10 @@ impl Plane {
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TextureFrame {
-    /// Texture → global coordinates.
-    to_global: Isometry3<f64>,
-    /// Global → texture coordinates.
-    to_texture: Isometry3<f64>,
+    origin: Point3,
+    x: Vector3,
+    y: Vector3,
+    w: Vector3,
 }
 
 impl TextureFrame {
@@ -91,16 +91,11 @@ impl TextureFrame {
             let x = Vector3::new(-normal.y, normal.x, 0.0).normalize();
             (x, normal.cross(&x))
         };
-        let w = x.cross(&y);
-        let rotation = Rotation3::from_matrix_unchecked(Matrix3::from_columns(&[x, y, w]));
-        let origin = normal * -d;
-        let to_global = Isometry3::from_parts(
-            Translation3::from(origin),
-            UnitQuaternion::from_rotation_matrix(&rotation),
-        );
         TextureFrame {
-            to_global,
-            to_texture: to_global.inverse(),
+            origin: Point3::from(normal * -d),
+            x,
+            y,
+            w: x.cross(&y),
         }
     }
 
@@ -111,7 +106,7 @@ impl TextureFrame {
     /// assert_eq!(TextureFrame::new(&Vector3::x(), -4.0, false).origin().x, 4.0);
     /// ```
     pub fn origin(&self) -> Point3 {
-        Point3::from(self.to_global.translation.vector)
+        self.origin
     }
 
     /// The unit x-vector of the texture system, in global coordinates.
@@ -121,7 +116,7 @@ impl TextureFrame {
     /// assert_eq!(TextureFrame::new(&Vector3::z(), 0.0, true).x_axis(), Vector3::x());
     /// ```
     pub fn x_axis(&self) -> Vector3 {
-        self.to_global.rotation * Vector3::x()
+        self.x
     }
 
     /// The unit y-vector of the texture system, in global coordinates.
@@ -129,10 +124,10 @@ impl TextureFrame {
     /// ```
     /// use kepler::{mesh::TextureFrame, geometry::Vector3};
     /// let f = TextureFrame::new(&Vector3::new(1.0, 0.0, 0.0), 0.0, false);
-    /// assert!((f.y_axis() - Vector3::z()).norm() < 1e-15);
+    /// assert_eq!(f.y_axis(), Vector3::z());
     /// ```
     pub fn y_axis(&self) -> Vector3 {
-        self.to_global.rotation * Vector3::y()
+        self.y
     }
 
     /// Global → texture coordinates `(x, y, w)`; `w` is zero on the face plane.
@@ -143,7 +138,8 @@ impl TextureFrame {
     /// assert_eq!(f.to_texture(&Point3::new(2.0, 3.0, 1.0)), Point3::new(2.0, 3.0, 0.0));
     /// ```
     pub fn to_texture(&self, p: &Point3) -> Point3 {
-        self.to_texture * p
+        let v = p - self.origin;
+        Point3::new(v.dot(&self.x), v.dot(&self.y), v.dot(&self.w))
     }
 
     /// Texture `(x, y, w)` → global coordinates.
@@ -154,29 +150,42 @@ impl TextureFrame {
     /// assert_eq!(f.to_global(&Point3::new(2.0, 3.0, 0.0)), Point3::new(2.0, 3.0, 1.0));
     /// ```
     pub fn to_global(&self, t: &Point3) -> Point3 {
-        self.to_global * t
+        self.origin + self.x * t.x + self.y * t.y + self.w * t.z
     }
 
-    /// The texture → global transform.
+    /// The texture → global transform as an affine 4×4 matrix (columns x, y, w, origin).
     ///
     /// ```
-    /// use kepler::{mesh::TextureFrame, geometry::Vector3};
-    /// let f = TextureFrame::new(&Vector3::z(), 0.0, true);
-    /// assert_eq!(f.texture_to_global().translation.vector, Vector3::zeros());
-    /// ```
-    pub fn texture_to_global(&self) -> &Isometry3<f64> {
-        &self.to_global
-    }
-
-    /// The global → texture transform.
-    ///
-    /// ```
-    /// use kepler::{mesh::TextureFrame, geometry::Vector3};
+    /// use kepler::{mesh::TextureFrame, geometry::{Point3, Vector3}};
     /// let f = TextureFrame::new(&Vector3::z(), -2.0, true);
-    /// assert_eq!(f.global_to_texture().translation.vector.z, -2.0);
+    /// let m = f.texture_to_global();
+    /// assert_eq!(m.transform_point(&Point3::new(1.0, 0.0, 0.0)), Point3::new(1.0, 0.0, 2.0));
     /// ```
-    pub fn global_to_texture(&self) -> &Isometry3<f64> {
-        &self.to_texture
+    pub fn texture_to_global(&self) -> Matrix4<f64> {
+        let mut m = Matrix4::identity();
+        m.fixed_view_mut::<3, 3>(0, 0)
+            .copy_from(&Matrix3::from_columns(&[self.x, self.y, self.w]));
+        m.fixed_view_mut::<3, 1>(0, 3)
+            .copy_from(&self.origin.coords);
+        m
+    }
+
+    /// The global → texture transform as an affine 4×4 matrix (the inverse of
+    /// [`texture_to_global`](TextureFrame::texture_to_global): the axes are orthonormal).
+    ///
+    /// ```
+    /// use kepler::{mesh::TextureFrame, geometry::{Point3, Vector3}};
+    /// let f = TextureFrame::new(&Vector3::z(), -2.0, true);
+    /// let m = f.global_to_texture();
+    /// assert_eq!(m.transform_point(&Point3::new(1.0, 0.0, 2.0)), Point3::new(1.0, 0.0, 0.0));
+    /// ```
+    pub fn global_to_texture(&self) -> Matrix4<f64> {
+        let r = Matrix3::from_rows(&[self.x.transpose(), self.y.transpose(), self.w.transpose()]);
+        let mut m = Matrix4::identity();
+        m.fixed_view_mut::<3, 3>(0, 0).copy_from(&r);
+        m.fixed_view_mut::<3, 1>(0, 3)
+            .copy_from(&(-(r * self.origin.coords)));
+        m
     }
 }
 

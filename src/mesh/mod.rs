@@ -44,7 +44,8 @@ use nalgebra::Matrix4;
 /// ```
 pub const PLANARITY_TOLERANCE: f64 = 1e-6;
 
-/// What is wrong with a mesh, naming the vertex or face (0-based, in input order).
+/// What is wrong with a mesh, naming the vertex or face: indices are 0-based in input order,
+/// messages number from 1 (the first face is "face 1").
 ///
 /// ```
 /// use kepler::{mesh::{Mesh, MeshError}, geometry::Point3};
@@ -55,21 +56,20 @@ pub const PLANARITY_TOLERANCE: f64 = 1e-6;
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum MeshError {
     /// A coordinate is NaN or infinite.
-    #[error("vertex {vertex} has a coordinate that is not a finite number")]
+    #[error("vertex {} has a coordinate that is not a finite number", vertex + 1)]
     NonFinite {
         /// The vertex.
         vertex: usize,
     },
     /// A coordinate is larger in magnitude than [`MAX_COORDINATE`].
     #[error(
-        "vertex {vertex} has a coordinate larger than 1e100 in magnitude (exact predicates could overflow)"
-    )]
+        "vertex {} has a coordinate larger than 1e100 in magnitude (exact predicates could overflow)", vertex + 1)]
     OutOfRange {
         /// The vertex.
         vertex: usize,
     },
     /// A face has fewer than 3 vertices.
-    #[error("face {face} has {count} vertices; a face needs at least 3")]
+    #[error("face {} has {count} vertices; a face needs at least 3", face + 1)]
     TooFewVertices {
         /// The face.
         face: usize,
@@ -77,7 +77,7 @@ pub enum MeshError {
         count: usize,
     },
     /// A face refers to a vertex that does not exist.
-    #[error("face {face} refers to vertex {index} but there are only {vertex_count} vertices")]
+    #[error("face {} refers to vertex {} but there are only {vertex_count} vertices", face + 1, index + 1)]
     IndexOutOfRange {
         /// The face.
         face: usize,
@@ -88,7 +88,7 @@ pub enum MeshError {
     },
     /// A face visits the same point twice (the same index, or two vertices with equal
     /// coordinates).
-    #[error("face {face} visits the point ({x}, {y}, {z}) twice")]
+    #[error("face {} visits the point ({x}, {y}, {z}) twice", face + 1)]
     RepeatedVertex {
         /// The face.
         face: usize,
@@ -100,14 +100,14 @@ pub enum MeshError {
         z: f64,
     },
     /// A face has zero area: its vertices are collinear, or its loop cancels itself.
-    #[error("face {face} has zero area")]
+    #[error("face {} has zero area", face + 1)]
     ZeroArea {
         /// The face.
         face: usize,
     },
     /// A face is not planar within [`PLANARITY_TOLERANCE`].
     #[error(
-        "face {face} is not planar: a vertex is {deviation:.3e} of the face's size off its plane (tolerance 1e-6)"
+        "face {} is not planar: a vertex is {deviation:.3e} of the face's size off its plane (tolerance 1e-6)", face + 1
     )]
     NonPlanar {
         /// The face.
@@ -116,7 +116,7 @@ pub enum MeshError {
         deviation: f64,
     },
     /// A face crosses or overlaps itself.
-    #[error("face {face} crosses or overlaps itself")]
+    #[error("face {} crosses or overlaps itself", face + 1)]
     NotSimple {
         /// The face.
         face: usize,
@@ -413,7 +413,7 @@ fn build_face(
         .flat_map(|p| pts.iter().map(move |q| (p - q).norm()))
         .fold(0.0, f64::max);
     let len = n2.norm();
-    if !(len > 1e-14 * diameter * diameter) {
+    if len.is_nan() || len <= 1e-14 * diameter * diameter {
         return Err(MeshError::ZeroArea { face: fi });
     }
     let normal: Vector3 = n2 / len;
