@@ -1,38 +1,9 @@
-use std::time::Instant;
+use nalgebra::{Matrix4, Rotation3, Vector3};
 fn main() {
-    let t = Instant::now();
-    let s = kepler::scene::file::load("scenes/metropolis.toml".as_ref()).unwrap();
-    let t1 = t.elapsed();
-    let walk = s.walk();
-    let t = Instant::now();
-    for (id, _) in &walk {
-        s.cbox(*id);
-    }
-    let t2 = t.elapsed();
-    let t = Instant::now();
-    for (id, _) in &walk {
-        s.tribox(*id);
-    }
-    let t3 = t.elapsed();
-    let t = Instant::now();
-    for (id, _) in &walk {
-        s.inbox(*id);
-    }
-    let t4 = t.elapsed();
-    let t = Instant::now();
-    for (id, _) in &walk {
-        let b = s.tribox(*id).boundary().cleaned();
-        std::hint::black_box(b.face_count());
-    }
-    let t5 = t.elapsed();
-    let t = Instant::now();
-    let r = kepler::scene::report::BoundsReport::of(&s);
-    let t6 = t.elapsed();
-    let t = Instant::now();
-    let tab = r.table();
-    let t7 = t.elapsed();
-    println!(
-        "load {t1:?} cbox {t2:?} tribox {t3:?} inbox {t4:?} boundary+clean {t5:?} report(cached) {t6:?} table {t7:?} {}",
-        tab.len()
-    );
+    let rot = Rotation3::from_euler_angles(-0.37491887956214864, 1.0905305833022987, 0.0)
+        .to_homogeneous();
+    let m = Matrix4::new_nonuniform_scaling(&Vector3::new(0.3, 0.3, 0.3)) * rot;
+    let mesh = kepler::solids::cube(1.0).unwrap().transformed(&m).unwrap();
+    println!("{:?}", kepler::bounds::inbox(&mesh));
+    println!("vol {}", mesh.volume());
 }

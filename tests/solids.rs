@@ -344,7 +344,8 @@ fn names_round_trip() {
 
 #[test]
 fn platonic_shorthands() {
-    let pairs: [(fn(f64) -> Result<Mesh, SolidError>, Polyhedron); 5] = [
+    type Make = fn(f64) -> Result<Mesh, SolidError>;
+    let pairs: [(Make, Polyhedron); 5] = [
         (solids::tetrahedron, Polyhedron::Tetrahedron),
         (solids::cube, Polyhedron::Cube),
         (solids::octahedron, Polyhedron::Octahedron),

@@ -217,7 +217,7 @@ fn kernel_box(mesh: &Mesh, cbox: &Aabb, outward: Ordering) -> Option<Aabb> {
     if !(slack0 > 1e-9) {
         return None;
     }
-    let (c, h) = maximise_box(&planes, c0, slack0 / 4.0)?;
+    let (c, h) = maximise_box(&planes, c0, slack0 / 4.0);
     let to_world = |v: Vector3| Point3::from(centre.coords + v * scale);
     let mut b = Aabb::new(to_world(c - h), to_world(c + h));
     // Shrink towards the centre until the exact test accepts (rounding only).
@@ -236,8 +236,9 @@ fn kernel_box(mesh: &Mesh, cbox: &Aabb, outward: Ordering) -> Option<Aabb> {
 }
 
 /// Maximises `Σ log h` subject to `n·c + |n|·h ≤ d` for every plane, from the strictly
-/// feasible start `(c0, h0·(1,1,1))`, by the barrier method with damped Newton steps.
-fn maximise_box(planes: &[(Vector3, f64)], c0: Vector3, h0: f64) -> Option<(Vector3, Vector3)> {
+/// feasible start `(c0, h0·(1,1,1))`, by the barrier method with damped Newton steps. Every
+/// iterate is strictly feasible.
+fn maximise_box(planes: &[(Vector3, f64)], c0: Vector3, h0: f64) -> (Vector3, Vector3) {
     let rows: Vec<(Vector6<f64>, f64)> = planes
         .iter()
         .map(|(n, d)| {
@@ -267,7 +268,11 @@ fn maximise_box(planes: &[(Vector3, f64)], c0: Vector3, h0: f64) -> Option<(Vect
                 g += a / s;
                 hess += a * a.transpose() / (s * s);
             }
-            let step = -hess.cholesky()?.solve(&g);
+            // Near the optimum the Hessian can become too ill-conditioned to factor; every
+            // iterate is strictly feasible, so stopping there still gives a valid box.
+            let Some(step) = hess.cholesky().map(|c| -c.solve(&g)) else {
+                return split(z);
+            };
             let decrement = -g.dot(&step);
             if !(decrement > 1e-11) {
                 break;
@@ -291,7 +296,12 @@ fn maximise_box(planes: &[(Vector3, f64)], c0: Vector3, h0: f64) -> Option<(Vect
         }
         t *= 20.0;
     }
-    Some((z.fixed_rows::<3>(0).into(), z.fixed_rows::<3>(3).into()))
+    split(z)
+}
+
+/// The centre and half-sizes of the box variable `z = (c, h)`.
+fn split(z: Vector6<f64>) -> (Vector3, Vector3) {
+    (z.fixed_rows::<3>(0).into(), z.fixed_rows::<3>(3).into())
 }
 
 /// Whether the open box `b` meets no triangle of the tree (exact).

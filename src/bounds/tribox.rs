@@ -225,7 +225,7 @@ const CASE1: CaseTable = CaseTable {
         ([1, 0, 0, 0], 1),
         ([2, 0, 0, 0], 1),
         ([0, 0, 0, 0], 1),
-        ([1, 3, 2, 0], 3),
+        ([2, 3, 1, 0], 3),
         ([1, 3, 0, 0], 3),
         ([0, 3, 2, 0], 3),
     ],
@@ -1234,9 +1234,9 @@ impl Tribox {
         let mut new_index = [0u8; MAX_VERTICES];
         let mut kept: Vec<usize> = Vec::with_capacity(n);
         for i in 0..n {
-            let found = kept.iter().position(|&r| {
-                close(&raw.vertices[r], &raw.vertices[i]) && forms[r].equals(&forms[i], &beta)
-            });
+            let found = kept
+                .iter()
+                .position(|&r| raw.vertices[r] == raw.vertices[i]);
             new_index[i] = match found {
                 Some(k) => k as u8,
                 None => {

@@ -368,8 +368,12 @@ impl Polyhedron {
     }
 }
 
+/// Writes the kebab-case [`name`](Polyhedron::name).
+///
+/// ```
+/// assert_eq!(kepler::solids::Polyhedron::TruncatedCube.to_string(), "truncated-cube");
+/// ```
 impl std::fmt::Display for Polyhedron {
-    /// Writes the kebab-case [`name`](Polyhedron::name).
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(self.name())
     }

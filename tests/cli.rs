@@ -1,0 +1,295 @@
+//! The `kepler` command line, run as a separate process: `kepler bounds SCENE [--json]`, its
+//! table and JSON output, and its errors.
+
+use serde_json::{Value, json};
+use std::process::{Command, Output};
+
+/// Runs the built binary in the crate's directory (so `scenes/...` resolves).
+fn kepler(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_kepler"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("the kepler binary runs")
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8(o.stdout.clone()).expect("UTF-8 output")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8(o.stderr.clone()).expect("UTF-8 output")
+}
+
+/// Runs successfully and returns the standard output.
+fn ok(args: &[&str]) -> String {
+    let o = kepler(args);
+    assert!(
+        o.status.success(),
+        "kepler {args:?} failed ({:?}): {}",
+        o.status,
+        stderr(&o)
+    );
+    assert_eq!(stderr(&o), "", "kepler {args:?} wrote to stderr");
+    stdout(&o)
+}
+
+/// Fails cleanly (exit code 1, nothing on stdout, one `error: ` line, no panic) and returns
+/// the error message after `error: `.
+fn fails(args: &[&str]) -> String {
+    let o = kepler(args);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "kepler {args:?}: {err}");
+    assert!(!err.contains("panicked"), "kepler {args:?} panicked: {err}");
+    assert_eq!(stdout(&o), "", "kepler {args:?} wrote to stdout");
+    assert!(err.starts_with("error: "), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    err["error: ".len()..].trim_end().to_string()
+}
+
+fn json_of(args: &[&str]) -> Value {
+    let out = ok(args);
+    serde_json::from_str(&out).unwrap_or_else(|e| panic!("not JSON ({e}):\n{out}"))
+}
+
+fn object<'a>(report: &'a Value, name: &str) -> &'a Value {
+    report["objects"]
+        .as_array()
+        .expect("an `objects` array")
+        .iter()
+        .find(|o| o["name"] == name)
+        .unwrap_or_else(|| panic!("no object {name}"))
+}
+
+// ---------------------------------------------------------------------------------------------
+// The table.
+
+#[test]
+fn bounds_table_for_the_cube() {
+    let out = ok(&["bounds", "scenes/cube.toml"]);
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), 2, "{out}");
+    let header: Vec<&str> = lines[0].split_whitespace().collect();
+    assert_eq!(
+        &header[..6],
+        ["object", "faces", "vertices", "solid", "cbox", "inbox"]
+    );
+    let row: Vec<&str> = lines[1].split_whitespace().collect();
+    assert_eq!(&row[..4], ["cube", "6", "8", "yes"]);
+    assert!(
+        lines[1].contains("[-0.5 -0.5 -0.5]..[0.5 0.5 0.5]"),
+        "{}",
+        lines[1]
+    );
+}
+
+#[test]
+fn bounds_table_marks_open_and_inside_out_objects() {
+    let out = ok(&["bounds", "scenes/meshes.toml"]);
+    let row = |name: &str| -> Vec<String> {
+        out.lines()
+            .find(|l| l.split_whitespace().next() == Some(name))
+            .unwrap_or_else(|| panic!("no line for {name}:\n{out}"))
+            .split_whitespace()
+            .map(String::from)
+            .collect()
+    };
+    assert_eq!(&row("house")[..4], ["house", "7", "10", "yes"]);
+    assert_eq!(&row("tent")[..4], ["tent", "4", "5", "open"]);
+    assert_eq!(
+        &row("inside-out")[..4],
+        ["inside-out", "6", "8", "inside-out"]
+    );
+    // The tent has no inbox.
+    assert!(row("tent").contains(&"empty".to_string()), "{out}");
+}
+
+#[test]
+fn bounds_table_indents_subobjects_by_depth() {
+    let out = ok(&["bounds", "scenes/city.toml"]);
+    let lines: Vec<&str> = out.lines().collect();
+    assert!(lines.iter().any(|l| l.starts_with("block ")));
+    assert!(lines.iter().any(|l| l.starts_with("  tower-west ")));
+    assert!(lines.iter().any(|l| l.starts_with("    body ")));
+    let block: Vec<&str> = lines
+        .iter()
+        .find(|l| l.starts_with("block "))
+        .unwrap()
+        .split_whitespace()
+        .collect();
+    assert_eq!(block[1], "1962");
+}
+
+#[test]
+fn bounds_of_a_mesh_file() {
+    let out = ok(&["bounds", "tests/data/cube.obj"]);
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), 2, "{out}");
+    let row: Vec<&str> = lines[1].split_whitespace().collect();
+    assert_eq!(&row[..4], ["cube", "6", "8", "yes"]);
+}
+
+// ---------------------------------------------------------------------------------------------
+// JSON.
+
+#[test]
+fn bounds_json_for_the_cube() {
+    let report = json_of(&["bounds", "scenes/cube.toml", "--json"]);
+    let objects = report["objects"].as_array().expect("an `objects` array");
+    assert_eq!(objects.len(), 1);
+    let c = &objects[0];
+    assert_eq!(c["name"], "cube");
+    assert_eq!(c["path"], "cube");
+    assert_eq!(c["depth"], 0);
+    assert_eq!(c["faces"], 6);
+    assert_eq!(c["vertices"], 8);
+    assert_eq!(c["closed"], true);
+    assert_eq!(c["inside_out"], false);
+    assert_eq!(c["volume"], 1.0);
+    assert_eq!(c["surface_area"], 6.0);
+    let unit = json!({"min": [-0.5, -0.5, -0.5], "max": [0.5, 0.5, 0.5]});
+    assert_eq!(c["cbox"], unit);
+    assert_eq!(c["inbox"], unit);
+    // Min then max per direction: x, y, z, x+y, x+z, y+z, x−z, y−x, z−y.
+    assert_eq!(
+        c["tribox"]["bounds"],
+        json!([
+            -0.5, 0.5, -0.5, 0.5, -0.5, 0.5, -1.0, 1.0, -1.0, 1.0, -1.0, 1.0, -1.0, 1.0, -1.0, 1.0,
+            -1.0, 1.0
+        ])
+    );
+    assert_eq!(c["tribox"]["faces"], 6);
+    assert_eq!(c["tribox"]["volume"], 1.0);
+    assert_eq!(c["cbox_ratio"], 1.0);
+}
+
+#[test]
+fn bounds_json_shape() {
+    let report = json_of(&["bounds", "scenes/meshes.toml", "--json"]);
+    assert_eq!(report.as_object().unwrap().len(), 1, "only `objects`");
+    let objects = report["objects"].as_array().unwrap();
+    assert_eq!(objects.len(), 3);
+    let is_triple = |v: &Value| {
+        v.as_array()
+            .is_some_and(|a| a.len() == 3 && a.iter().all(Value::is_f64))
+    };
+    for o in objects {
+        assert!(o["name"].is_string());
+        assert!(o["faces"].is_u64() && o["vertices"].is_u64());
+        assert!(o["closed"].is_boolean() && o["inside_out"].is_boolean());
+        assert!(o["volume"].is_f64() || o["volume"].is_null());
+        assert!(is_triple(&o["cbox"]["min"]) && is_triple(&o["cbox"]["max"]));
+        assert!(
+            o["inbox"].is_null()
+                || (is_triple(&o["inbox"]["min"]) && is_triple(&o["inbox"]["max"]))
+        );
+        let b = o["tribox"]["bounds"].as_array().unwrap();
+        assert_eq!(b.len(), 18);
+        assert!(b.iter().all(Value::is_f64));
+        assert!(o["tribox"]["faces"].is_u64());
+        assert!(o["tribox"]["volume"].is_f64());
+    }
+}
+
+#[test]
+fn bounds_json_for_the_mesh_scene() {
+    let report = json_of(&["bounds", "scenes/meshes.toml", "--json"]);
+
+    let house = object(&report, "house");
+    assert_eq!(house["closed"], true);
+    assert_eq!(house["inside_out"], false);
+    assert_eq!(house["volume"], 30.0);
+    assert_eq!(house["faces"], 7);
+    assert_eq!(
+        house["cbox"],
+        json!({"min": [0.0, 0.0, 0.0], "max": [4.0, 3.0, 3.0]})
+    );
+    // Its vertices (0|4, 0|3, 0|2) and the ridge (0|4, 1.5, 3), by hand.
+    assert_eq!(
+        house["tribox"]["bounds"],
+        json!([
+            0.0, 4.0, 0.0, 3.0, 0.0, 3.0, 0.0, 7.0, 0.0, 7.0, 0.0, 5.0, -3.0, 4.0, -4.0, 3.0, -3.0,
+            2.0
+        ])
+    );
+
+    let tent = object(&report, "tent");
+    assert_eq!(tent["closed"], false);
+    assert_eq!(tent["inside_out"], false);
+    assert_eq!(tent["inbox"], Value::Null);
+    assert_eq!(tent["volume"], Value::Null);
+    assert_eq!(
+        (tent["faces"].as_u64(), tent["vertices"].as_u64()),
+        (Some(4), Some(5))
+    );
+    // Scaled by (1.5, 1.5, 1) and moved by (7, 1.5, 0).
+    assert_eq!(
+        tent["cbox"],
+        json!({"min": [5.5, 0.0, 0.0], "max": [8.5, 3.0, 2.0]})
+    );
+
+    let inside_out = object(&report, "inside-out");
+    assert_eq!(inside_out["inside_out"], true);
+    assert_eq!(inside_out["closed"], true);
+    let v = inside_out["volume"].as_f64().unwrap();
+    assert!((v - 1.0).abs() < 1e-12, "{v}");
+    assert!(inside_out["inbox"].is_object());
+}
+
+// ---------------------------------------------------------------------------------------------
+// Errors.
+
+#[test]
+fn a_missing_scene_file_fails_cleanly() {
+    let e = fails(&["bounds", "tests/data/scenes/no-such-scene.toml"]);
+    assert!(
+        e.starts_with("tests/data/scenes/no-such-scene.toml: "),
+        "{e}"
+    );
+    let e = fails(&["bounds", "no-such-mesh.off"]);
+    assert!(e.starts_with("no-such-mesh.off: "), "{e}");
+}
+
+#[test]
+fn a_missing_file_error_gives_its_reason_once() {
+    let e = fails(&["bounds", "tests/data/scenes/no-such-scene.toml"]);
+    let reason = e.rsplit(": ").next().unwrap();
+    assert_eq!(e.matches(reason).count(), 1, "the reason is repeated: {e}");
+}
+
+#[test]
+fn a_malformed_scene_fails_with_file_and_line() {
+    let e = fails(&["bounds", "tests/data/scenes/syntax_error.toml"]);
+    assert!(
+        e.starts_with("tests/data/scenes/syntax_error.toml:5: "),
+        "{e}"
+    );
+    let e = fails(&["bounds", "tests/data/scenes/broken_mesh.toml", "--json"]);
+    assert!(
+        e.starts_with(
+            "tests/data/scenes/broken_mesh.toml:7: tests/data/scenes/broken.obj:7: vertex index 9"
+        ),
+        "{e}"
+    );
+}
+
+#[test]
+fn an_unknown_mesh_format_fails_cleanly() {
+    let e = fails(&["bounds", "scene.ply"]);
+    assert!(e.starts_with("scene.ply: unknown mesh format"), "{e}");
+}
+
+#[test]
+fn usage_errors_do_not_panic() {
+    for args in [
+        &[][..],
+        &["bounds"][..],
+        &["frobnicate"][..],
+        &["bounds", "--bogus"][..],
+    ] {
+        let o = kepler(args);
+        assert!(!o.status.success(), "kepler {args:?} succeeded");
+        assert!(!stderr(&o).contains("panicked"), "{}", stderr(&o));
+        assert!(stderr(&o).contains("Usage"), "{}", stderr(&o));
+    }
+}

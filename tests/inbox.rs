@@ -1,0 +1,176 @@
+//! INBOX: it must never poke out of its object, and should be as large as is practical.
+
+use kepler::bounds::{InboxMethod, cbox, inbox};
+use kepler::geometry::predicates::triangle_meets_open_box;
+use kepler::geometry::{Aabb, Point3, Vector3};
+use kepler::mesh::{Containment, Mesh, classify_point_brute_force};
+use kepler::solids::{self, Polyhedron};
+use nalgebra::{Matrix4, Rotation3};
+use proptest::prelude::*;
+
+/// The exact certificate: every corner of the box is inside or on the object, the centre is
+/// strictly inside, and no triangle of the object meets the box's open interior.
+fn assert_inside(mesh: &Mesh, b: &Aabb, what: &str) {
+    assert!(b.volume() > 0.0, "{what}: empty inbox");
+    for c in b.corners() {
+        let at = classify_point_brute_force(mesh, &c);
+        assert_ne!(at, Containment::Outside, "{what}: corner {c:?} is outside");
+    }
+    let centre = nalgebra::center(&b.min_point(), &b.max_point());
+    assert_eq!(
+        classify_point_brute_force(mesh, &centre),
+        Containment::Inside,
+        "{what}: centre"
+    );
+    for t in 0..mesh.triangles().len() {
+        assert!(
+            !triangle_meets_open_box(&mesh.triangle(t), b),
+            "{what}: triangle {t} crosses the inbox"
+        );
+    }
+}
+
+#[test]
+fn every_built_in_solid_has_an_inbox_inside_it() {
+    let outline =
+        |pts: &[(f64, f64)]| geo::Polygon::new(geo::LineString::from(pts.to_vec()), vec![]);
+    let mut meshes: Vec<(String, Mesh)> = Polyhedron::ALL
+        .iter()
+        .map(|p| (p.name().to_string(), p.mesh(1.3).unwrap()))
+        .collect();
+    meshes.push(("sphere".into(), solids::uv_sphere(2.0, 24, 12).unwrap()));
+    meshes.push(("torus".into(), solids::torus(3.0, 1.0, 24, 12).unwrap()));
+    meshes.push(("cylinder".into(), solids::cylinder(1.0, 5.0, 20).unwrap()));
+    meshes.push((
+        "box".into(),
+        solids::cuboid(Vector3::new(1.0, 2.0, 3.0)).unwrap(),
+    ));
+    let l = outline(&[(0., 0.), (6., 0.), (6., 1.), (1., 1.), (1., 4.), (0., 4.)]);
+    meshes.push(("l-prism".into(), solids::prism(&l, 3.0).unwrap()));
+    let star: Vec<(f64, f64)> = (0..10)
+        .map(|i| {
+            let (r, a) = (
+                if i % 2 == 0 { 3.0 } else { 1.2 },
+                std::f64::consts::TAU * i as f64 / 10.0,
+            );
+            (r * a.cos(), r * a.sin())
+        })
+        .collect();
+    meshes.push((
+        "star-prism".into(),
+        solids::prism(&outline(&star), 1.5).unwrap(),
+    ));
+    for (name, m) in &meshes {
+        let i = inbox(m).unwrap_or_else(|| panic!("{name} has no inbox"));
+        assert_inside(m, &i.aabb, name);
+        assert!(
+            i.aabb.volume() >= 0.02 * m.volume(),
+            "{name}: inbox only {}",
+            i.aabb.volume() / m.volume()
+        );
+    }
+}
+
+#[test]
+fn a_box_is_its_own_inbox_exactly() {
+    let cube = solids::cube(1.0).unwrap();
+    assert_eq!(inbox(&cube).unwrap().aabb, cbox(&cube));
+    // Also off the origin, with coordinates whose sums are not representable.
+    let t = Matrix4::new_translation(&Vector3::new(0.1, 0.7, -1e-3));
+    let b = solids::cuboid(Vector3::new(0.3, 1.7, 2.9))
+        .unwrap()
+        .transformed(&t)
+        .unwrap();
+    assert_eq!(inbox(&b).unwrap().aabb, cbox(&b));
+}
+
+#[test]
+fn the_house_inbox_is_its_walls() {
+    let house = kepler::io::read_mesh("scenes/meshes/house.obj".as_ref()).unwrap();
+    let i = inbox(&house).unwrap();
+    assert_eq!((i.aabb.min, i.aabb.max), ([0.0; 3], [4.0, 3.0, 2.0]));
+}
+
+#[test]
+fn a_sphere_inbox_nearly_fills_the_inscribed_cube() {
+    for (segments, rings) in [(32, 16), (64, 32)] {
+        let r = 1.7;
+        let s = solids::uv_sphere(r, segments, rings).unwrap();
+        let i = inbox(&s).unwrap();
+        assert_eq!(i.method, InboxMethod::Kernel);
+        let inscribed_cube = (2.0 * r / 3f64.sqrt()).powi(3);
+        assert!(
+            i.aabb.volume() >= 0.95 * inscribed_cube,
+            "{segments}x{rings}: {}",
+            i.aabb.volume() / inscribed_cube
+        );
+        assert_inside(&s, &i.aabb, "sphere");
+    }
+}
+
+#[test]
+fn the_l_prism_inbox_fills_an_arm() {
+    let l = geo::Polygon::new(
+        geo::LineString::from(vec![
+            (0., 0.),
+            (6., 0.),
+            (6., 1.),
+            (1., 1.),
+            (1., 4.),
+            (0., 4.),
+        ]),
+        vec![],
+    );
+    let m = solids::prism(&l, 3.0).unwrap();
+    let i = inbox(&m).unwrap();
+    // The arms are 6 x 1 x 3 and 1 x 4 x 3; growth must reach at least the smaller one.
+    assert!(i.aabb.volume() >= 12.0 - 1e-9, "{:?}", i.aabb);
+}
+
+#[test]
+fn objects_without_interior_have_no_inbox() {
+    let tent = kepler::io::read_mesh("scenes/meshes/tent.stl".as_ref()).unwrap();
+    assert!(inbox(&tent).is_none());
+    let square = Mesh::from_polygons(
+        vec![
+            Point3::new(0., 0., 0.),
+            Point3::new(1., 0., 0.),
+            Point3::new(1., 1., 0.),
+            Point3::new(0., 1., 0.),
+        ],
+        vec![vec![0, 1, 2, 3], vec![0, 3, 2, 1]],
+    )
+    .unwrap();
+    // Closed and consistently oriented, but flat: no interior.
+    assert!(square.is_solid());
+    assert!(inbox(&square).is_none());
+}
+
+#[test]
+fn an_inside_out_solid_still_gets_a_correct_inbox() {
+    let m = kepler::io::read_mesh("scenes/meshes/inside_out.off".as_ref()).unwrap();
+    assert!(m.volume() < 0.0);
+    assert_eq!(inbox(&m).unwrap().aabb, cbox(&m));
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// Random convex polytopes: a built-in polyhedron under a random rotation, non-uniform
+    /// scale and translation. The inbox must pass the exact certificate and, the polytope
+    /// being convex, come from the convex program.
+    #[test]
+    fn random_convex_polytopes(
+        which in 0usize..18, angles in prop::array::uniform3(-3.2f64..3.2),
+        scale in prop::array::uniform3(0.3f64..3.0), shift in prop::array::uniform3(-10.0f64..10.0)
+    ) {
+        let rot = Rotation3::from_euler_angles(angles[0], angles[1], angles[2]).to_homogeneous();
+        let m = Matrix4::new_translation(&Vector3::from(shift))
+            * Matrix4::new_nonuniform_scaling(&Vector3::from(scale))
+            * rot;
+        let mesh = Polyhedron::ALL[which].mesh(1.0).unwrap().transformed(&m).unwrap();
+        let i = inbox(&mesh).unwrap();
+        prop_assert_eq!(i.method, InboxMethod::Kernel);
+        assert_inside(&mesh, &i.aabb, Polyhedron::ALL[which].name());
+    }
+}
