@@ -1,9 +1,17 @@
-use nalgebra::{Matrix4, Rotation3, Vector3};
+use kepler::bounds::tribox::TriboxBounds;
 fn main() {
-    let rot = Rotation3::from_euler_angles(-0.37491887956214864, 1.0905305833022987, 0.0)
-        .to_homogeneous();
-    let m = Matrix4::new_nonuniform_scaling(&Vector3::new(0.3, 0.3, 0.3)) * rot;
-    let mesh = kepler::solids::cube(1.0).unwrap().transformed(&m).unwrap();
-    println!("{:?}", kepler::bounds::inbox(&mesh));
-    println!("vol {}", mesh.volume());
+    for p in kepler::solids::Polyhedron::ALL {
+        let m = p.mesh(1.0).unwrap();
+        let b = TriboxBounds::from_points(m.vertices());
+        let t = b.boundary();
+        let c = t.cleaned();
+        println!(
+            "{:28} raw {:2} cleaned {:2} vol {:.6} verts {}",
+            p.name(),
+            t.face_count(),
+            c.face_count(),
+            c.volume(),
+            c.vertices().len()
+        );
+    }
 }

@@ -3,6 +3,7 @@
 use anyhow::Result;
 use clap::{Parser, Subcommand};
 use kepler::scene::{file, report::BoundsReport};
+use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -31,14 +32,23 @@ fn run(cli: Cli) -> Result<()> {
         Command::Bounds { scene, json } => {
             let scene = file::load(&scene)?;
             let report = BoundsReport::of(&scene);
-            if json {
-                println!("{}", serde_json::to_string_pretty(&report)?);
+            let text = if json {
+                serde_json::to_string_pretty(&report)? + "\n"
             } else {
-                print!("{}", report.table());
-            }
+                report.table()
+            };
+            emit(&text)?;
         }
     }
     Ok(())
+}
+
+/// Writes to standard output; a reader that closed the pipe early (`| head`) is not an error.
+fn emit(text: &str) -> Result<()> {
+    match std::io::stdout().lock().write_all(text.as_bytes()) {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        other => Ok(other?),
+    }
 }
 
 fn main() -> ExitCode {

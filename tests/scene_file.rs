@@ -257,6 +257,46 @@ translate = [5, 0, 0]
 }
 
 #[test]
+fn mirrored_placements_keep_faces_outward() {
+    let l = "solid = \"prism\"\noutline = [[0, 0], [2, 0], [2, 1], [1, 1], [1, 2], [0, 2]]\nheight = 2\n";
+    let local = scene(&format!("[[object]]\n{l}"));
+    let s = scene(&format!(
+        "[[object]]\nname = \"m\"\nscale = [-1, 1, 1]\n[[object.object]]\nname = \"l\"\n{l}rotate = [0, 0, 90]\n"
+    ));
+    let id = root(&s, "m/l");
+    let mesh = s[id].mesh().unwrap();
+    // A quarter turn about z, (x, y) → (−y, x), then x → −x: overall x and y swap.
+    let from = local[local.roots()[0]].mesh().unwrap();
+    for (p, q) in from.vertices().iter().zip(mesh.vertices()) {
+        assert_eq!(*q, Point3::new(p.y, p.x, p.z));
+    }
+    assert!(s.is_solid(id));
+    assert!(mesh.volume() > 0.0, "turned inside out: {}", mesh.volume());
+    assert_rel(mesh.volume(), 6.0, 1e-12);
+    assert_eq!(s.cbox(id), aabb([0.0; 3], [2.0; 3]));
+    // A uniform negative scale is a point reflection: outward too.
+    let s = scene(&format!("[[object]]\nname = \"r\"\n{l}scale = -1\n"));
+    let r = root(&s, "r");
+    assert!(s[r].mesh().unwrap().volume() > 0.0);
+    assert_eq!(s.cbox(r), aabb([-2.0; 3], [0.0; 3]));
+}
+
+#[test]
+fn an_array_of_instances_records_the_define() {
+    let s = scene(
+        "[define.pane]\nsolid = \"box\"\nsize = [1, 0.5, 2]\n\
+         [[object]]\nname = \"panes\"\ninstance = \"pane\"\narray = { count = [2, 1, 1], step = [3, 0, 0] }\n",
+    );
+    let panes = root(&s, "panes");
+    assert_eq!(s[panes].instance_of(), None);
+    let kids = s[panes].subobjects().to_vec();
+    assert_eq!(names(&s, &kids), ["panes-1", "panes-2"]);
+    for k in kids {
+        assert_eq!(s[k].instance_of(), Some("pane"));
+    }
+}
+
+#[test]
 fn every_solid_kind_with_its_defaults_and_parameters() {
     let s = scene(
         r#"
@@ -762,6 +802,16 @@ fn error_bad_camera() {
         &cam("view-dir = [0, 0, 0]\n"),
         2,
         "the view direction is zero",
+    );
+    assert_error(
+        &cam("eye = [1, 1, 1]\ntarget = [1, 1, 1]\n"),
+        2,
+        "the view direction is zero",
+    );
+    assert_error(
+        &cam("view-dir = [0, 1, 0]\nup = [0, 0, inf]\n"),
+        2,
+        "camera up must be finite",
     );
     for fov in ["0", "180", "-10", "nan", "400"] {
         assert_error(

@@ -1234,9 +1234,9 @@ impl Tribox {
         let mut new_index = [0u8; MAX_VERTICES];
         let mut kept: Vec<usize> = Vec::with_capacity(n);
         for i in 0..n {
-            let found = kept
-                .iter()
-                .position(|&r| raw.vertices[r] == raw.vertices[i]);
+            let found = kept.iter().position(|&r| {
+                close(&raw.vertices[r], &raw.vertices[i]) && forms[r].equals(&forms[i], &beta)
+            });
             new_index[i] = match found {
                 Some(k) => k as u8,
                 None => {
@@ -1324,7 +1324,7 @@ impl Tribox {
             let mut moved = beta;
             moved[j] = round_up_form(&support, &beta);
             let candidate = Tribox::new(&TriboxBounds::from_offsets(&moved)).cleaned();
-            if candidate.face_count() <= current.face_count() {
+            if true {
                 beta = moved;
                 current = candidate;
             }
