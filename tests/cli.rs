@@ -293,3 +293,33 @@ fn usage_errors_do_not_panic() {
         assert!(stderr(&o).contains("Usage"), "{}", stderr(&o));
     }
 }
+
+#[test]
+fn a_reader_that_stops_early_is_not_an_error() {
+    use std::io::Read;
+    use std::process::Stdio;
+    // The JSON for the city is about 0.5 MB, more than a pipe holds.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_kepler"))
+        .args(["bounds", "scenes/city.toml", "--json"])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut out = child.stdout.take().unwrap();
+    let mut first = [0u8; 16];
+    out.read_exact(&mut first).unwrap();
+    assert!(first.starts_with(b"{"));
+    drop(out);
+    let mut err = String::new();
+    child
+        .stderr
+        .take()
+        .unwrap()
+        .read_to_string(&mut err)
+        .unwrap();
+    let status = child.wait().unwrap();
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(status.success(), "{status:?}: {err}");
+    assert_eq!(err, "");
+}

@@ -66,8 +66,30 @@ fn cancelling_terms() -> impl Strategy<Value = Vec<f64>> {
         })
 }
 
+/// Sums at or next to a half-way point between two doubles: x + ulp(x)/2, split into parts,
+/// plus possibly a tiny term of either sign that breaks the tie.
+fn half_way_terms() -> impl Strategy<Value = Vec<f64>> {
+    (
+        scaled(-40..40),
+        prop_oneof![Just(0.0), scaled(-300..-100)],
+        any::<bool>(),
+    )
+        .prop_flat_map(|(x, tiny, split)| {
+            let half = (x.abs().next_up() - x.abs()) / 2.0 * x.signum();
+            let mut v = if split {
+                vec![0.75 * x, 0.25 * x]
+            } else {
+                vec![x]
+            };
+            v.push(half);
+            v.push(tiny);
+            Just(v).prop_shuffle()
+        })
+}
+
 fn any_terms() -> impl Strategy<Value = Vec<f64>> {
     prop_oneof![
+        half_way_terms(),
         prop::collection::vec(-1e3..1e3f64, 0..17),
         prop::collection::vec(scaled(-900..900), 0..17),
         prop::collection::vec(scaled(-1074..-1000), 0..17),
@@ -615,6 +637,31 @@ fn check_boundary(points: &[Point3]) -> Result<(), TestCaseError> {
     Ok(())
 }
 
+/// Whether `p` satisfies the 18 inequalities, in exact arithmetic.
+fn contains_exactly(b: &TriboxBounds, p: &Point3) -> bool {
+    (0..9).all(|d| {
+        let x = projection(p, d);
+        rat(b.min()[d]) <= x && x <= rat(b.max()[d])
+    })
+}
+
+/// Query points on, just inside and just outside the bounding planes: the cloud's points moved
+/// by one or two ulps per coordinate, and sums that round onto a bound.
+fn near_boundary(points: &[Point3], moves: &[[i8; 3]]) -> Vec<Point3> {
+    let step = |x: f64, k: i8| match k {
+        -2 => x.next_down().next_down(),
+        -1 => x.next_down(),
+        1 => x.next_up(),
+        2 => x.next_up().next_up(),
+        _ => x,
+    };
+    points
+        .iter()
+        .zip(moves.iter().cycle())
+        .map(|(p, m)| Point3::new(step(p.x, m[0]), step(p.y, m[1]), step(p.z, m[2])))
+        .collect()
+}
+
 // ---------------------------------------------------------------------------------------------
 // Properties.
 
@@ -629,6 +676,17 @@ proptest! {
         let (l, r) = points.split_at(points.len() / 2);
         let u = TriboxBounds::from_points(l).union(&TriboxBounds::from_points(r));
         prop_assert_eq!(u, b);
+    }
+
+    #[test]
+    fn contains_point_is_exact(
+        points in any_cloud(),
+        moves in prop::collection::vec(prop::array::uniform3(-2i8..=2), 1..8),
+    ) {
+        let b = TriboxBounds::from_points(&points);
+        for q in near_boundary(&points, &moves) {
+            prop_assert_eq!(b.contains_point(&q), contains_exactly(&b, &q), "{:?}", q);
+        }
     }
 
     #[test]
@@ -681,6 +739,22 @@ fn unit_box(lo: [f64; 3], hi: [f64; 3]) -> Vec<Point3> {
             }))
         })
         .collect()
+}
+
+#[test]
+fn contains_point_decides_rounded_sums_exactly() {
+    // max (x + y) = 1 exactly; 1 + 2^-60 rounds to 1 but is outside, 1 - 2^-53 + 2^-60 inside.
+    let b = TriboxBounds::from_points(&[
+        pt([1.0, 0.0, 0.0]),
+        pt([0.0, 1.0, 0.0]),
+        pt([0.0, 0.0, 1.0]),
+    ]);
+    let t = 2f64.powi(-60);
+    assert!(b.contains_point(&pt([1.0f64.next_down(), t, 0.0])));
+    assert!(!b.contains_point(&pt([1.0, t, 0.0])));
+    assert!(b.contains_point(&pt([1.0, 0.0, 0.0])));
+    // min (y - x) = -1; -1 - 2^-60 rounds to -1 but is outside.
+    assert!(!b.contains_point(&pt([1.0, -t, 0.0])));
 }
 
 #[test]

@@ -214,7 +214,7 @@ fn kernel_box(mesh: &Mesh, cbox: &Aabb, outward: Ordering) -> Option<Aabb> {
         .iter()
         .map(|(n, d)| d - n.dot(&c0))
         .fold(f64::INFINITY, f64::min);
-    if !(slack0 > 1e-9) {
+    if slack0.is_nan() || slack0 <= 1e-9 {
         return None;
     }
     let (c, h) = maximise_box(&planes, c0, slack0 / 4.0);
@@ -274,7 +274,7 @@ fn maximise_box(planes: &[(Vector3, f64)], c0: Vector3, h0: f64) -> (Vector3, Ve
                 return split(z);
             };
             let decrement = -g.dot(&step);
-            if !(decrement > 1e-11) {
+            if decrement.is_nan() || decrement <= 1e-11 {
                 break;
             }
             let f0 = barrier(&z, t);
@@ -349,26 +349,26 @@ fn grow_from(tree: &TriangleTree, mesh: &Mesh, cbox: &Aabb, p: Point3, depth: f6
     // Side s: axis s % 3, upper side when s >= 3.
     let mut steps = [extent / 8.0; 6];
     while steps.iter().any(|&s| s >= min_step) {
-        for side in 0..6 {
-            if steps[side] < min_step {
+        for (side, step) in steps.iter_mut().enumerate() {
+            if *step < min_step {
                 continue;
             }
             let (k, up) = (side % 3, side >= 3);
             let mut cand = b;
             if up {
-                cand.max[k] = (b.max[k] + steps[side]).min(cbox.max[k]);
+                cand.max[k] = (b.max[k] + *step).min(cbox.max[k]);
             } else {
-                cand.min[k] = (b.min[k] - steps[side]).max(cbox.min[k]);
+                cand.min[k] = (b.min[k] - *step).max(cbox.min[k]);
             }
             if cand == b {
-                steps[side] = 0.0;
+                *step = 0.0;
                 continue;
             }
             if clear(tree, &cand) {
                 b = cand;
-                steps[side] *= 2.0;
+                *step *= 2.0;
             } else {
-                steps[side] *= 0.5;
+                *step *= 0.5;
             }
         }
     }

@@ -1235,7 +1235,7 @@ impl Tribox {
         let mut kept: Vec<usize> = Vec::with_capacity(n);
         for i in 0..n {
             let found = kept.iter().position(|&r| {
-                close(&raw.vertices[r], &raw.vertices[i]) && forms[r].equals(&forms[i], &beta)
+                raw.vertices[r] == raw.vertices[i]
             });
             new_index[i] = match found {
                 Some(k) => k as u8,
@@ -1324,7 +1324,7 @@ impl Tribox {
             let mut moved = beta;
             moved[j] = round_up_form(&support, &beta);
             let candidate = Tribox::new(&TriboxBounds::from_offsets(&moved)).cleaned();
-            if true {
+            if candidate.face_count() <= current.face_count() {
                 beta = moved;
                 current = candidate;
             }

@@ -97,7 +97,11 @@ impl Aabb {
     /// assert!(!Aabb::from_points(&[Point3::origin()]).is_empty());
     /// ```
     pub fn is_empty(&self) -> bool {
-        (0..3).any(|k| !(self.min[k] <= self.max[k]))
+        (0..3).any(|k| {
+            self.min[k]
+                .partial_cmp(&self.max[k])
+                .is_none_or(|o| o == std::cmp::Ordering::Greater)
+        })
     }
 
     /// The low corner.

@@ -462,7 +462,7 @@ impl Builder<'_> {
         {
             return Err(self.err(o, "scale, rotate and translate must be finite"));
         }
-        if t.scale.iter().any(|&x| x == 0.0) {
+        if t.scale.contains(&0.0) {
             return Err(self.err(o, "a scale factor of 0 flattens the object"));
         }
         let name = s.name.clone().unwrap_or_else(|| match &base {

@@ -326,7 +326,7 @@ impl Scene {
         let source_name = src.name.clone();
         let content = match &src.content {
             Content::Mesh(mesh) => {
-                Content::Mesh(mesh.transformed(&m).map_err(|e| Error::Object {
+                Content::Mesh(mesh.transformed(m).map_err(|e| Error::Object {
                     object: name.clone(),
                     message: e.to_string(),
                 })?)
