@@ -998,3 +998,25 @@ fn bundled_other_scenes() {
     let s = bundled("bunny.toml");
     assert_eq!(total_faces(&s), 66 + 3674);
 }
+
+#[test]
+fn error_in_a_define_nothing_instances() {
+    assert_error(
+        "[[object]]\nsolid = \"cube\"\n\n[define.typo]\nsolid = \"blob\"\n",
+        4,
+        "unknown solid `blob`",
+    );
+}
+
+#[test]
+fn error_nested_arrays_beyond_the_object_limit() {
+    let text = "[define.row]\nsolid = \"cube\"\narray = { count = [100, 100, 1], step = [2, 2, 0] }\n\n\
+                [[object]]\ninstance = \"row\"\narray = { count = [1000, 1, 1], step = [0, 0, 2] }\n";
+    assert_error(text, 5, "would place more than 10000000 objects");
+}
+
+#[test]
+fn error_camera_with_view_dir_and_eye() {
+    let text = "[camera]\nview-dir = [0, 0, -1]\neye = [0, 0, 5]\ntarget = [0, 0, 0]\n";
+    assert_error(text, 1, "either view-dir or eye and target, not both");
+}

@@ -1235,7 +1235,7 @@ impl Tribox {
         let mut kept: Vec<usize> = Vec::with_capacity(n);
         for i in 0..n {
             let found = kept.iter().position(|&r| {
-                raw.vertices[r] == raw.vertices[i]
+                close(&raw.vertices[r], &raw.vertices[i]) && forms[r].equals(&forms[i], &beta)
             });
             new_index[i] = match found {
                 Some(k) => k as u8,

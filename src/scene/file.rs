@@ -113,9 +113,29 @@ pub fn parse(text: &str, path: &Path) -> Result<Scene> {
     if let Some(c) = &spec.camera {
         scene.set_camera(b.camera(c)?);
     }
-    for o in &spec.object {
-        let proto = b.proto(o)?;
-        place(&mut scene, &proto, None, &Matrix4::identity())
+    // Every prototype is checked, even one nothing instances, so a typo does not go unseen.
+    for (name, define) in &spec.define {
+        b.instance(define, name)?;
+    }
+    let protos = spec
+        .object
+        .iter()
+        .map(|o| b.proto(o))
+        .collect::<Result<Vec<_>>>()?;
+    let total = protos
+        .iter()
+        .fold(0u64, |n, p| n.saturating_add(p.object_count()));
+    if total > MAX_OBJECTS {
+        return Err(Error::Input {
+            path: b.path.clone(),
+            at: "1".into(),
+            message: format!(
+                "the scene would place {total} objects; at most {MAX_OBJECTS} are allowed"
+            ),
+        });
+    }
+    for (o, proto) in spec.object.iter().zip(&protos) {
+        place(&mut scene, proto, None, &Matrix4::identity())
             .map_err(|e| b.err(o, e.to_string()))?;
     }
     Ok(scene)
@@ -236,7 +256,25 @@ enum Proto {
     },
 }
 
+/// The most objects a scene file may place (nested arrays multiply), so that a mistyped
+/// count gives an error instead of exhausting memory.
+///
+/// ```
+/// assert_eq!(kepler::scene::file::MAX_OBJECTS, 10_000_000);
+/// ```
+pub const MAX_OBJECTS: u64 = 10_000_000;
+
 impl Proto {
+    /// How many objects placing this proto creates.
+    fn object_count(&self) -> u64 {
+        match self {
+            Proto::Leaf { .. } => 1,
+            Proto::Group { children, .. } => children
+                .iter()
+                .fold(1u64, |n, c| n.saturating_add(c.object_count())),
+        }
+    }
+
     fn renamed(mut self, new: String, instance: Option<&str>) -> Proto {
         match &mut self {
             Proto::Leaf {
@@ -363,6 +401,9 @@ impl Builder<'_> {
                 let (e, t) = (check(e, "eye")?, check(t, "target")?);
                 [t[0] - e[0], t[1] - e[1], t[2] - e[2]]
             }
+            (Some(_), Some(_), _) | (Some(_), _, Some(_)) => {
+                return Err(self.err(c, "give either view-dir or eye and target, not both"));
+            }
             _ if perspective => {
                 return Err(self.err(
                     c,
@@ -480,6 +521,12 @@ impl Builder<'_> {
             return Err(self.err(
                 o,
                 format!("array count must give 1 to 1,000,000 copies, got {total}"),
+            ));
+        }
+        if total.saturating_mul(placed.object_count()) > MAX_OBJECTS {
+            return Err(self.err(
+                o,
+                format!("this array would place more than {MAX_OBJECTS} objects"),
             ));
         }
         let mut children = Vec::with_capacity(total as usize);

@@ -317,6 +317,34 @@ impl Scene {
         name: String,
         m: &nalgebra::Matrix4<f64>,
     ) -> Result<ObjectId> {
+        let det = m.fixed_view::<3, 3>(0, 0).determinant();
+        if m.iter().any(|x| !x.is_finite()) || !det.is_finite() || det == 0.0 {
+            return Err(Error::Object {
+                object: name,
+                message: "the transform is singular or not finite".into(),
+            });
+        }
+        let mut root = None;
+        let copied = self.copy_subtree(source, parent, name, m, &mut root);
+        if copied.is_err() {
+            // Leave the scene as it was: remove whatever part of the copy was inserted.
+            if let Some(r) = root {
+                self.remove_subtree(r);
+            }
+        }
+        copied
+    }
+
+    /// Copies the subtree `source` under `parent`, transformed by `m`; `root` receives the
+    /// copy's root as soon as it is inserted.
+    fn copy_subtree(
+        &mut self,
+        source: ObjectId,
+        parent: Option<ObjectId>,
+        name: String,
+        m: &nalgebra::Matrix4<f64>,
+        root: &mut Option<ObjectId>,
+    ) -> Result<ObjectId> {
         let Some(src) = self.objects.get(source) else {
             return Err(Error::Object {
                 object: name,
@@ -335,12 +363,32 @@ impl Scene {
         };
         let children = src.subobjects().to_vec();
         let id = self.insert(parent, name, content)?;
+        root.get_or_insert(id);
         self.objects[id].instance_of = Some(source_name);
         for c in children {
             let child_name = self.objects[c].name.clone();
-            self.instantiate_matrix(c, Some(id), child_name, m)?;
+            self.copy_subtree(c, Some(id), child_name, m, root)?;
         }
         Ok(id)
+    }
+
+    /// Removes `id` and everything below it.
+    fn remove_subtree(&mut self, id: ObjectId) {
+        match self.objects[id].parent {
+            Some(p) => {
+                if let Content::Subobjects(v) = &mut self.objects[p].content {
+                    v.retain(|&c| c != id);
+                }
+                self.invalidate(p);
+            }
+            None => self.roots.retain(|&r| r != id),
+        }
+        let mut stack = vec![id];
+        while let Some(i) = stack.pop() {
+            if let Some(o) = self.objects.remove(i) {
+                stack.extend(o.subobjects());
+            }
+        }
     }
 
     /// The top-level objects.
