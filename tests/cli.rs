@@ -147,7 +147,7 @@ fn bounds_json_for_the_cube() {
     assert_eq!(c["inside_out"], false);
     assert_eq!(c["volume"], 1.0);
     assert_eq!(c["surface_area"], 6.0);
-    let unit = json!({"min": [-0.5, -0.5, -0.5], "max": [0.5, 0.5, 0.5]});
+    let unit = json!({"min": [-0.5, -0.5, -0.5], "max": [0.5, 0.5, 0.5], "volume": 1.0, "surface_area": 6.0});
     assert_eq!(c["cbox"], unit);
     assert_eq!(c["inbox"], unit);
     // Min then max per direction: x, y, z, x+y, x+z, y+z, x−z, y−x, z−y.
@@ -202,7 +202,7 @@ fn bounds_json_for_the_mesh_scene() {
     assert_eq!(house["faces"], 7);
     assert_eq!(
         house["cbox"],
-        json!({"min": [0.0, 0.0, 0.0], "max": [4.0, 3.0, 3.0]})
+        json!({"min": [0.0, 0.0, 0.0], "max": [4.0, 3.0, 3.0], "volume": 36.0, "surface_area": 66.0})
     );
     // Its vertices (0|4, 0|3, 0|2) and the ridge (0|4, 1.5, 3), by hand.
     assert_eq!(

@@ -6,12 +6,15 @@ use crate::bounds::{Aabb, InboxMethod};
 use rayon::prelude::*;
 use serde::Serialize;
 
-/// A box as `{"min": [x, y, z], "max": [x, y, z]}`.
+/// A box as `{"min": [x, y, z], "max": [x, y, z], "volume", "surface_area"}`.
 ///
 /// ```
 /// use kepler::scene::report::BoxReport;
 /// let b = BoxReport::from(&kepler::geometry::Aabb::new([0.0; 3].into(), [1.0; 3].into()));
-/// assert_eq!(serde_json::to_string(&b).unwrap(), r#"{"min":[0.0,0.0,0.0],"max":[1.0,1.0,1.0]}"#);
+/// assert_eq!(
+///     serde_json::to_string(&b).unwrap(),
+///     r#"{"min":[0.0,0.0,0.0],"max":[1.0,1.0,1.0],"volume":1.0,"surface_area":6.0}"#
+/// );
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct BoxReport {
@@ -19,6 +22,10 @@ pub struct BoxReport {
     pub min: [f64; 3],
     /// High corner.
     pub max: [f64; 3],
+    /// Volume.
+    pub volume: f64,
+    /// Surface area.
+    pub surface_area: f64,
 }
 
 impl From<&Aabb> for BoxReport {
@@ -26,6 +33,8 @@ impl From<&Aabb> for BoxReport {
         BoxReport {
             min: b.min,
             max: b.max,
+            volume: b.volume(),
+            surface_area: b.surface_area(),
         }
     }
 }
