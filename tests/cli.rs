@@ -225,7 +225,7 @@ fn bounds_json_for_the_mesh_scene() {
     // Scaled by (1.5, 1.5, 1) and moved by (7, 1.5, 0).
     assert_eq!(
         tent["cbox"],
-        json!({"min": [5.5, 0.0, 0.0], "max": [8.5, 3.0, 2.0]})
+        json!({"min": [5.5, 0.0, 0.0], "max": [8.5, 3.0, 2.0], "volume": 18.0, "surface_area": 42.0})
     );
 
     let inside_out = object(&report, "inside-out");
