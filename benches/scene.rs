@@ -5,26 +5,10 @@
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use kepler::bounds::inbox;
-use kepler::scene::{Scene, file};
+use kepler::scene::file;
 use kepler::solids::{self, Polyhedron};
-use rayon::prelude::*;
 use std::hint::black_box;
 use std::time::Duration;
-
-/// CBOX, INBOX and tribox bounds of every object, leaves in parallel.
-fn bound_all(scene: &Scene) {
-    let walk = scene.walk();
-    walk.par_iter()
-        .filter(|(id, _)| scene[*id].mesh().is_some())
-        .for_each(|(id, _)| {
-            scene.cbox(*id);
-            scene.inbox(*id);
-            scene.tribox(*id);
-        });
-    for (id, _) in walk {
-        black_box((scene.cbox(id), scene.inbox(id), scene.tribox(id)));
-    }
-}
 
 fn metropolis(c: &mut Criterion) {
     let path = std::path::Path::new("scenes/metropolis.toml");
@@ -41,7 +25,7 @@ fn metropolis(c: &mut Criterion) {
     g.bench_function("load_and_bound", |b| {
         b.iter(|| {
             let s = file::load(path).expect("bundled scene");
-            bound_all(&s);
+            s.compute_bounds();
             s
         })
     });

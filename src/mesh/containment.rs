@@ -42,20 +42,7 @@ pub enum Containment {
 /// assert_eq!(classify_point(&tree, &Point3::new(0.0, 0.0, 0.999)), Containment::Inside);
 /// ```
 pub fn classify_point(tree: &TriangleTree, p: &Point3) -> Containment {
-    let mut crossings = 0usize;
-    for (_, t) in tree.above(p) {
-        if on_triangle(&t, p) {
-            return Containment::Boundary;
-        }
-        if crosses_above(&t, p) {
-            crossings += 1;
-        }
-    }
-    if crossings % 2 == 1 {
-        Containment::Inside
-    } else {
-        Containment::Outside
-    }
+    classify_among(tree.above(p).map(|(_, t)| t), p)
 }
 
 /// Classifies `p` against `mesh` by testing every triangle (no tree): the brute-force form,
@@ -67,9 +54,14 @@ pub fn classify_point(tree: &TriangleTree, p: &Point3) -> Containment {
 /// assert_eq!(classify_point_brute_force(&cube, &Point3::new(0.5, 0.5, 0.5)), Containment::Inside);
 /// ```
 pub fn classify_point_brute_force(mesh: &Mesh, p: &Point3) -> Containment {
+    classify_among((0..mesh.triangles().len()).map(|i| mesh.triangle(i)), p)
+}
+
+/// Parity of the perturbed upward ray's crossings with `triangles` (which must include every
+/// triangle the ray can meet), or `Boundary` as soon as `p` lies on one.
+fn classify_among(triangles: impl Iterator<Item = [Point3; 3]>, p: &Point3) -> Containment {
     let mut crossings = 0usize;
-    for i in 0..mesh.triangles().len() {
-        let t = mesh.triangle(i);
+    for t in triangles {
         if on_triangle(&t, p) {
             return Containment::Boundary;
         }

@@ -571,6 +571,32 @@ impl Scene {
         })
     }
 
+    /// Computes (and caches) the CBOX, INBOX and tribox bounds of every object: the mesh
+    /// objects in parallel, then the objects with subobjects from their cached results.
+    ///
+    /// ```
+    /// let mut s = kepler::scene::Scene::new();
+    /// let c = s.add_mesh(None, "c", kepler::solids::cube(1.0).unwrap()).unwrap();
+    /// s.compute_bounds();
+    /// assert!(s.inbox(c).is_some());
+    /// ```
+    pub fn compute_bounds(&self) {
+        use rayon::prelude::*;
+        let walk = self.walk();
+        walk.par_iter()
+            .filter(|(id, _)| self.objects[*id].mesh().is_some())
+            .for_each(|&(id, _)| {
+                self.cbox(id);
+                self.inbox(id);
+                self.tribox(id);
+            });
+        for (id, _) in walk {
+            self.cbox(id);
+            self.inbox(id);
+            self.tribox(id);
+        }
+    }
+
     /// Number of faces in the subtree.
     ///
     /// ```

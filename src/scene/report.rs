@@ -122,14 +122,8 @@ impl BoundsReport {
     /// assert_eq!(kepler::scene::report::BoundsReport::of(&s).objects.len(), 1);
     /// ```
     pub fn of(scene: &Scene) -> BoundsReport {
+        scene.compute_bounds();
         let walk = scene.walk();
-        // Leaves first, in parallel; groups then combine cached results.
-        walk.par_iter()
-            .filter(|(id, _)| scene[*id].mesh().is_some())
-            .for_each(|(id, _)| {
-                scene.inbox(*id);
-                scene.tribox(*id);
-            });
         let objects = walk
             .par_iter()
             .map(|&(id, depth)| object_report(scene, id, depth))
