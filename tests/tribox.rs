@@ -37,7 +37,7 @@ fn is_correctly_rounded(r: f64, exact: &BigRational) -> bool {
     let below = (rat(r) - rat(r.next_down())) / &two;
     let above = (rat(r.next_up()) - rat(r)) / &two;
     let half = if &rat(r) > exact { below } else { above };
-    err < half || (err == half && r.to_bits() % 2 == 0)
+    err < half || (err == half && r.to_bits().is_multiple_of(2))
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -406,7 +406,7 @@ fn order_face(n: &[i64; 3], on: &[usize], vs: &[Exact3]) -> Vec<usize> {
         .map(|&v| (v, &vs[v][u] * &cnt - &su, &vs[v][w] * &cnt - &sw))
         .collect();
     let upper = |x: &BigInt, y: &BigInt| y.is_positive() || (y.is_zero() && x.is_positive());
-    let mut sorted = rel.clone();
+    let mut sorted = rel;
     sorted.sort_by(|a, b| {
         let (ua, ub) = (upper(&a.1, &a.2), upper(&b.1, &b.2));
         if ua != ub {
@@ -739,6 +739,52 @@ fn unit_box(lo: [f64; 3], hi: [f64; 3]) -> Vec<Point3> {
             }))
         })
         .collect()
+}
+
+#[test]
+fn bounds_of_many_points_across_blocks_and_threads() {
+    // Coordinates whose sums round: equal rounded sums with exact errors of both signs, spread
+    // over many blocks and rayon chunks, in several orders.
+    let vals = [
+        0.1,
+        0.2,
+        0.3,
+        0.7,
+        0.6,
+        0.4,
+        -0.1,
+        -0.3,
+        1.0 / 3.0,
+        2.0 / 3.0,
+    ];
+    let mut pts: Vec<Point3> = (0..5000)
+        .map(|i| pt([vals[i % 10], vals[(i / 10) % 10], vals[(i / 100) % 10]]))
+        .collect();
+    let b = TriboxBounds::from_points(&pts);
+    check_bounds(&pts, &b).unwrap();
+    let key = |p: &Point3| (p.x + p.y, p.y - p.x, p.z - p.y);
+    pts.sort_by(|p, q| key(p).partial_cmp(&key(q)).unwrap());
+    assert_eq!(TriboxBounds::from_points(&pts), b);
+    pts.reverse();
+    assert_eq!(TriboxBounds::from_points(&pts), b);
+    let many: Vec<Point3> = (0..40).flat_map(|_| pts.iter().copied()).collect();
+    assert_eq!(TriboxBounds::par_from_points(&many), b);
+    assert_eq!(TriboxBounds::from_points(&many), b);
+
+    // max (x + y) rounds to 1 at two points in different blocks: exactly 1, and 1 + 2^-54
+    // (rounded down). The bound must be the next double above 1 whatever their order.
+    let above = pt([1.0, 2f64.powi(-54), 0.0]);
+    let exact = pt([1.0, 0.0, 0.0]);
+    for (first, second) in [(above, exact), (exact, above)] {
+        let mut pts = vec![pt([0.5, 0.25, 0.0]); 5000];
+        pts[0] = first;
+        pts[4000] = second;
+        let b = TriboxBounds::from_points(&pts);
+        assert_eq!(b.max()[3], 1.0f64.next_up());
+        check_bounds(&pts, &b).unwrap();
+        let many: Vec<Point3> = (0..20).flat_map(|_| pts.iter().copied()).collect();
+        assert_eq!(TriboxBounds::par_from_points(&many), b);
+    }
 }
 
 #[test]

@@ -9,11 +9,15 @@
 //! # Exactness
 //! Axis bounds are coordinates, hence exact. A diagonal bound is the smallest double at least
 //! (largest at most) the exact extreme projection, so no input point is ever cut off.
-//! [`TriboxBounds::contains_point`] decides every inequality exactly. The boundary is evaluated
-//! by the paper's corner classification with every sign decided exactly
-//! ([`sum_sign`](crate::geometry::exact::sum_sign)) and every vertex coordinate rounded
-//! faithfully from an exact sum of at most a few bounds
-//! ([`accurate_sum`](crate::geometry::exact::accurate_sum)).
+//! [`TriboxBounds::contains_point`] decides every inequality exactly. The boundary
+//! ([`TriboxBounds::boundary`]) is the paper's corner classification with every sign decided
+//! exactly ([`sum_sign`](crate::geometry::exact::sum_sign)) and every vertex coordinate the
+//! correctly rounded value of an exact sum of at most a few bounds
+//! ([`accurate_sum`](crate::geometry::exact::accurate_sum)). It is exactly the intersection of
+//! the 18 half-spaces when every bounding plane touches that intersection, as exact bounds of
+//! points do; a diagonal bound rounded outward can miss it by less than an ulp and leave an
+//! ulp-thin sliver face. [`Tribox::cleaned`] tightens such bounds symbolically first and is
+//! always the exact intersection.
 //!
 //! # Boundary evaluation (paper section 3)
 //! Each of the 8 corners of the block B (the axis-aligned box) is reflected to the canonical
@@ -69,6 +73,13 @@ const DIAGONAL_AXES: [(usize, usize, bool); 6] = [
     (1, 0, true),
     (2, 1, true),
 ];
+
+/// The 9 projections of a point, diagonal ones rounded.
+#[inline(always)]
+fn projections(p: &Point3) -> [f64; 9] {
+    let (x, y, z) = (p.x, p.y, p.z);
+    [x, y, z, x + y, x + z, y + z, x - z, y - x, z - y]
+}
 
 /// The most vertices a raw boundary has: four per corner.
 const MAX_VERTICES: usize = 32;
@@ -211,11 +222,11 @@ const FACE_CORNERS: [([(u8, u8); 4], u8); 18] = {
 
 /// Per case (1..4, index case − 1): the local planes defining each of the corner's 4 vertex
 /// slots, and each local face's sub-list of slots (counter-clockwise seen from outside in the
-/// canonical frame). Case 1 slots: v1, v2, v3, p; case 2 slots: v1, v3, v2', v3'' (the paper's
-/// q2 = A∩AC∩BC and q3 = A∩AB∩BC).
+/// canonical frame). Case 1 slots: v1, v2, v3, p; case 2 slots: v1, v3, q2 = A∩AC∩BC and
+/// q3 = A∩AB∩BC (the paper's v'_2 and v''_3).
 struct CaseTable {
     slot_planes: [[usize; 3]; 4],
-    sub_lists: [([u8; 4], u8); 6],
+    sub_lists: [SubList; 6],
 }
 
 const CASE1: CaseTable = CaseTable {
@@ -316,9 +327,12 @@ const VERTEX_PLANES: [[[[u8; 3]; 4]; 4]; 8] = {
     t
 };
 
+/// A sub-list: up to 4 vertex indices (unused entries 0) and its length.
+type SubList = ([u8; 4], u8);
+
 /// `SUB_LISTS[c][case][local]`: a corner's sub-list for a local face as global vertex indices
 /// (4c + slot), reversed at corners whose reflection reverses orientation (sx·sy·sz = −1).
-const SUB_LISTS: [[[([u8; 4], u8); 6]; 4]; 8] = {
+const SUB_LISTS: [[[SubList; 6]; 4]; 8] = {
     let mut t = [[[([0u8; 4], 0u8); 6]; 4]; 8];
     let mut c = 0;
     while c < 8 {
@@ -345,6 +359,92 @@ const SUB_LISTS: [[[([u8; 4], u8); 6]; 4]; 8] = {
             }
             k += 1;
         }
+        c += 1;
+    }
+    t
+};
+
+/// `FACE_LOOPS[j][combo]`: the loop of face j as 8 packed vertex indices, for the cases of its
+/// corners (in [`FACE_CORNERS`] order) encoded as `combo = Σ (case_i − 1) << 2i`; principal
+/// faces have 256 combinations, chamfer faces 16. `FACE_LENGTHS` holds the loop lengths.
+static FACE_LOOPS: [[u64; 256]; 18] = {
+    let mut t = [[0u64; 256]; 18];
+    let mut j = 0;
+    while j < 18 {
+        let (list, n) = FACE_CORNERS[j];
+        let combos = 1usize << (2 * n as usize);
+        let mut combo = 0;
+        while combo < combos {
+            let mut packed = 0u64;
+            let mut len = 0;
+            let mut i = 0;
+            while i < n as usize {
+                let (c, local) = list[i];
+                let case = (combo >> (2 * i)) & 3;
+                let (sub, m) = SUB_LISTS[c as usize][case][local as usize];
+                let mut k = 0;
+                while k < m as usize {
+                    packed |= (sub[k] as u64) << (8 * len);
+                    len += 1;
+                    k += 1;
+                }
+                i += 1;
+            }
+            t[j][combo] = packed;
+            combo += 1;
+        }
+        j += 1;
+    }
+    t
+};
+
+/// The corners of each face (as in [`FACE_CORNERS`]; unused entries 0).
+const FACE_CORNER_INDICES: [[usize; 4]; 18] = {
+    let mut t = [[0usize; 4]; 18];
+    let mut j = 0;
+    while j < 18 {
+        let (list, n) = FACE_CORNERS[j];
+        let mut i = 0;
+        while i < n as usize {
+            t[j][i] = list[i].0 as usize;
+            i += 1;
+        }
+        j += 1;
+    }
+    t
+};
+
+/// The lengths of the loops of [`FACE_LOOPS`].
+static FACE_LENGTHS: [[u8; 256]; 18] = {
+    let mut t = [[0u8; 256]; 18];
+    let mut j = 0;
+    while j < 18 {
+        let (list, n) = FACE_CORNERS[j];
+        let combos = 1usize << (2 * n as usize);
+        let mut combo = 0;
+        while combo < combos {
+            let mut len = 0;
+            let mut i = 0;
+            while i < n as usize {
+                let (c, local) = list[i];
+                len += SUB_LISTS[c as usize][(combo >> (2 * i)) & 3][local as usize].1;
+                i += 1;
+            }
+            t[j][combo] = len;
+            combo += 1;
+        }
+        j += 1;
+    }
+    t
+};
+
+/// The coordinate signs of each corner, as doubles.
+const CORNER_SIGNS: [[f64; 3]; 8] = {
+    let mut t = [[0.0; 3]; 8];
+    let mut c = 0;
+    while c < 8 {
+        let s = corner_signs(c);
+        t[c] = [s[0] as f64, s[1] as f64, s[2] as f64];
         c += 1;
     }
     t
@@ -419,9 +519,7 @@ impl TriboxBounds {
     /// ```
     pub fn from_points(points: &[Point3]) -> Self {
         let mut acc = Accumulator::new();
-        for p in points {
-            acc.add(p);
-        }
+        acc.add(points);
         acc.finish()
     }
 
@@ -440,9 +538,7 @@ impl TriboxBounds {
             .par_chunks(CHUNK)
             .map(|chunk| {
                 let mut acc = Accumulator::new();
-                for p in chunk {
-                    acc.add(p);
-                }
+                acc.add(chunk);
                 acc
             })
             .reduce(Accumulator::new, Accumulator::merge)
@@ -519,17 +615,17 @@ impl TriboxBounds {
     /// ```
     pub fn contains_point(&self, p: &Point3) -> bool {
         let c = [p.x, p.y, p.z];
-        for i in 0..3 {
-            if c[i].is_nan() || c[i] < self.min[i] || c[i] > self.max[i] {
-                return false;
-            }
-        }
-        DIAGONAL_AXES.iter().enumerate().all(|(k, &(i, j, minus))| {
-            let (a, b) = (c[i], if minus { -c[j] } else { c[j] });
-            let (lo, hi) = (self.min[3 + k], self.max[3 + k]);
-            (lo == f64::NEG_INFINITY || sum_sign(&[a, b, -lo]) != Ordering::Less)
-                && (hi == f64::INFINITY || sum_sign(&[a, b, -hi]) != Ordering::Greater)
-        })
+        let axes_inside = c
+            .iter()
+            .zip(self.min.iter().zip(&self.max))
+            .all(|(&v, (&lo, &hi))| lo <= v && v <= hi);
+        axes_inside
+            && DIAGONAL_AXES.iter().enumerate().all(|(k, &(i, j, minus))| {
+                let (a, b) = (c[i], if minus { -c[j] } else { c[j] });
+                let (lo, hi) = (self.min[3 + k], self.max[3 + k]);
+                (lo == f64::NEG_INFINITY || sum_sign(&[a, b, -lo]) != Ordering::Less)
+                    && (hi == f64::INFINITY || sum_sign(&[a, b, -hi]) != Ordering::Greater)
+            })
     }
 
     /// Whether the slabs of `self` and `other` overlap along all 9 directions (touching counts).
@@ -575,6 +671,7 @@ impl TriboxBounds {
     /// let b = TriboxBounds::from_points(&[Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 1.0, 1.0)]);
     /// assert_eq!(b.boundary().cleaned().vertices().len(), 2); // a needle along (1, 1, 1)
     /// ```
+    #[inline]
     pub fn boundary(&self) -> Tribox {
         Tribox::new(self)
     }
@@ -621,48 +718,54 @@ impl Accumulator {
         }
     }
 
-    #[inline(always)]
-    fn add(&mut self, p: &Point3) {
-        let (x, y, z) = (p.x, p.y, p.z);
-        for (i, v) in [x, y, z].into_iter().enumerate() {
-            if v < self.min[i] {
-                self.min[i] = v;
+    /// Adds points, block by block. A branch-free pass takes the extremes of the 9 rounded
+    /// projections of a block (cache resident); only when a block reaches a running diagonal
+    /// extreme is it scanned again, for the exact errors of the sums attaining it.
+    fn add(&mut self, points: &[Point3]) {
+        const BLOCK: usize = 2048;
+        for block in points.chunks(BLOCK) {
+            let mut lo = [f64::INFINITY; 9];
+            let mut hi = [f64::NEG_INFINITY; 9];
+            for p in block {
+                let v = projections(p);
+                for d in 0..9 {
+                    lo[d] = if v[d] < lo[d] { v[d] } else { lo[d] };
+                    hi[d] = if v[d] > hi[d] { v[d] } else { hi[d] };
+                }
             }
-            if v > self.max[i] {
-                self.max[i] = v;
+            for d in 0..3 {
+                self.min[d] = self.min[d].min(lo[d]);
+                self.max[d] = self.max[d].max(hi[d]);
             }
-        }
-        let pairs = [(x, y), (x, z), (y, z), (x, -z), (y, -x), (z, -y)];
-        for (k, (a, b)) in pairs.into_iter().enumerate() {
-            let s = a + b;
-            if s >= self.max[3 + k] {
-                self.reach_max(k, a, b, s);
+            for (k, &(i, j, minus)) in DIAGONAL_AXES.iter().enumerate() {
+                let d = 3 + k;
+                // The exact error of the sums of the block's points that round to `m`: whether
+                // one is positive (`sign` 1) or negative (-1).
+                let error_beyond = |m: f64, sign: f64| {
+                    block.iter().any(|p| {
+                        let (a, b) = (p[i], if minus { -p[j] } else { p[j] });
+                        a + b == m && two_sum(a, b).1 * sign > 0.0
+                    })
+                };
+                if hi[d] >= self.max[d] {
+                    let above = error_beyond(hi[d], 1.0);
+                    if hi[d] > self.max[d] {
+                        self.max[d] = hi[d];
+                        self.above_max[k] = above;
+                    } else {
+                        self.above_max[k] |= above;
+                    }
+                }
+                if lo[d] <= self.min[d] {
+                    let below = error_beyond(lo[d], -1.0);
+                    if lo[d] < self.min[d] {
+                        self.min[d] = lo[d];
+                        self.below_min[k] = below;
+                    } else {
+                        self.below_min[k] |= below;
+                    }
+                }
             }
-            if s <= self.min[3 + k] {
-                self.reach_min(k, a, b, s);
-            }
-        }
-    }
-
-    #[cold]
-    fn reach_max(&mut self, k: usize, a: f64, b: f64, s: f64) {
-        let above = two_sum(a, b).1 > 0.0;
-        if s > self.max[3 + k] {
-            self.max[3 + k] = s;
-            self.above_max[k] = above;
-        } else {
-            self.above_max[k] |= above;
-        }
-    }
-
-    #[cold]
-    fn reach_min(&mut self, k: usize, a: f64, b: f64, s: f64) {
-        let below = two_sum(a, b).1 < 0.0;
-        if s < self.min[3 + k] {
-            self.min[3 + k] = s;
-            self.below_min[k] = below;
-        } else {
-            self.below_min[k] |= below;
         }
     }
 
@@ -706,9 +809,9 @@ trait LocalBound: Copy {
     fn double(self) -> Self;
     /// The value, for a principal bound (a single double).
     fn value(self) -> f64;
-    /// a + b, faithfully rounded.
+    /// a + b, correctly rounded.
     fn sum2(a: Self, b: Self) -> f64;
-    /// a + b + c, faithfully rounded.
+    /// a + b + c, correctly rounded.
     fn sum3(a: Self, b: Self, c: Self) -> f64;
     /// Whether a + b + c + d > 0, exactly.
     fn positive4(a: Self, b: Self, c: Self, d: Self) -> bool;
@@ -822,7 +925,8 @@ impl LocalBound for Form<'_> {
 #[inline]
 fn corner<T: LocalBound>(al: [T; 6]) -> (usize, [[f64; 3]; 4]) {
     let [a, b, c, ab, ac, bc] = al;
-    // x_p > α_A  ⇔  α_AB + α_AC − α_BC − 2α_A > 0, and cyclically.
+    // x_p > α_A  ⇔  α_AB + α_AC − α_BC − 2α_A > 0, and cyclically; at most one holds once
+    // the chamfers are clamped, so the paper's order of the tests is immaterial.
     if T::positive4(ab, ac, bc.neg(), a.double().neg()) {
         return (2, case2(al));
     }
@@ -846,7 +950,7 @@ fn corner<T: LocalBound>(al: [T; 6]) -> (usize, [[f64; 3]; 4]) {
     (1, [v1, v2, v3, p])
 }
 
-/// Case 2 (p beyond h_A): vertices v1, v3 (eqs 5, 7), v2' = A∩AC∩BC and v3'' = A∩AB∩BC
+/// Case 2 (p beyond h_A): vertices v1, v3 (eqs 5, 7), q2 = A∩AC∩BC and q3 = A∩AB∩BC
 /// (eqs 8, 9), in the canonical frame.
 #[inline]
 fn case2<T: LocalBound>(al: [T; 6]) -> [[f64; 3]; 4] {
@@ -862,8 +966,8 @@ fn case2<T: LocalBound>(al: [T; 6]) -> [[f64; 3]; 4] {
 fn clamped_chamfers(beta: &[f64; 18]) -> [bool; 18] {
     std::array::from_fn(|j| {
         j >= 6 && {
-            let [p1, p2] = CHAMFER_PARENTS[j];
-            sum_sign(&[beta[j], -beta[p1 as usize], -beta[p2 as usize]]) != Ordering::Less
+            let [p1, p2] = CHAMFER_PARENTS[j].map(usize::from);
+            sum_sign(&[beta[j], -beta[p1], -beta[p2]]) != Ordering::Less
         }
     })
 }
@@ -873,8 +977,9 @@ fn clamped_chamfers(beta: &[f64; 18]) -> [bool; 18] {
 /// Face `j` lies on plane `j` (see [`TriboxBounds::to_array18`]); its loop is counter-clockwise
 /// seen from outside. As the paper's algorithm produces it ([`TriboxBounds::boundary`]), every
 /// corner contributes four vertices and every face its corners' sub-lists, so singular inputs
-/// leave repeated vertices and degenerate faces; [`cleaned`](Self::cleaned) merges exactly
-/// equal vertices and drops zero-length edges and faces left with fewer than 3 vertices.
+/// leave repeated vertices and degenerate faces; [`cleaned`](Self::cleaned) is the exact
+/// intersection with exactly equal vertices merged, zero-length edges and faces left with
+/// fewer than 3 vertices dropped.
 ///
 /// Each vertex remembers three planes with independent normals through it.
 ///
@@ -893,8 +998,9 @@ fn clamped_chamfers(beta: &[f64; 18]) -> [bool; 18] {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Tribox {
     bounds: TriboxBounds,
-    vertices: [Point3; MAX_VERTICES],
-    vertex_planes: [[u8; 3]; MAX_VERTICES],
+    /// Four vertices per corner (a cleaned boundary keeps its vertices first, in order).
+    vertices: [[Point3; 4]; 8],
+    vertex_planes: [[[u8; 3]; 4]; 8],
     vertex_count: u8,
     faces: [[u8; MAX_FACE]; 18],
     face_len: [u8; 18],
@@ -931,16 +1037,16 @@ impl Tribox {
     /// assert_eq!(Tribox::new(&b), b.boundary());
     /// assert!(Tribox::new(&TriboxBounds::empty()).is_empty());
     /// ```
+    #[inline]
     pub fn new(bounds: &TriboxBounds) -> Tribox {
-        let mut t = Tribox::blank(bounds);
         if bounds.is_empty() {
-            return t;
+            return Tribox::blank(bounds);
         }
         let beta = bounds.offsets();
         let clamped = clamped_chamfers(&beta);
-        for c in 0..8 {
+        let corners = std::array::from_fn(|c| {
             let planes = CORNER_PLANES[c];
-            let (case, local) = if clamped[planes[AB] as usize]
+            if clamped[planes[AB] as usize]
                 || clamped[planes[AC] as usize]
                 || clamped[planes[BC] as usize]
             {
@@ -961,19 +1067,18 @@ impl Tribox {
                 }))
             } else {
                 corner(std::array::from_fn(|k| beta[planes[k] as usize]))
-            };
-            t.write_corner(c, case, &local);
-        }
-        t.assemble_faces();
-        t
+            }
+        });
+        Tribox::from_corners(bounds, &corners)
     }
 
     /// A boundary with no vertex and no face.
+    #[inline(always)]
     fn blank(bounds: &TriboxBounds) -> Tribox {
         Tribox {
             bounds: *bounds,
-            vertices: [Point3::origin(); MAX_VERTICES],
-            vertex_planes: [[0; 3]; MAX_VERTICES],
+            vertices: [[Point3::origin(); 4]; 8],
+            vertex_planes: [[[0; 3]; 4]; 8],
             vertex_count: 0,
             faces: [[0; MAX_FACE]; 18],
             face_len: [0; 18],
@@ -981,34 +1086,39 @@ impl Tribox {
         }
     }
 
-    /// Stores corner c's case and its four vertices (canonical frame) in world coordinates.
-    #[inline]
-    fn write_corner(&mut self, c: usize, case: usize, local: &[[f64; 3]; 4]) {
-        let s = corner_signs(c).map(f64::from);
-        for (slot, v) in local.iter().enumerate() {
-            // Adding +0 turns the -0 of a reflected zero into +0.
-            self.vertices[4 * c + slot] =
-                Point3::new(s[0] * v[0] + 0.0, s[1] * v[1] + 0.0, s[2] * v[2] + 0.0);
-        }
-        self.vertex_planes[4 * c..4 * c + 4].copy_from_slice(&VERTEX_PLANES[c][case - 1]);
-        self.cases[c] = case as u8;
-        self.vertex_count = MAX_VERTICES as u8;
-    }
-
-    /// Concatenates each face's sub-lists, corner by corner counter-clockwise around it.
-    #[inline]
-    fn assemble_faces(&mut self) {
+    /// The boundary from each corner's case and four vertices (canonical frame): vertices in
+    /// world coordinates, and each face's loop, its corners' sub-lists concatenated
+    /// counter-clockwise around it (tabulated for every combination of cases).
+    #[inline(always)]
+    fn from_corners(bounds: &TriboxBounds, corners: &[(usize, [[f64; 3]; 4]); 8]) -> Tribox {
+        let mut t = Tribox {
+            bounds: *bounds,
+            vertices: std::array::from_fn(|c| {
+                let s = CORNER_SIGNS[c];
+                // Adding +0 turns the -0 of a reflected zero into +0.
+                corners[c]
+                    .1
+                    .map(|v| Point3::new(s[0] * v[0] + 0.0, s[1] * v[1] + 0.0, s[2] * v[2] + 0.0))
+            }),
+            vertex_planes: std::array::from_fn(|c| VERTEX_PLANES[c][corners[c].0 - 1]),
+            vertex_count: MAX_VERTICES as u8,
+            faces: [[0; MAX_FACE]; 18],
+            face_len: [0; 18],
+            cases: corners.map(|(case, _)| case as u8),
+        };
+        // Two bits per corner: its case − 1.
+        let cases = t.cases.map(|k| usize::from(k - 1));
         for j in 0..18 {
-            let (list, n) = FACE_CORNERS[j];
-            let mut len = 0;
-            for &(c, local) in &list[..n as usize] {
-                let (sub, m) =
-                    SUB_LISTS[c as usize][self.cases[c as usize] as usize - 1][local as usize];
-                self.faces[j][len..len + m as usize].copy_from_slice(&sub[..m as usize]);
-                len += m as usize;
-            }
-            self.face_len[j] = len as u8;
+            let [c0, c1, c2, c3] = FACE_CORNER_INDICES[j];
+            let combo = if j < 6 {
+                cases[c0] | cases[c1] << 2 | cases[c2] << 4 | cases[c3] << 6
+            } else {
+                cases[c0] | cases[c1] << 2
+            };
+            t.faces[j] = FACE_LOOPS[j][combo].to_le_bytes();
+            t.face_len[j] = FACE_LENGTHS[j][combo];
         }
+        t
     }
 
     /// The bounds this boundary was evaluated from.
@@ -1042,7 +1152,7 @@ impl Tribox {
     /// assert_eq!(t.vertices(), &[Point3::new(1.0, 2.0, 3.0)]);
     /// ```
     pub fn vertices(&self) -> &[Point3] {
-        &self.vertices[..self.vertex_count as usize]
+        &self.vertices.as_flattened()[..self.vertex_count as usize]
     }
 
     /// For each vertex, three planes (ascending indices 0..18, independent normals) through
@@ -1056,7 +1166,7 @@ impl Tribox {
     /// assert_eq!(t.vertex_planes(), &[[1, 3, 5]]); // max x, max y, max z
     /// ```
     pub fn vertex_planes(&self) -> &[[u8; 3]] {
-        &self.vertex_planes[..self.vertex_count as usize]
+        &self.vertex_planes.as_flattened()[..self.vertex_count as usize]
     }
 
     /// The loop of face `plane` (indices into [`vertices`](Self::vertices), counter-clockwise
@@ -1136,7 +1246,7 @@ impl Tribox {
         let six_v: f64 = self
             .faces()
             .map(|(_, f)| {
-                let p = |i: usize| self.vertices[f[i] as usize] - o;
+                let p = |i: usize| self.vertices()[f[i] as usize] - o;
                 let p0 = p(0);
                 (1..f.len().saturating_sub(1))
                     .map(|i| p0.dot(&p(i).cross(&p(i + 1))))
@@ -1161,7 +1271,7 @@ impl Tribox {
     pub fn surface_area(&self) -> f64 {
         self.faces()
             .map(|(_, f)| {
-                let p = |i: usize| self.vertices[f[i] as usize];
+                let p = |i: usize| self.vertices()[f[i] as usize];
                 let p0 = p(0);
                 let twice: Vector3 = (1..f.len().saturating_sub(1))
                     .map(|i| (p(i) - p0).cross(&(p(i + 1) - p0)))
@@ -1209,24 +1319,41 @@ impl Tribox {
     /// assert_eq!(t.face_count(), 0);
     /// ```
     pub fn cleaned(&self) -> Tribox {
-        let mut raw = Tribox::blank(&self.bounds);
         if self.bounds.is_empty() {
-            return raw;
+            return Tribox::blank(&self.bounds);
         }
         let beta = self.bounds.offsets();
         let tight = tight_forms(&beta);
-        for c in 0..8 {
-            let planes = CORNER_PLANES[c];
-            let (case, local) = corner(std::array::from_fn(|k| Form {
-                coef: tight[planes[k] as usize],
-                beta: &beta,
-            }));
-            raw.write_corner(c, case, &local);
-        }
-        raw.assemble_faces();
-
+        // When tightening only clamped chamfers at their block corners (the common case), the
+        // fast evaluation gives the same boundary: same exact values, same correct roundings.
+        let clamped = clamped_chamfers(&beta);
+        let only_clamps = (0..18).all(|j| {
+            let mut own = [0; 18];
+            own[j] = 2;
+            tight[j] == own
+                || (j >= 6 && {
+                    let mut corner = [0; 18];
+                    for p in CHAMFER_PARENTS[j] {
+                        corner[p as usize] = 2;
+                    }
+                    clamped[j] && tight[j] == corner
+                })
+        });
+        let raw = if only_clamps {
+            Tribox::new(&self.bounds)
+        } else {
+            let corners = std::array::from_fn(|c| {
+                let planes = CORNER_PLANES[c];
+                corner(std::array::from_fn(|k| Form {
+                    coef: tight[planes[k] as usize],
+                    beta: &beta,
+                }))
+            });
+            Tribox::from_corners(&self.bounds, &corners)
+        };
         let n = raw.vertex_count as usize;
-        let forms: Vec<VertexForm> = raw.vertex_planes[..n]
+        let forms: Vec<VertexForm> = raw
+            .vertex_planes()
             .iter()
             .map(|p| VertexForm::new(p, &tight))
             .collect();
@@ -1235,7 +1362,7 @@ impl Tribox {
         let mut kept: Vec<usize> = Vec::with_capacity(n);
         for i in 0..n {
             let found = kept.iter().position(|&r| {
-                close(&raw.vertices[r], &raw.vertices[i]) && forms[r].equals(&forms[i], &beta)
+                close(&raw.vertices()[r], &raw.vertices()[i]) && forms[r].equals(&forms[i], &beta)
             });
             new_index[i] = match found {
                 Some(k) => k as u8,
@@ -1245,10 +1372,12 @@ impl Tribox {
                 }
             };
         }
-        let mut t = raw.clone();
+        let mut t = Tribox::blank(&self.bounds);
+        t.cases = raw.cases;
         for (k, &r) in kept.iter().enumerate() {
-            t.vertices[k] = raw.vertices[r];
-            t.vertex_planes[k] = touching_planes(&raw.vertex_planes[r], &tight);
+            t.vertices.as_flattened_mut()[k] = raw.vertices()[r];
+            t.vertex_planes.as_flattened_mut()[k] =
+                touching_planes(&raw.vertex_planes()[r], &tight, &clamped);
         }
         t.vertex_count = kept.len() as u8;
         for j in 0..18 {
@@ -1311,18 +1440,18 @@ impl Tribox {
             let Some(support) = support_without(j, &beta) else {
                 continue;
             };
-            // Displacement d = support − β_j, exactly as `den·d = Σ num·β − den·β_j`.
-            let mut coef = support.num;
-            coef[j] -= support.den;
+            // Displacement d = support − β_j, exactly, in half-units: 2d = Σ halves·β − 2β_j.
+            let mut coef = support.dense();
+            coef[j] -= 2;
             if sign_of_form(&coef, &beta) != Ordering::Greater {
                 continue;
             }
-            let distance = eval_form(&coef, &beta) / f64::from(support.den) / normal_norm(j);
+            let distance = eval_form(&coef, &beta) * 0.5 / normal_norm(j);
             if distance.is_nan() || distance > tol {
                 continue;
             }
             let mut moved = beta;
-            moved[j] = round_up_form(&support, &beta);
+            moved[j] = round_up_form(support, &beta);
             let candidate = Tribox::new(&TriboxBounds::from_offsets(&moved)).cleaned();
             if candidate.face_count() <= current.face_count() {
                 beta = moved;
@@ -1337,10 +1466,12 @@ impl Tribox {
 /// rounding of an exact sum, halved at most twice (exact but for subnormal results), so equal
 /// exact values give doubles at most two steps apart.
 fn close(p: &Point3, q: &Point3) -> bool {
-    (0..3).all(|i| {
-        let (a, b) = (p[i], q[i]);
-        b >= a.next_down().next_down() && b <= a.next_up().next_up()
-    })
+    // Doubles ordered as integers (NaN and overflow aside): consecutive doubles differ by 1.
+    let key = |x: f64| {
+        let b = x.to_bits() as i64;
+        if b < 0 { i64::MIN - b } else { b }
+    };
+    (0..3).all(|i| key(p[i]).abs_diff(key(q[i])) <= 2)
 }
 
 /// The Euclidean length of plane j's normal: 1 for principal planes, √2 for chamfers.
@@ -1411,7 +1542,7 @@ fn tight_forms(beta: &[f64; 18]) -> [[i32; 18]; 18] {
         own[j] = 2;
         match support_without(j, beta) {
             Some(basis) => {
-                let halves: [i32; 18] = std::array::from_fn(|k| basis.num[k] * 2 / basis.den);
+                let halves = basis.dense();
                 let coef: [i32; 18] = std::array::from_fn(|k| halves[k] - own[k]);
                 if sign_of_form(&coef, beta) == Ordering::Less {
                     halves
@@ -1424,45 +1555,62 @@ fn tight_forms(beta: &[f64; 18]) -> [[i32; 18]; 18] {
     })
 }
 
-/// The terms `c_k β_k` of an integer form, each coefficient split into signed powers of two so
-/// that every term is an exact double.
-fn form_terms(coef: &[i32; 18], beta: &[f64; 18]) -> Vec<f64> {
-    let mut terms = Vec::with_capacity(24);
-    for (k, &c) in coef.iter().enumerate() {
-        let mut m = c.unsigned_abs();
-        let mut scale = if c < 0 { -beta[k] } else { beta[k] };
-        while m != 0 {
-            if m & 1 == 1 {
-                terms.push(scale);
+/// Calls `f` with the terms `c_k β_k` of an integer form, each coefficient split into signed
+/// powers of two so that every term is an exact double (on the stack when there are few).
+fn with_form_terms<R>(coef: &[i32; 18], beta: &[f64; 18], f: impl FnOnce(&[f64]) -> R) -> R {
+    const STACK: usize = 64;
+    let fill = |terms: &mut [f64]| {
+        let mut n = 0;
+        for (k, &c) in coef.iter().enumerate() {
+            let mut m = c.unsigned_abs();
+            let mut scale = if c < 0 { -beta[k] } else { beta[k] };
+            while m != 0 {
+                if m & 1 == 1 {
+                    terms[n] = scale;
+                    n += 1;
+                }
+                scale *= 2.0;
+                m >>= 1;
             }
-            scale *= 2.0;
-            m >>= 1;
         }
+        n
+    };
+    let count: u32 = coef.iter().map(|c| c.unsigned_abs().count_ones()).sum();
+    if count as usize <= STACK {
+        let mut terms = [0.0; STACK];
+        let n = fill(&mut terms);
+        f(&terms[..n])
+    } else {
+        let mut terms = vec![0.0; count as usize];
+        let n = fill(&mut terms);
+        f(&terms[..n])
     }
-    terms
 }
 
 /// The exact sign of `Σ coef_k β_k`.
 fn sign_of_form(coef: &[i32; 18], beta: &[f64; 18]) -> Ordering {
-    sum_sign(&form_terms(coef, beta))
+    with_form_terms(coef, beta, sum_sign)
 }
 
-/// `Σ coef_k β_k`, faithfully rounded.
+/// `Σ coef_k β_k`, correctly rounded.
 fn eval_form(coef: &[i32; 18], beta: &[f64; 18]) -> f64 {
-    accurate_sum(&form_terms(coef, beta))
+    with_form_terms(coef, beta, accurate_sum)
 }
 
 /// Three planes with independent normals through a vertex of the cleaned boundary, each
-/// touching the tribox: a plane whose bound was tightened stands for the planes of its tight
-/// form (the vertex is on all of them, since their combination is an equality there).
-fn touching_planes(planes: &[u8; 3], tight: &[[i32; 18]; 18]) -> [u8; 3] {
+/// touching the tribox, principal planes first: a plane whose bound was tightened stands for
+/// the planes of its tight form, and a chamfer at its block corner for its two principal
+/// planes (the vertex is on all of them, since their combination is an equality there).
+fn touching_planes(planes: &[u8; 3], tight: &[[i32; 18]; 18], clamped: &[bool; 18]) -> [u8; 3] {
     let mut cand: Vec<u8> = Vec::with_capacity(9);
     for &j in planes {
         let form = &tight[j as usize];
-        if form[j as usize] == 2 {
-            cand.push(j);
-        } else {
+        if form[j as usize] != 2 {
             cand.extend((0..18u8).filter(|&k| form[k as usize] != 0));
+        } else if clamped[j as usize] {
+            cand.extend(CHAMFER_PARENTS[j as usize]);
+        } else {
+            cand.push(j);
         }
     }
     cand.sort_unstable();
@@ -1480,22 +1628,42 @@ fn touching_planes(planes: &[u8; 3], tight: &[[i32; 18]; 18]) -> [u8; 3] {
     *planes
 }
 
-/// A nonnegative combination of plane normals equal to another plane's normal:
-/// `Σ_k num_k n_k = den · n_j` with `num ≥ 0` (a dual feasible basis of the linear program
-/// "maximise n_j · x over the other 17 half-spaces").
+/// A nonnegative combination of three plane normals equal to another plane's normal:
+/// `Σ_i halves_i n_(planes_i) = 2 n_j` with `halves ≥ 0` (a dual feasible basis of the linear
+/// program "maximise n_j · x over the other 17 half-spaces"); its value `Σ halves_i β_i / 2` is
+/// an upper bound of n_j · x over the tribox.
+#[derive(PartialEq)]
 struct DualBasis {
-    num: [i32; 18],
-    den: i32,
+    planes: [usize; 3],
+    halves: [i32; 3],
 }
 
-/// For each plane j, every dual feasible basis made of three other planes with independent
-/// normals (computed once).
+impl DualBasis {
+    /// The value, rounded (error below 3 ε Σ |halves_i β_i| / 2).
+    fn approx(&self, beta: &[f64; 18]) -> f64 {
+        let [a, b, c] = self.planes;
+        let [ha, hb, hc] = self.halves.map(f64::from);
+        0.5 * (ha * beta[a] + hb * beta[b] + hc * beta[c])
+    }
+
+    /// The value as a dense form in half-units.
+    fn dense(&self) -> [i32; 18] {
+        let mut coef = [0; 18];
+        for (&p, &h) in self.planes.iter().zip(&self.halves) {
+            coef[p] += h;
+        }
+        coef
+    }
+}
+
+/// For each plane j, the distinct dual feasible bases made of three other planes with
+/// independent normals (computed once; 36 to 40 per plane).
 fn dual_bases() -> &'static [Vec<DualBasis>; 18] {
     static TABLE: OnceLock<[Vec<DualBasis>; 18]> = OnceLock::new();
     TABLE.get_or_init(|| {
         std::array::from_fn(|j| {
             let d = normal(j).map(i32::from);
-            let mut out = Vec::new();
+            let mut out: Vec<DualBasis> = Vec::new();
             for a in 0..18 {
                 for b in a + 1..18 {
                     for c in b + 1..18 {
@@ -1511,18 +1679,25 @@ fn dual_bases() -> &'static [Vec<DualBasis>; 18] {
                             continue;
                         }
                         let adj = adjugate(m);
-                        let lambda: [i32; 3] = std::array::from_fn(|k| {
-                            (0..3).map(|r| adj[k][r] * d[r]).sum::<i32>() * det.signum()
+                        // λ = adj · d / det; in half-units (|det| is 1 or 2 for these normals).
+                        let halves: [i32; 3] = std::array::from_fn(|k| {
+                            (0..3).map(|r| adj[k][r] * d[r]).sum::<i32>() * 2 / det
                         });
-                        if lambda.iter().all(|&l| l >= 0) {
-                            let mut num = [0; 18];
-                            for (k, &p) in [a, b, c].iter().enumerate() {
-                                num[p] = lambda[k];
+                        if halves.iter().any(|&l| l < 0) {
+                            continue;
+                        }
+                        // Keep the planes with a positive coefficient, padded by a zero term.
+                        let mut basis = DualBasis {
+                            planes: [a, b, c],
+                            halves,
+                        };
+                        for k in 0..3 {
+                            if basis.halves[k] == 0 {
+                                basis.planes[k] = j;
                             }
-                            out.push(DualBasis {
-                                num,
-                                den: det.abs(),
-                            });
+                        }
+                        if !out.iter().any(|o| o.dense() == basis.dense()) {
+                            out.push(basis);
                         }
                     }
                 }
@@ -1533,35 +1708,44 @@ fn dual_bases() -> &'static [Vec<DualBasis>; 18] {
 }
 
 /// The exact maximum of n_j · x over the polytope of the 17 half-spaces other than j, as the
-/// minimum over dual feasible bases of `Σ num_k β_k / den` (linear programming duality); `None`
-/// when unbounded (never for bounds of points).
+/// least value of a dual feasible basis (linear programming duality); `None` when there is
+/// none (the maximum is unbounded; never for bounds of points).
+///
+/// The rounded values pick the least candidate; only candidates within the rounding error of
+/// it are compared exactly.
 fn support_without(j: usize, beta: &[f64; 18]) -> Option<&'static DualBasis> {
-    let mut best: Option<&DualBasis> = None;
-    for cand in &dual_bases()[j] {
-        let better = match best {
-            None => true,
-            Some(b) => {
-                let coef: [i32; 18] =
-                    std::array::from_fn(|k| b.den * cand.num[k] - cand.den * b.num[k]);
-                sign_of_form(&coef, beta) == Ordering::Less
+    let candidates = &dual_bases()[j];
+    let (mut best, least) = candidates
+        .iter()
+        .map(|c| c.approx(beta))
+        .enumerate()
+        .min_by(|a, b| a.1.total_cmp(&b.1))?;
+    // Each value has at most 3 roundings over terms of magnitude at most 4 m (halves ≤ 4).
+    let m = beta.iter().fold(0.0f64, |m, b| m.max(b.abs()));
+    let slack = 2.0 * (24.0 * f64::EPSILON * m + f64::MIN_POSITIVE);
+    for (i, c) in candidates.iter().enumerate() {
+        if i != best && c.approx(beta) <= least + slack {
+            let (cd, bd) = (c.dense(), candidates[best].dense());
+            let diff: [i32; 18] = std::array::from_fn(|k| cd[k] - bd[k]);
+            if sign_of_form(&diff, beta) == Ordering::Less {
+                best = i;
             }
-        };
-        if better {
-            best = Some(cand);
         }
     }
-    best
+    candidates.get(best)
 }
 
-/// The smallest double at least `Σ num_k β_k / den` (den is 1 or 2, so halving is exact).
+/// The smallest double at least `Σ halves_i β_i / 2`.
 fn round_up_form(f: &DualBasis, beta: &[f64; 18]) -> f64 {
-    let r = eval_form(&f.num, beta) / f64::from(f.den);
-    // r is faithful: if below the exact value, the next double is at least it.
-    let mut terms = form_terms(&f.num, beta);
-    terms.push(-r * f64::from(f.den));
-    if sum_sign(&terms) == Ordering::Greater {
-        r.next_up()
-    } else {
-        r
+    let coef = f.dense();
+    // Correctly rounded and halved: at most a step or two below the exact value.
+    let mut r = eval_form(&coef, beta) * 0.5;
+    while with_form_terms(&coef, beta, |terms| {
+        let mut all = terms.to_vec();
+        all.push(-2.0 * r);
+        sum_sign(&all) == Ordering::Greater
+    }) {
+        r = r.next_up();
     }
+    r
 }

@@ -84,6 +84,7 @@ pub fn add_round_down(a: f64, b: f64) -> f64 {
 /// assert_eq!(sum_sign(&[0.5, 0.25, -0.75]), Ordering::Equal);
 /// assert_eq!(sum_sign(&[]), Ordering::Equal);
 /// ```
+#[inline]
 pub fn sum_sign(terms: &[f64]) -> Ordering {
     let mut sum = 0.0;
     let mut magnitude = 0.0;
@@ -102,8 +103,15 @@ pub fn sum_sign(terms: &[f64]) -> Ordering {
     } else if magnitude == 0.0 {
         Ordering::Equal
     } else {
-        with_expansion(terms, |e| sign_of(e.last().copied().unwrap_or(0.0)))
+        exact_sign(terms)
     }
+}
+
+/// The sign of the exact expansion of the sum (the filter's fallback).
+#[cold]
+#[inline(never)]
+fn exact_sign(terms: &[f64]) -> Ordering {
+    with_expansion(terms, |e| sign_of(e.last().copied().unwrap_or(0.0)))
 }
 
 /// The exact sum of `terms` rounded to the nearest double (ties to even).
@@ -122,35 +130,37 @@ pub fn sum_sign(terms: &[f64]) -> Ordering {
 /// assert_eq!(accurate_sum(&[1.0, 2f64.powi(-53), 2f64.powi(-300)]), 1.0f64.next_up());
 /// assert_eq!(accurate_sum(&[]), 0.0);
 /// ```
+#[inline]
 pub fn accurate_sum(terms: &[f64]) -> f64 {
     match *terms {
         [] => 0.0,
         [a] => a,
         [a, b] => a + b,
-        [first, ref rest @ ..] => {
-            // TwoSum cascade: exact sum = sum + (sum of the errors e_i).
-            let mut sum = first;
-            let mut err = 0.0;
-            let mut err_magnitude = 0.0;
+        [a, b, ref rest @ ..] => {
+            // TwoSum cascade: exact sum = sum + (sum of the errors e_i); the errors are added
+            // with TwoSum too, so exact sum = sum + err + (sum of the residuals d_i).
+            let (mut sum, mut err) = two_sum(a, b);
+            let mut residual = 0.0;
             for &t in rest {
                 let (s, e) = two_sum(sum, t);
                 sum = s;
-                err += e;
-                err_magnitude += e.abs();
+                let (r, d) = two_sum(err, e);
+                err = r;
+                residual += d.abs();
             }
-            if err_magnitude == 0.0 {
-                return sum;
+            // With no residual, sum + err is the exact sum and its IEEE rounding is correct
+            // (ties included).
+            if residual == 0.0 {
+                return sum + err;
             }
-            // exact = result + k + d, where d = (sum of the e_i) - err is the rounding error of
-            // `err`: |d| <= gamma_(n-2) * sum |e_i| <= delta. `result` is the correct rounding
-            // when |k + d| stays below half the gap to its nearer neighbour; 2 delta absorbs
-            // the rounding of the test itself.
+            // Otherwise exact = result + k + (sum of the d_i), and `result` is the correct
+            // rounding when |k| + |sum of the d_i| stays below half the gap to its nearer
+            // neighbour; the factor 2n covers the rounding of `residual` and of the test.
             let (result, k) = two_sum(sum, err);
-            let delta = terms.len() as f64 * UNIT_ROUNDOFF * err_magnitude;
-            if k.abs() + 2.0 * delta < min_half_gap(result) {
+            if k.abs() + (2 * terms.len()) as f64 * residual < min_half_gap(result) {
                 result
             } else {
-                with_expansion(terms, round_expansion)
+                exact_round(terms)
             }
         }
     }
@@ -173,6 +183,13 @@ fn min_half_gap(x: f64) -> f64 {
     } else {
         power * 2f64.powi(-53)
     }
+}
+
+/// The exact sum rounded to nearest via its expansion (the certification's fallback).
+#[cold]
+#[inline(never)]
+fn exact_round(terms: &[f64]) -> f64 {
+    with_expansion(terms, round_expansion)
 }
 
 /// The sign of a double as an ordering (NaN counts as zero).
