@@ -813,3 +813,12 @@ fn read_mesh_missing_file() {
         other => panic!("expected an I/O error, got {other:?}"),
     }
 }
+
+#[test]
+fn a_mesh_file_without_faces_is_an_error() {
+    let path = std::env::temp_dir().join(format!("kepler-empty-{}.obj", std::process::id()));
+    std::fs::write(&path, "# nothing here\nv 0 0 0\n").unwrap();
+    let e = kepler::io::read_mesh(&path).unwrap_err().to_string();
+    std::fs::remove_file(&path).unwrap();
+    assert!(e.ends_with(":1: the file has no faces"), "{e}");
+}

@@ -29,8 +29,8 @@ use crate::mesh::{Mesh, MeshError};
 use std::path::Path;
 
 /// Reads a mesh file, choosing the format from its extension: `obj`, `stl` or `off`, in any
-/// letter case. An unknown extension, a file that cannot be read and bad content are errors
-/// naming the file (and, for content, the line or triangle).
+/// letter case. An unknown extension, a file that cannot be read, a file without faces and
+/// bad content are errors naming the file (and, for content, the line or triangle).
 ///
 /// OBJ and OFF files are decoded as UTF-8; bytes that are not UTF-8 can only be valid in text
 /// the readers ignore (comments, group and material names), and anywhere else they make the
@@ -66,11 +66,19 @@ pub fn read_mesh(path: &Path) -> Result<Mesh> {
         }
     };
     let bytes = std::fs::read(path).map_err(|e| Error::io(&name, e))?;
-    match format {
+    let mesh = match format {
         "stl" => stl::parse(&bytes, &name),
         "obj" => obj::parse(&String::from_utf8_lossy(&bytes), &name),
         _ => off::parse(&String::from_utf8_lossy(&bytes), &name),
+    }?;
+    if mesh.faces().is_empty() {
+        return Err(Error::Input {
+            path: name,
+            at: "1".into(),
+            message: "the file has no faces".into(),
+        });
     }
+    Ok(mesh)
 }
 
 /// Parses a number with Rust's correctly rounded `str::parse::<f64>`, requiring it to be
