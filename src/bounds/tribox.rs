@@ -48,7 +48,7 @@ use std::sync::OnceLock;
 use rayon::prelude::*;
 use serde::{Serialize, Serializer};
 
-use crate::geometry::exact::{accurate_sum, sum_sign, two_sum};
+use crate::geometry::exact::{accurate_sum, filtered_sign, sum_sign, two_sum};
 use crate::geometry::{Point3, Vector3};
 
 /// The 9 directions, in the paper's order, as integer vectors.
@@ -806,25 +806,36 @@ impl Accumulator {
 /// (no chamfer of the corner is clamped) or an [`Effective`] bound.
 trait LocalBound: Copy {
     fn neg(self) -> Self;
-    fn double(self) -> Self;
     /// The value, for a principal bound (a single double).
     fn value(self) -> f64;
     /// a + b, correctly rounded.
     fn sum2(a: Self, b: Self) -> f64;
     /// a + b + c, correctly rounded.
     fn sum3(a: Self, b: Self, c: Self) -> f64;
-    /// Whether a + b + c + d > 0, exactly.
-    fn positive4(a: Self, b: Self, c: Self, d: Self) -> bool;
+    /// Whether a + b + c + d + e > 0, exactly.
+    fn positive5(a: Self, b: Self, c: Self, d: Self, e: Self) -> bool;
+    /// The case (1..4) of the canonical corner with local bounds `[α_A, α_B, α_C, α_AB, α_AC,
+    /// α_BC]`: x_p > α_A ⇔ α_AB + α_AC − α_BC − 2α_A > 0, and cyclically; at most one holds once
+    /// the chamfers are clamped, so the paper's order of the tests is immaterial.
+    #[inline]
+    fn case_of(al: [Self; 6]) -> usize {
+        let [a, b, c, ab, ac, bc] = al;
+        if Self::positive5(ab, ac, bc.neg(), a.neg(), a.neg()) {
+            2
+        } else if Self::positive5(ab, ac.neg(), bc, b.neg(), b.neg()) {
+            3
+        } else if Self::positive5(ab.neg(), ac, bc, c.neg(), c.neg()) {
+            4
+        } else {
+            1
+        }
+    }
 }
 
 impl LocalBound for f64 {
     #[inline]
     fn neg(self) -> Self {
         -self
-    }
-    #[inline]
-    fn double(self) -> Self {
-        2.0 * self
     }
     #[inline]
     fn value(self) -> f64 {
@@ -839,8 +850,43 @@ impl LocalBound for f64 {
         accurate_sum(&[a, b, c])
     }
     #[inline]
-    fn positive4(a: Self, b: Self, c: Self, d: Self) -> bool {
-        sum_sign(&[a, b, c, d]) == Ordering::Greater
+    fn positive5(a: Self, b: Self, c: Self, d: Self, e: Self) -> bool {
+        sum_sign(&[a, b, c, d, e]) == Ordering::Greater
+    }
+    /// The three tests share one static error bound: each rounded sum
+    /// ((±α_AB ± α_AC) ± α_BC) − 2α_X has at most three roundings, each below u·M with
+    /// M = |α_AB| + |α_AC| + |α_BC| + 2 max(|α_A|, |α_B|, |α_C|) (and M itself is computed with
+    /// a relative error below 5u), so 4u·M, padded to 8ε·M = 16u·M plus an underflow guard,
+    /// bounds the error. Only a sum within the bound (or NaN on overflow) goes to the exact test.
+    #[inline]
+    fn case_of(al: [Self; 6]) -> usize {
+        let [a, b, c, ab, ac, bc] = al;
+        let m = ab.abs() + ac.abs() + bc.abs() + 2.0 * a.abs().max(b.abs()).max(c.abs());
+        let bound = 8.0 * f64::EPSILON * m + f64::MIN_POSITIVE;
+        let positive = |d: f64, exact: &dyn Fn() -> bool| {
+            if d > bound {
+                true
+            } else if d < -bound {
+                false
+            } else {
+                exact()
+            }
+        };
+        if positive(ab + ac - bc - 2.0 * a, &|| {
+            Self::positive5(ab, ac, -bc, -a, -a)
+        }) {
+            2
+        } else if positive(ab - ac + bc - 2.0 * b, &|| {
+            Self::positive5(ab, -ac, bc, -b, -b)
+        }) {
+            3
+        } else if positive(-ab + ac + bc - 2.0 * c, &|| {
+            Self::positive5(-ab, ac, bc, -c, -c)
+        }) {
+            4
+        } else {
+            1
+        }
     }
 }
 
@@ -859,24 +905,66 @@ impl LocalBound for Effective {
             lo: -self.lo,
         }
     }
-    fn double(self) -> Self {
-        Effective {
-            hi: 2.0 * self.hi,
-            lo: 2.0 * self.lo,
-        }
-    }
     fn value(self) -> f64 {
         self.hi + self.lo
     }
+    #[inline]
     fn sum2(a: Self, b: Self) -> f64 {
-        accurate_sum(&[a.hi, a.lo, b.hi, b.lo])
+        // Two exactly opposite terms (two zero `lo`, or a symbolic cancellation such as
+        // (α_A + α_C) − α_C) leave a two-term sum, which a single addition rounds correctly.
+        if a.lo == -b.lo {
+            a.hi + b.hi
+        } else if a.lo == -b.hi {
+            a.hi + b.lo
+        } else if a.hi == -b.lo {
+            a.lo + b.hi
+        } else if a.hi == -b.hi {
+            a.lo + b.lo
+        } else {
+            accurate_sum(&[a.hi, a.lo, b.hi, b.lo])
+        }
     }
+    #[inline]
     fn sum3(a: Self, b: Self, c: Self) -> f64 {
-        accurate_sum(&[a.hi, a.lo, b.hi, b.lo, c.hi, c.lo])
+        if a.lo == 0.0 && b.lo == 0.0 && c.lo == 0.0 {
+            accurate_sum(&[a.hi, b.hi, c.hi])
+        } else {
+            accurate_sum(&[a.hi, a.lo, b.hi, b.lo, c.hi, c.lo])
+        }
     }
-    fn positive4(a: Self, b: Self, c: Self, d: Self) -> bool {
-        sum_sign(&[a.hi, a.lo, b.hi, b.lo, c.hi, c.lo, d.hi, d.lo]) == Ordering::Greater
+    fn positive5(a: Self, b: Self, c: Self, d: Self, e: Self) -> bool {
+        let terms = [a.hi, a.lo, b.hi, b.lo, c.hi, c.lo, d.hi, d.lo, e.hi, e.lo];
+        match filtered_sign(&terms) {
+            Some(sign) => sign == Ordering::Greater,
+            None => positive_cancelled(terms),
+        }
     }
+}
+
+/// Whether a sum the filter could not decide is positive: exactly opposite terms (the symbolic
+/// cancellations of clamped chamfers, which often make the sum exactly zero) and zeros are
+/// removed first, which leaves the exact sum unchanged and usually no term at all.
+#[cold]
+#[inline(never)]
+fn positive_cancelled(terms: [f64; 10]) -> bool {
+    let mut out = [0.0; 10];
+    let mut n = 0;
+    for t in terms {
+        if t == 0.0 {
+            continue;
+        }
+        match out[..n].iter().position(|&u| u == -t) {
+            Some(k) => {
+                n -= 1;
+                out[k] = out[n];
+            }
+            None => {
+                out[n] = t;
+                n += 1;
+            }
+        }
+    }
+    sum_sign(&out[..n]) == Ordering::Greater
 }
 
 /// A tight bound as a linear form in the 18 offsets, in half-units: `Σ_k coef_k β_k / 2`.
@@ -899,12 +987,6 @@ impl LocalBound for Form<'_> {
             beta: self.beta,
         }
     }
-    fn double(self) -> Self {
-        Form {
-            coef: self.coef.map(|c| 2 * c),
-            beta: self.beta,
-        }
-    }
     fn value(self) -> f64 {
         eval_form(&self.coef, self.beta) * 0.5
     }
@@ -914,8 +996,8 @@ impl LocalBound for Form<'_> {
     fn sum3(a: Self, b: Self, c: Self) -> f64 {
         eval_form(&Form::combine(&[a, b, c]), a.beta) * 0.5
     }
-    fn positive4(a: Self, b: Self, c: Self, d: Self) -> bool {
-        sign_of_form(&Form::combine(&[a, b, c, d]), a.beta) == Ordering::Greater
+    fn positive5(a: Self, b: Self, c: Self, d: Self, e: Self) -> bool {
+        sign_of_form(&Form::combine(&[a, b, c, d, e]), a.beta) == Ordering::Greater
     }
 }
 
@@ -925,18 +1007,17 @@ impl LocalBound for Form<'_> {
 #[inline]
 fn corner<T: LocalBound>(al: [T; 6]) -> (usize, [[f64; 3]; 4]) {
     let [a, b, c, ab, ac, bc] = al;
-    // x_p > α_A  ⇔  α_AB + α_AC − α_BC − 2α_A > 0, and cyclically; at most one holds once
-    // the chamfers are clamped, so the paper's order of the tests is immaterial.
-    if T::positive4(ab, ac, bc.neg(), a.double().neg()) {
-        return (2, case2(al));
-    }
-    if T::positive4(ab, ac.neg(), bc, b.double().neg()) {
-        let v = case2([b, c, a, bc, ab, ac]);
-        return (3, v.map(|w| [w[2], w[0], w[1]]));
-    }
-    if T::positive4(ab.neg(), ac, bc, c.double().neg()) {
-        let v = case2([c, a, b, ac, bc, ab]);
-        return (4, v.map(|w| [w[1], w[2], w[0]]));
+    match T::case_of(al) {
+        2 => return (2, case2(al)),
+        3 => {
+            let v = case2([b, c, a, bc, ab, ac]);
+            return (3, v.map(|w| [w[2], w[0], w[1]]));
+        }
+        4 => {
+            let v = case2([c, a, b, ac, bc, ab]);
+            return (4, v.map(|w| [w[1], w[2], w[0]]));
+        }
+        _ => {}
     }
     // Case 1: p inside the block. Paper eqs (2)-(7); halving is exact.
     let v1 = [T::sum2(ac, c.neg()), T::sum2(bc, c.neg()), c.value()];
@@ -967,7 +1048,10 @@ fn clamped_chamfers(beta: &[f64; 18]) -> [bool; 18] {
     std::array::from_fn(|j| {
         j >= 6 && {
             let [p1, p2] = CHAMFER_PARENTS[j].map(usize::from);
-            sum_sign(&[beta[j], -beta[p1], -beta[p2]]) != Ordering::Less
+            // β_p1 + β_p2 = s + e exactly, and rounding to nearest puts s + e strictly between
+            // the neighbours of s: so β_j ≥ s + e ⇔ β_j > s, or β_j = s and e ≤ 0.
+            let (s, e) = two_sum(beta[p1], beta[p2]);
+            beta[j] > s || (beta[j] == s && e <= 0.0)
         }
     })
 }
@@ -1044,7 +1128,7 @@ impl Tribox {
         }
         let beta = bounds.offsets();
         let clamped = clamped_chamfers(&beta);
-        let corners = std::array::from_fn(|c| {
+        Tribox::from_corners(bounds, |c| {
             let planes = CORNER_PLANES[c];
             if clamped[planes[AB] as usize]
                 || clamped[planes[AC] as usize]
@@ -1068,8 +1152,7 @@ impl Tribox {
             } else {
                 corner(std::array::from_fn(|k| beta[planes[k] as usize]))
             }
-        });
-        Tribox::from_corners(bounds, &corners)
+        })
     }
 
     /// A boundary with no vertex and no face.
@@ -1090,22 +1173,28 @@ impl Tribox {
     /// world coordinates, and each face's loop, its corners' sub-lists concatenated
     /// counter-clockwise around it (tabulated for every combination of cases).
     #[inline(always)]
-    fn from_corners(bounds: &TriboxBounds, corners: &[(usize, [[f64; 3]; 4]); 8]) -> Tribox {
+    fn from_corners(
+        bounds: &TriboxBounds,
+        mut corner: impl FnMut(usize) -> (usize, [[f64; 3]; 4]),
+    ) -> Tribox {
+        // Each corner is evaluated straight into its slots (no intermediate array).
+        let mut cases = [0u8; 8];
         let mut t = Tribox {
             bounds: *bounds,
             vertices: std::array::from_fn(|c| {
+                let (case, v) = corner(c);
+                cases[c] = case as u8;
                 let s = CORNER_SIGNS[c];
                 // Adding +0 turns the -0 of a reflected zero into +0.
-                corners[c]
-                    .1
-                    .map(|v| Point3::new(s[0] * v[0] + 0.0, s[1] * v[1] + 0.0, s[2] * v[2] + 0.0))
+                v.map(|v| Point3::new(s[0] * v[0] + 0.0, s[1] * v[1] + 0.0, s[2] * v[2] + 0.0))
             }),
-            vertex_planes: std::array::from_fn(|c| VERTEX_PLANES[c][corners[c].0 - 1]),
+            vertex_planes: [[[0; 3]; 4]; 8],
             vertex_count: MAX_VERTICES as u8,
             faces: [[0; MAX_FACE]; 18],
             face_len: [0; 18],
-            cases: corners.map(|(case, _)| case as u8),
+            cases,
         };
+        t.vertex_planes = std::array::from_fn(|c| VERTEX_PLANES[c][usize::from(cases[c]) - 1]);
         // Two bits per corner: its case − 1.
         let cases = t.cases.map(|k| usize::from(k - 1));
         for j in 0..18 {
@@ -1342,14 +1431,13 @@ impl Tribox {
         let raw = if only_clamps {
             Tribox::new(&self.bounds)
         } else {
-            let corners = std::array::from_fn(|c| {
+            Tribox::from_corners(&self.bounds, |c| {
                 let planes = CORNER_PLANES[c];
                 corner(std::array::from_fn(|k| Form {
                     coef: tight[planes[k] as usize],
                     beta: &beta,
                 }))
-            });
-            Tribox::from_corners(&self.bounds, &corners)
+            })
         };
         let n = raw.vertex_count as usize;
         let forms: Vec<VertexForm> = raw

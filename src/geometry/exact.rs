@@ -86,6 +86,24 @@ pub fn add_round_down(a: f64, b: f64) -> f64 {
 /// ```
 #[inline]
 pub fn sum_sign(terms: &[f64]) -> Ordering {
+    match filtered_sign(terms) {
+        Some(sign) => sign,
+        None => exact_sign(terms),
+    }
+}
+
+/// The sign of the real sum of `terms` when the floating-point filter of [`sum_sign`] can
+/// certify it (always correct when `Some`), `None` when only the exact expansion can decide.
+///
+/// ```
+/// use kepler::geometry::exact::filtered_sign;
+/// use std::cmp::Ordering;
+/// assert_eq!(filtered_sign(&[1.0, 2.0, -2.5]), Some(Ordering::Greater));
+/// assert_eq!(filtered_sign(&[0.0, 0.0]), Some(Ordering::Equal));
+/// assert_eq!(filtered_sign(&[0.5, 0.25, -0.75]), None); // an exact zero needs the expansion
+/// ```
+#[inline]
+pub fn filtered_sign(terms: &[f64]) -> Option<Ordering> {
     let mut sum = 0.0;
     let mut magnitude = 0.0;
     for &t in terms {
@@ -97,13 +115,13 @@ pub fn sum_sign(terms: &[f64]) -> Ordering {
     // MIN_POSITIVE covers a product that underflows.
     let bound = (2 * terms.len()) as f64 * UNIT_ROUNDOFF * magnitude + f64::MIN_POSITIVE;
     if sum > bound {
-        Ordering::Greater
+        Some(Ordering::Greater)
     } else if sum < -bound {
-        Ordering::Less
+        Some(Ordering::Less)
     } else if magnitude == 0.0 {
-        Ordering::Equal
+        Some(Ordering::Equal)
     } else {
-        exact_sign(terms)
+        None
     }
 }
 
