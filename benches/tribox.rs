@@ -34,34 +34,17 @@ impl Rng {
 /// clamping, no exact sign tests and no correct rounding. Only the 8 × 4 vertex coordinates
 /// are produced (no face loops), which is the cheapest meaningful comparison for the exact path.
 mod paper_f64 {
-    use kepler::bounds::tribox::TriboxBounds;
+    use kepler::bounds::tribox::{Tribox, TriboxBounds};
 
-    /// The 9 directions as integer vectors (the order of [`TriboxBounds::DIRECTIONS`]).
-    const DIRS: [[i8; 3]; 9] = [
-        [1, 0, 0],
-        [0, 1, 0],
-        [0, 0, 1],
-        [1, 1, 0],
-        [1, 0, 1],
-        [0, 1, 1],
-        [1, 0, -1],
-        [-1, 1, 0],
-        [0, -1, 1],
-    ];
-
-    /// The half-space n · x ≤ β with outward normal `w`: plane 2d (β = −min_d) or 2d+1
-    /// (β = max_d).
+    /// The plane (index into the 18 bounds) whose outward normal is `w`.
     const fn plane_of(w: [i8; 3]) -> usize {
-        let mut d = 0;
-        while d < 9 {
-            let v = DIRS[d];
-            if v[0] == w[0] && v[1] == w[1] && v[2] == w[2] {
-                return 2 * d + 1;
+        let mut j = 0;
+        while j < 18 {
+            let n = Tribox::PLANE_NORMALS[j];
+            if n[0] == w[0] as f64 && n[1] == w[1] as f64 && n[2] == w[2] as f64 {
+                return j;
             }
-            if v[0] == -w[0] && v[1] == -w[1] && v[2] == -w[2] {
-                return 2 * d;
-            }
-            d += 1;
+            j += 1;
         }
         panic!("not a tribox normal")
     }

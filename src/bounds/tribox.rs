@@ -366,9 +366,9 @@ const SUB_LISTS: [[[SubList; 6]; 4]; 8] = {
 
 /// `FACE_LOOPS[j][combo]`: the loop of face j as 8 packed vertex indices, for the cases of its
 /// corners (in [`FACE_CORNERS`] order) encoded as `combo = Σ (case_i − 1) << 2i`; principal
-/// faces have 256 combinations, chamfer faces 16. `FACE_LENGTHS` holds the loop lengths.
-static FACE_LOOPS: [[u64; 256]; 18] = {
-    let mut t = [[0u64; 256]; 18];
+/// faces have 256 combinations, chamfer faces 16; with each loop, its length.
+static FACE_LOOPS: [[(u64, u8); 256]; 18] = {
+    let mut t = [[(0u64, 0u8); 256]; 18];
     let mut j = 0;
     while j < 18 {
         let (list, n) = FACE_CORNERS[j];
@@ -390,7 +390,7 @@ static FACE_LOOPS: [[u64; 256]; 18] = {
                 }
                 i += 1;
             }
-            t[j][combo] = packed;
+            t[j][combo] = (packed, len);
             combo += 1;
         }
         j += 1;
@@ -408,30 +408,6 @@ const FACE_CORNER_INDICES: [[usize; 4]; 18] = {
         while i < n as usize {
             t[j][i] = list[i].0 as usize;
             i += 1;
-        }
-        j += 1;
-    }
-    t
-};
-
-/// The lengths of the loops of [`FACE_LOOPS`].
-static FACE_LENGTHS: [[u8; 256]; 18] = {
-    let mut t = [[0u8; 256]; 18];
-    let mut j = 0;
-    while j < 18 {
-        let (list, n) = FACE_CORNERS[j];
-        let combos = 1usize << (2 * n as usize);
-        let mut combo = 0;
-        while combo < combos {
-            let mut len = 0;
-            let mut i = 0;
-            while i < n as usize {
-                let (c, local) = list[i];
-                len += SUB_LISTS[c as usize][(combo >> (2 * i)) & 3][local as usize].1;
-                i += 1;
-            }
-            t[j][combo] = len;
-            combo += 1;
         }
         j += 1;
     }
@@ -1204,8 +1180,9 @@ impl Tribox {
             } else {
                 cases[c0] | cases[c1] << 2
             };
-            t.faces[j] = FACE_LOOPS[j][combo].to_le_bytes();
-            t.face_len[j] = FACE_LENGTHS[j][combo];
+            let (packed, len) = FACE_LOOPS[j][combo];
+            t.faces[j] = packed.to_le_bytes();
+            t.face_len[j] = len;
         }
         t
     }
