@@ -39,6 +39,9 @@ pub enum Error {
         /// What is wrong.
         message: String,
     },
+    /// A view that cannot be built (a zero direction, an up vector along it, ...).
+    #[error("invalid view: {0}")]
+    View(#[from] crate::views::ViewError),
     /// An invalid mesh built by the library (a built-in solid with bad parameters, say).
     #[error(transparent)]
     Mesh(#[from] MeshError),

@@ -13,6 +13,8 @@
 //! - [`solids`]: built-in closed solids (box, Platonic, Archimedean, prism, sphere, torus, cylinder).
 //! - [`bounds`]: CBOX, INBOX and TRIBOX.
 //! - [`scene`]: the scene graph, instancing, flattening and the scene file.
+//! - [`views`]: orthographic and perspective views, and exact predicates with the eye.
+//! - [`queries`]: INCLUDE and VISP through the hierarchy, batch INCLUDE, ray shooting.
 //!
 //! ```
 //! use kepler::solids;
@@ -26,7 +28,9 @@ pub mod error;
 pub mod geometry;
 pub mod io;
 pub mod mesh;
+pub mod queries;
 pub mod scene;
 pub mod solids;
+pub mod views;
 
 pub use error::{Error, Result};

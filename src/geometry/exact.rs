@@ -43,6 +43,59 @@ pub fn two_sum(a: f64, b: f64) -> (f64, f64) {
     (s, e)
 }
 
+/// The rounded product `p = fl(a * b)` and its exact error `e`, so that `a * b = p + e`
+/// exactly when the product neither overflows nor underflows (one fused multiply-add).
+///
+/// ```
+/// use kepler::geometry::exact::two_product;
+/// let (p, e) = two_product(0.1, 0.1);
+/// assert_eq!(p, 0.1 * 0.1);
+/// assert!(e != 0.0 && e.abs() <= f64::EPSILON * p);
+/// ```
+#[inline]
+pub fn two_product(a: f64, b: f64) -> (f64, f64) {
+    let p = a * b;
+    (p, a.mul_add(b, -p))
+}
+
+/// Appends to `out` the exact terms of the product of the sums `a` and `b` (each pair's
+/// [`two_product`]), so that the sum of what is appended equals `(Σa)·(Σb)` exactly.
+///
+/// ```
+/// use kepler::geometry::exact::{product_terms, accurate_sum};
+/// let mut out = Vec::new();
+/// product_terms(&[0.1, 1e-20], &[3.0], &mut out);
+/// assert_eq!(out.len(), 4);
+/// assert_eq!(accurate_sum(&out), 0.30000000000000004);
+/// ```
+pub fn product_terms(a: &[f64], b: &[f64], out: &mut Vec<f64>) {
+    for &x in a {
+        for &y in b {
+            let (p, e) = two_product(x, y);
+            out.push(p);
+            if e != 0.0 {
+                out.push(e);
+            }
+        }
+    }
+}
+
+/// The exact sum of `terms` as an expansion: nonzero, nonoverlapping components in increasing
+/// magnitude, at most `terms.len()` of them (empty for a zero sum). Feed it to
+/// [`product_terms`] to multiply exact sums without the number of terms exploding.
+///
+/// ```
+/// use kepler::geometry::exact::expansion;
+/// assert_eq!(expansion(&[1e100, 1.0, -1e100]), vec![1.0]);
+/// assert!(expansion(&[0.5, -0.5]).is_empty());
+/// ```
+pub fn expansion(terms: &[f64]) -> Vec<f64> {
+    let mut buf = vec![0.0; terms.len()];
+    let n = grow_expansion(terms, &mut buf);
+    buf.truncate(n);
+    buf
+}
+
 /// The smallest double that is at least the exact sum `a + b`.
 ///
 /// ```

@@ -12,7 +12,8 @@
 //! assert_eq!(orient3d(&a, &b, &c, &Point3::new(0.3, 0.3, 0.0)), Ordering::Equal);
 //! ```
 
-use super::Point3;
+use super::exact::{product_terms, sum_sign, two_sum};
+use super::{Point3, Vector3};
 use robust::{Coord, Coord3D};
 use std::cmp::Ordering;
 
@@ -75,6 +76,122 @@ pub fn project(p: &Point3, axis: usize) -> [f64; 2] {
         0 => [p.y, p.z],
         1 => [p.z, p.x],
         _ => [p.x, p.y],
+    }
+}
+
+/// Exact sign of `orient3d(a, b, c, q)` for the point `q` at infinity in direction `u`: the
+/// side of the plane through `a`, `b`, `c` towards which `u` points (`Greater` when `u` points
+/// below it, in [`orient3d`]'s sense), `Equal` when the plane is parallel to `u`. It is the
+/// sign of `-det[a - c, b - c, u]`, the limit of `orient3d(a, b, c, c + λu)` as λ grows.
+///
+/// Used for orthographic views, whose eye is such a point at infinity. Written by hand because
+/// `robust` has no predicate with a direction: a floating-point filter decides almost every
+/// call, and an exact expansion ([`sum_sign`]) the rest; a `u` along a coordinate axis reduces
+/// to `robust`'s `orient2d`.
+///
+/// ```
+/// use kepler::geometry::{Point3, Vector3, predicates::orient3d_at_infinity};
+/// use std::cmp::Ordering;
+/// let (a, b, c) = (Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0));
+/// assert_eq!(orient3d_at_infinity(&a, &b, &c, &Vector3::new(0.1, 0.2, -1.0)), Ordering::Greater);
+/// assert_eq!(orient3d_at_infinity(&a, &b, &c, &Vector3::new(1.0, 1.0, 0.0)), Ordering::Equal);
+/// ```
+pub fn orient3d_at_infinity(a: &Point3, b: &Point3, c: &Point3, u: &Vector3) -> Ordering {
+    if let Some(k) = single_axis(&[u.x, u.y, u.z]) {
+        // det[a - c, b - c, u_k e_k] = u_k (the k-th component of (a - c) x (b - c)).
+        let o = orient2d(project(a, k), project(b, k), project(c, k));
+        return if u[k] > 0.0 { o.reverse() } else { o };
+    }
+    let r1 = a - c;
+    let r2 = b - c;
+    let value = r1.dot(&r2.cross(u));
+    let (p, q, w) = (r1.map(f64::abs), r2.map(f64::abs), u.map(f64::abs));
+    let permanent =
+        p.x * (q.y * w.z + q.z * w.y) + p.y * (q.x * w.z + q.z * w.x) + p.z * (q.x * w.y + q.y * w.x);
+    let bound = 16.0 * (f64::EPSILON / 2.0) * permanent + f64::MIN_POSITIVE;
+    if value > bound {
+        return Ordering::Less;
+    }
+    if value < -bound {
+        return Ordering::Greater;
+    }
+    exact_direction_det(a, b, c, u).reverse()
+}
+
+/// The exact sign of `det[a - c, b - c, u]` from its expansion (the filter's fallback).
+#[cold]
+#[inline(never)]
+fn exact_direction_det(a: &Point3, b: &Point3, c: &Point3, u: &Vector3) -> Ordering {
+    const PERMUTATIONS: [([usize; 3], f64); 6] = [
+        ([0, 1, 2], 1.0),
+        ([1, 2, 0], 1.0),
+        ([2, 0, 1], 1.0),
+        ([0, 2, 1], -1.0),
+        ([2, 1, 0], -1.0),
+        ([1, 0, 2], -1.0),
+    ];
+    let diff = |p: &Point3, i: usize| {
+        let (s, e) = two_sum(p[i], -c[i]);
+        [s, e]
+    };
+    let mut terms = Vec::with_capacity(96);
+    let mut pair = Vec::with_capacity(8);
+    for ([i, j, k], sign) in PERMUTATIONS {
+        pair.clear();
+        product_terms(&diff(a, i), &diff(b, j), &mut pair);
+        product_terms(&pair, &[sign * u[k]], &mut terms);
+    }
+    sum_sign(&terms)
+}
+
+/// Exact sign of `orient2d(a, b, q)` for the point `q` at infinity in direction `u`: which
+/// side of `u` the vector `a - b` lies on (`Greater` when `(a, b, q)` turn counter-clockwise),
+/// the sign of `-det[a - b, u]`.
+///
+/// ```
+/// use kepler::geometry::predicates::orient2d_at_infinity;
+/// use std::cmp::Ordering;
+/// // Looking from b = (0, 0) along +y, a = (1, 0) lies to the right: clockwise.
+/// assert_eq!(orient2d_at_infinity([1.0, 0.0], [0.0, 0.0], [0.0, 1.0]), Ordering::Less);
+/// assert_eq!(orient2d_at_infinity([0.0, 3.0], [0.0, 0.0], [0.0, 1.0]), Ordering::Equal);
+/// ```
+pub fn orient2d_at_infinity(a: [f64; 2], b: [f64; 2], u: [f64; 2]) -> Ordering {
+    // det[a - b, u] = (a - b)_x u_y - (a - b)_y u_x.
+    let cmp = |x: f64, y: f64| x.partial_cmp(&y).unwrap_or(Ordering::Equal);
+    match (u[0] == 0.0, u[1] == 0.0) {
+        (true, true) => return Ordering::Equal,
+        (true, false) => return cmp(a[0], b[0]).reverse_if(u[1] > 0.0),
+        (false, true) => return cmp(a[1], b[1]).reverse_if(u[0] < 0.0),
+        (false, false) => {}
+    }
+    let (dx, ex) = two_sum(a[0], -b[0]);
+    let (dy, ey) = two_sum(a[1], -b[1]);
+    let mut terms = Vec::with_capacity(8);
+    product_terms(&[dx, ex], &[u[1]], &mut terms);
+    product_terms(&[dy, ey], &[-u[0]], &mut terms);
+    sum_sign(&terms).reverse()
+}
+
+/// `reverse` when a condition holds: the sign of a product with a factor of known sign.
+trait ReverseIf {
+    fn reverse_if(self, condition: bool) -> Self;
+}
+
+impl ReverseIf for Ordering {
+    #[inline]
+    fn reverse_if(self, condition: bool) -> Self {
+        if condition { self.reverse() } else { self }
+    }
+}
+
+/// The axis `k` when `v` has exactly one nonzero component, `v[k]`.
+#[inline]
+fn single_axis(v: &[f64; 3]) -> Option<usize> {
+    match (v[0] != 0.0, v[1] != 0.0, v[2] != 0.0) {
+        (true, false, false) => Some(0),
+        (false, true, false) => Some(1),
+        (false, false, true) => Some(2),
+        _ => None,
     }
 }
 

@@ -57,9 +57,19 @@ pub fn classify_point_brute_force(mesh: &Mesh, p: &Point3) -> Containment {
     classify_among((0..mesh.triangles().len()).map(|i| mesh.triangle(i)), p)
 }
 
-/// Parity of the perturbed upward ray's crossings with `triangles` (which must include every
-/// triangle the ray can meet), or `Boundary` as soon as `p` lies on one.
-fn classify_among(triangles: impl Iterator<Item = [Point3; 3]>, p: &Point3) -> Containment {
+/// Classifies `p` from the triangles of a closed mesh that the upward vertical ray from `p`
+/// can meet: the parity of the perturbed ray's crossings, or `Boundary` as soon as `p` lies on
+/// one. `triangles` must include every triangle whose closed bounding box contains `p` or lies
+/// above it in its column (more do no harm); a spatial index picks them, as
+/// [`classify_point`] does with an R-tree and INCLUDE's projection grid with a 2-D grid.
+///
+/// ```
+/// use kepler::{mesh::{Containment, classify_among}, geometry::Point3};
+/// let cube = kepler::solids::cube(2.0).unwrap();
+/// let all = (0..cube.triangles().len()).map(|t| cube.triangle(t));
+/// assert_eq!(classify_among(all, &Point3::new(0.0, 1.0, 0.0)), Containment::Boundary);
+/// ```
+pub fn classify_among(triangles: impl Iterator<Item = [Point3; 3]>, p: &Point3) -> Containment {
     let mut crossings = 0usize;
     for t in triangles {
         if on_triangle(&t, p) {

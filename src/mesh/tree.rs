@@ -3,7 +3,7 @@
 
 use super::Mesh;
 use crate::geometry::{Aabb, Point3, Vector3};
-use rstar::{AABB, PointDistance, RTree, RTreeObject};
+use rstar::{AABB, PointDistance, RTree, RTreeObject, SelectionFunction};
 
 /// One triangle of the mesh in the tree: its index in [`Mesh::triangles`] and corners.
 #[derive(Debug, Clone, Copy)]
@@ -110,6 +110,25 @@ impl TriangleTree {
         self.in_box(&Aabb::new(*p, Point3::new(p.x, p.y, f64::MAX)))
     }
 
+    /// Triangles (index and corners) whose bounding boxes pass `meets`, found lazily. `meets`
+    /// is asked about the tree's inner boxes too, so it must accept every box that meets the
+    /// region searched (a conservative test is fine: the caller tests the triangles exactly).
+    ///
+    /// ```
+    /// use kepler::{mesh::TriangleTree, geometry::{Aabb, Point3}};
+    /// let t = TriangleTree::new(&kepler::solids::cube(2.0).unwrap());
+    /// // Boxes reaching above z = 0.5: the top face's two triangles and the four sides' eight.
+    /// assert_eq!(t.select(|b: &Aabb| b.max[2] > 0.5).count(), 10);
+    /// ```
+    pub fn select<'a, F>(&'a self, meets: F) -> impl Iterator<Item = (usize, [Point3; 3])> + 'a
+    where
+        F: Fn(&Aabb) -> bool + 'a,
+    {
+        self.tree
+            .locate_with_selection_function(BoxTest(meets))
+            .map(|e| (e.index, e.corners))
+    }
+
     /// The distance from `p` to the nearest triangle (rounded, for heuristics only), or
     /// infinity for an empty tree.
     ///
@@ -123,6 +142,22 @@ impl TriangleTree {
         self.tree
             .nearest_neighbor(&q)
             .map_or(f64::INFINITY, |e| e.distance_2(&q).sqrt())
+    }
+}
+
+/// An rstar selection function from a test on boxes.
+struct BoxTest<F>(F);
+
+impl<F: Fn(&Aabb) -> bool> SelectionFunction<Entry> for BoxTest<F> {
+    fn should_unpack_parent(&self, envelope: &AABB<[f64; 3]>) -> bool {
+        (self.0)(&Aabb {
+            min: envelope.lower(),
+            max: envelope.upper(),
+        })
+    }
+
+    fn should_unpack_leaf(&self, leaf: &Entry) -> bool {
+        self.should_unpack_parent(&leaf.envelope())
     }
 }
 

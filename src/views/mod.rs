@@ -1,0 +1,371 @@
+//! Views: where the eye is, and the exact predicates that ask what lies between a point and it.
+//!
+//! Franklin's algorithms look from his standard viewpoint `(0, 0, +∞)`. Any orthographic view
+//! is that one turned, and a perspective view becomes an orthographic one under the projective
+//! transform of [`View::matrix`], which keeps planes planar. Rounding that transform would
+//! move every vertex, so the visibility tests are not done on transformed coordinates: a
+//! projective transform preserves the sign of every orientation determinant (up to one global
+//! sign), so `orient3d(a, b, c, eye)` in world coordinates, with the eye a point
+//! ([`Eye::Point`]) or a point at infinity ([`Eye::Infinity`]), is exactly the view-space
+//! test. The transform is only for drawing.
+//!
+//! ```
+//! use kepler::views::View;
+//! use kepler::geometry::{Point3, Vector3};
+//! let view = View::orthographic(Vector3::new(0.0, 0.0, -1.0), Vector3::new(0.0, 1.0, 0.0)).unwrap();
+//! assert_eq!(view.to_view(&Point3::new(1.0, 2.0, 3.0)), Point3::new(1.0, 2.0, 3.0));
+//! ```
+
+use crate::geometry::predicates::{
+    orient2d, orient2d_at_infinity, orient3d, orient3d_at_infinity, project,
+};
+use crate::geometry::{Point3, Vector3, predicates::collinear};
+use crate::scene::{Camera, Projection};
+use nalgebra::Matrix4;
+use std::cmp::Ordering;
+
+/// A view that cannot be built, and why.
+///
+/// ```
+/// use kepler::views::{View, ViewError};
+/// use kepler::geometry::Vector3;
+/// let e = View::orthographic(Vector3::zeros(), Vector3::z()).unwrap_err();
+/// assert_eq!(e, ViewError::ZeroDirection);
+/// ```
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ViewError {
+    /// The view direction is the zero vector.
+    #[error("the view direction is zero")]
+    ZeroDirection,
+    /// The up vector is zero or parallel to the view direction.
+    #[error("the up vector is zero or parallel to the view direction")]
+    UpParallel,
+    /// The eye and the target coincide.
+    #[error("the eye and the target are the same point")]
+    EyeAtTarget,
+    /// The field of view is not strictly between 0 and 180 degrees.
+    #[error("the field of view must be between 0 and 180 degrees, not {0}")]
+    FieldOfView(f64),
+    /// A coordinate is NaN or infinite.
+    #[error("view coordinates must be finite numbers")]
+    NotFinite,
+}
+
+/// Where the viewer is: a point (perspective) or a point at infinity (orthographic).
+///
+/// ```
+/// use kepler::views::Eye;
+/// use kepler::geometry::{Point3, Vector3};
+/// use std::cmp::Ordering;
+/// // Franklin's standard viewpoint (0, 0, +∞) is above the counter-clockwise triangle.
+/// let eye = Eye::Infinity(Vector3::new(0.0, 0.0, 1.0));
+/// let t = [Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0)];
+/// assert_eq!(eye.orient3d(&t[0], &t[1], &t[2]), Ordering::Less);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Eye {
+    /// The eye point of a perspective view.
+    Point(Point3),
+    /// The eye of an orthographic view: at infinity in this direction (from the scene towards
+    /// the viewer, the opposite of the view direction), kept exactly as given.
+    Infinity(Vector3),
+}
+
+impl Eye {
+    /// Exact sign of `orient3d(a, b, c, eye)`: the side of the plane through `a`, `b`, `c` on
+    /// which the eye lies, `Equal` when the plane passes through it (the face is edge-on).
+    ///
+    /// ```
+    /// use kepler::views::Eye;
+    /// use kepler::geometry::Point3;
+    /// use std::cmp::Ordering;
+    /// let eye = Eye::Point(Point3::new(0.0, 0.0, 5.0));
+    /// let (a, b) = (Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0));
+    /// assert_eq!(eye.orient3d(&a, &b, &Point3::new(0.0, 0.0, 1.0)), Ordering::Equal);
+    /// ```
+    #[inline]
+    pub fn orient3d(&self, a: &Point3, b: &Point3, c: &Point3) -> Ordering {
+        match self {
+            Eye::Point(e) => orient3d(a, b, c, e),
+            Eye::Infinity(u) => orient3d_at_infinity(a, b, c, u),
+        }
+    }
+
+    /// The sign of `orient3d(p', a, b, eye)` for `p'` the point `p` moved by the symbolic
+    /// perturbation `(ε, ε², ε³)`: which side of the line of sight through `p'` the edge `ab`
+    /// passes. It is `Equal` only when `a`, `b` and the eye are collinear (the edge points at
+    /// the eye). Antisymmetric in `a` and `b`, so a line of sight that passes exactly through
+    /// an edge shared by two triangles is counted in exactly one of them.
+    ///
+    /// The coefficient of `ε^(k+1)` is the orientation of `a`, `b` and the eye in the
+    /// projection that drops axis `k` (see [`project`]).
+    ///
+    /// ```
+    /// use kepler::views::Eye;
+    /// use kepler::geometry::{Point3, Vector3};
+    /// use std::cmp::Ordering;
+    /// let eye = Eye::Infinity(Vector3::new(0.0, 0.0, 1.0));
+    /// let (a, b) = (Point3::new(0.0, -1.0, 0.0), Point3::new(0.0, 1.0, 0.0));
+    /// // p lies exactly below the edge; moved by +ε in x it passes on one side.
+    /// let p = Point3::new(0.0, 0.0, -3.0);
+    /// let s = eye.perturbed_orient3d(&p, &a, &b);
+    /// assert_ne!(s, Ordering::Equal);
+    /// assert_eq!(eye.perturbed_orient3d(&p, &b, &a), s.reverse());
+    /// ```
+    #[inline]
+    pub fn perturbed_orient3d(&self, p: &Point3, a: &Point3, b: &Point3) -> Ordering {
+        let exact = match self {
+            Eye::Point(e) => orient3d(p, a, b, e),
+            Eye::Infinity(u) => orient3d_at_infinity(p, a, b, u),
+        };
+        if exact != Ordering::Equal {
+            return exact;
+        }
+        self.perturbation(a, b)
+    }
+
+    /// The first nonzero coefficient of the perturbation in [`Eye::perturbed_orient3d`].
+    #[cold]
+    fn perturbation(&self, a: &Point3, b: &Point3) -> Ordering {
+        [0, 1, 2]
+            .into_iter()
+            .map(|k| match self {
+                Eye::Point(e) => orient2d(project(a, k), project(b, k), project(e, k)),
+                Eye::Infinity(u) => orient2d_at_infinity(
+                    project(a, k),
+                    project(b, k),
+                    project(&Point3::from(*u), k),
+                ),
+            })
+            .find(|&o| o != Ordering::Equal)
+            .unwrap_or(Ordering::Equal)
+    }
+}
+
+/// A view: an eye, the direction looked along, the up direction of the picture and, for a
+/// perspective view, the vertical field of view.
+///
+/// ```
+/// use kepler::views::{Eye, View};
+/// use kepler::geometry::{Point3, Vector3};
+/// let v = View::perspective(Point3::new(0.0, -10.0, 0.0), Point3::origin(), Vector3::z(), 40.0).unwrap();
+/// assert_eq!(*v.eye(), Eye::Point(Point3::new(0.0, -10.0, 0.0)));
+/// assert!(v.is_perspective());
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct View {
+    eye: Eye,
+    forward: Vector3,
+    right: Vector3,
+    up: Vector3,
+    fov: Option<f64>,
+}
+
+impl View {
+    /// Franklin's standard view from `(0, 0, +∞)`: looking along `(0, 0, -1)` with `y` up, so
+    /// that view coordinates are world coordinates.
+    ///
+    /// ```
+    /// use kepler::views::View;
+    /// use kepler::geometry::Point3;
+    /// let p = Point3::new(1.5, -2.0, 7.0);
+    /// assert_eq!(View::standard().to_view(&p), p);
+    /// ```
+    pub fn standard() -> View {
+        View {
+            eye: Eye::Infinity(Vector3::z()),
+            forward: -Vector3::z(),
+            right: Vector3::x(),
+            up: Vector3::y(),
+            fov: None,
+        }
+    }
+
+    /// An orthographic view looking along `direction`, with `up` pointing up in the picture.
+    ///
+    /// ```
+    /// use kepler::views::{View, ViewError};
+    /// use kepler::geometry::Vector3;
+    /// let v = View::orthographic(Vector3::new(-1.0, -1.0, -1.0), Vector3::z()).unwrap();
+    /// assert!(!v.is_perspective());
+    /// let parallel = View::orthographic(Vector3::new(0.0, 0.0, -2.0), Vector3::z());
+    /// assert_eq!(parallel.unwrap_err(), ViewError::UpParallel);
+    /// ```
+    pub fn orthographic(direction: Vector3, up: Vector3) -> Result<View, ViewError> {
+        if !direction.iter().chain(up.iter()).all(|c| c.is_finite()) {
+            return Err(ViewError::NotFinite);
+        }
+        if direction == Vector3::zeros() {
+            return Err(ViewError::ZeroDirection);
+        }
+        let (forward, right, up) = frame(&direction, &up)?;
+        Ok(View {
+            eye: Eye::Infinity(-direction),
+            forward,
+            right,
+            up,
+            fov: None,
+        })
+    }
+
+    /// A perspective view from `eye` towards `target`, with `up` pointing up in the picture
+    /// and a vertical field of view of `fov` degrees.
+    ///
+    /// ```
+    /// use kepler::views::{View, ViewError};
+    /// use kepler::geometry::{Point3, Vector3};
+    /// let e = View::perspective(Point3::origin(), Point3::new(1.0, 0.0, 0.0), Vector3::z(), 180.0);
+    /// assert_eq!(e.unwrap_err(), ViewError::FieldOfView(180.0));
+    /// ```
+    pub fn perspective(eye: Point3, target: Point3, up: Vector3, fov: f64) -> Result<View, ViewError> {
+        let coordinates = eye.iter().chain(target.iter()).chain(up.iter());
+        if !coordinates.chain([fov].iter()).all(|c| c.is_finite()) {
+            return Err(ViewError::NotFinite);
+        }
+        if eye == target {
+            return Err(ViewError::EyeAtTarget);
+        }
+        if !(fov > 0.0 && fov < 180.0) {
+            return Err(ViewError::FieldOfView(fov));
+        }
+        let (forward, right, up) = frame(&(target - eye), &up)?;
+        Ok(View {
+            eye: Eye::Point(eye),
+            forward,
+            right,
+            up,
+            fov: Some(fov),
+        })
+    }
+
+    /// The view a scene file's camera describes.
+    ///
+    /// ```
+    /// use kepler::{scene::Camera, views::View};
+    /// let v = View::from_camera(&Camera::default()).unwrap();
+    /// assert!(!v.is_perspective());
+    /// ```
+    pub fn from_camera(camera: &Camera) -> Result<View, ViewError> {
+        let up = Vector3::from(camera.up);
+        match camera.projection {
+            Projection::Orthographic { direction } => View::orthographic(direction.into(), up),
+            Projection::Perspective { eye, target, fov } => {
+                View::perspective(eye.into(), target.into(), up, fov)
+            }
+        }
+    }
+
+    /// The eye.
+    ///
+    /// ```
+    /// use kepler::views::{Eye, View};
+    /// assert_eq!(*View::standard().eye(), Eye::Infinity(kepler::geometry::Vector3::z()));
+    /// ```
+    pub fn eye(&self) -> &Eye {
+        &self.eye
+    }
+
+    /// Whether the view is a perspective one.
+    ///
+    /// ```
+    /// assert!(!kepler::views::View::standard().is_perspective());
+    /// ```
+    pub fn is_perspective(&self) -> bool {
+        matches!(self.eye, Eye::Point(_))
+    }
+
+    /// The unit vector the camera looks along.
+    ///
+    /// ```
+    /// use kepler::{geometry::Vector3, views::View};
+    /// assert_eq!(View::standard().forward(), Vector3::new(0.0, 0.0, -1.0));
+    /// ```
+    pub fn forward(&self) -> Vector3 {
+        self.forward
+    }
+
+    /// The unit vectors pointing right and up in the picture.
+    ///
+    /// ```
+    /// use kepler::{geometry::Vector3, views::View};
+    /// assert_eq!(View::standard().right_up(), (Vector3::x(), Vector3::y()));
+    /// ```
+    pub fn right_up(&self) -> (Vector3, Vector3) {
+        (self.right, self.up)
+    }
+
+    /// The 4×4 matrix from world to view coordinates: `x` right and `y` up in the picture, `z`
+    /// increasing towards the viewer (as from Franklin's `(0, 0, +∞)`). Orthographic: a
+    /// rotation. Perspective: a projective transform with the eye sent to infinity, `x` and
+    /// `y` scaled so that the field of view spans `y` in `[-1, 1]`, and `z = -1/depth`; planes
+    /// stay planes. For drawing only; decisions use [`Eye`]'s exact predicates.
+    ///
+    /// ```
+    /// use kepler::views::View;
+    /// assert_eq!(View::standard().matrix(), nalgebra::Matrix4::identity());
+    /// ```
+    #[rustfmt::skip]
+    pub fn matrix(&self) -> Matrix4<f64> {
+        let (r, u, f) = (self.right, self.up, self.forward);
+        match (self.eye, self.fov) {
+            (Eye::Point(e), Some(fov)) => {
+                let k = 1.0 / (fov.to_radians() / 2.0).tan();
+                let e = e.coords;
+                Matrix4::new(
+                    k * r.x, k * r.y, k * r.z, -k * r.dot(&e),
+                    k * u.x, k * u.y, k * u.z, -k * u.dot(&e),
+                    0.0, 0.0, 0.0, -1.0,
+                    f.x, f.y, f.z, -f.dot(&e),
+                )
+            }
+            _ => Matrix4::new(
+                r.x, r.y, r.z, 0.0,
+                u.x, u.y, u.z, 0.0,
+                -f.x, -f.y, -f.z, 0.0,
+                0.0, 0.0, 0.0, 1.0,
+            ),
+        }
+    }
+
+    /// The view coordinates of `p` (see [`View::matrix`]), computed once from `p`.
+    ///
+    /// ```
+    /// use kepler::views::View;
+    /// use kepler::geometry::{Point3, Vector3};
+    /// let v = View::perspective(Point3::new(0.0, 0.0, 10.0), Point3::origin(), Vector3::y(), 90.0).unwrap();
+    /// let q = v.to_view(&Point3::new(1.0, 2.0, 0.0));
+    /// assert!((q.x - 0.1).abs() < 1e-15 && (q.y - 0.2).abs() < 1e-15 && (q.z + 0.1).abs() < 1e-15);
+    /// ```
+    pub fn to_view(&self, p: &Point3) -> Point3 {
+        match self.eye {
+            Eye::Point(e) => {
+                let q = p - e;
+                let depth = self.forward.dot(&q);
+                let k = 1.0 / (self.fov.unwrap_or(90.0).to_radians() / 2.0).tan();
+                Point3::new(
+                    k * self.right.dot(&q) / depth,
+                    k * self.up.dot(&q) / depth,
+                    -1.0 / depth,
+                )
+            }
+            Eye::Infinity(_) => Point3::new(
+                self.right.dot(&p.coords),
+                self.up.dot(&p.coords),
+                -self.forward.dot(&p.coords),
+            ),
+        }
+    }
+}
+
+/// The unit forward, right and up vectors for looking along `direction` with `up` up; the up
+/// vector must not be parallel to the direction (decided exactly).
+fn frame(direction: &Vector3, up: &Vector3) -> Result<(Vector3, Vector3, Vector3), ViewError> {
+    let origin = Point3::origin();
+    if *up == Vector3::zeros() || collinear(&origin, &Point3::from(*direction), &Point3::from(*up)) {
+        return Err(ViewError::UpParallel);
+    }
+    let forward = direction.normalize();
+    let right = forward.cross(up).normalize();
+    let up = right.cross(&forward);
+    Ok((forward, right, up))
+}
