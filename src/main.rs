@@ -1,11 +1,19 @@
 //! The `kepler` command line.
 
 use anyhow::Result;
-use clap::{Parser, Subcommand};
-use kepler::scene::{file, report::BoundsReport};
+use clap::{Args, Parser, Subcommand};
+use kepler::geometry::{Point3, Vector3};
+use kepler::io::points::read_points;
+use kepler::queries::Counters;
+use kepler::queries::include::{IncludeIndex, Inclusion};
+use kepler::queries::visp::{Visibility, VisibilityIndex};
+use kepler::scene::{Scene, file, report::BoundsReport};
+use kepler::views::{View, ViewOptions};
+use std::fmt::Write as _;
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::time::{Duration, Instant};
 
 /// kepler: exact visibility for scenes of polyhedra.
 #[derive(Parser)]
@@ -25,6 +33,77 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// INCLUDE: print IN, OUT or ON for each point, in order (a summary goes to stderr).
+    Include {
+        /// A scene file (.toml) or a mesh file; every mesh must be closed.
+        scene: PathBuf,
+        /// The points: one `x y z` per line (commas or spaces; `#` comments and blank lines
+        /// allowed); `-` reads standard input.
+        #[arg(long)]
+        points: PathBuf,
+    },
+    /// VISP: print VISIBLE or HIDDEN for each point, in order (a summary goes to stderr).
+    Visp {
+        /// A scene file (.toml) or a mesh file.
+        scene: PathBuf,
+        /// The points: one `x y z` per line (commas or spaces; `#` comments and blank lines
+        /// allowed); `-` reads standard input.
+        #[arg(long)]
+        points: PathBuf,
+        #[command(flatten)]
+        view: ViewArgs,
+    },
+}
+
+/// The view options every command that takes a view accepts. Without them: the scene file's
+/// camera, else an isometric view along (-1,-1,-1) with z up.
+#[derive(Args)]
+struct ViewArgs {
+    /// Orthographic view along this direction (`0,0,-1` is Franklin's view from (0,0,+∞)).
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_triple, allow_hyphen_values = true)]
+    view_dir: Option<[f64; 3]>,
+    /// The direction that appears upward in the picture.
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_triple, allow_hyphen_values = true)]
+    up: Option<[f64; 3]>,
+    /// Perspective view from this eye point (with --target).
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_triple, allow_hyphen_values = true)]
+    eye: Option<[f64; 3]>,
+    /// The point a perspective view looks at (with --eye).
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_triple, allow_hyphen_values = true)]
+    target: Option<[f64; 3]>,
+    /// Vertical field of view of a perspective view, in degrees (default 40).
+    #[arg(long, value_name = "DEGREES", allow_hyphen_values = true)]
+    fov: Option<f64>,
+}
+
+impl ViewArgs {
+    /// The view over the scene's camera.
+    fn view(&self, scene: &Scene) -> kepler::Result<View> {
+        let options = ViewOptions {
+            view_dir: self.view_dir.map(Vector3::from),
+            up: self.up.map(Vector3::from),
+            eye: self.eye.map(Point3::from),
+            target: self.target.map(Point3::from),
+            fov: self.fov,
+        };
+        Ok(options.resolve(scene.camera())?)
+    }
+}
+
+/// Parses `x,y,z` into three finite numbers.
+fn parse_triple(text: &str) -> Result<[f64; 3], String> {
+    let fields: Vec<&str> = text.split(',').map(str::trim).collect();
+    if fields.len() != 3 {
+        return Err(format!("expected x,y,z (three numbers), got '{text}'"));
+    }
+    let mut out = [0.0; 3];
+    for (k, f) in fields.iter().enumerate() {
+        out[k] = match f.parse::<f64>() {
+            Ok(x) if x.is_finite() => x,
+            _ => return Err(format!("'{f}' is not a finite number")),
+        };
+    }
+    Ok(out)
 }
 
 fn run(cli: Cli) -> Result<()> {
@@ -39,8 +118,90 @@ fn run(cli: Cli) -> Result<()> {
             };
             emit(&text)?;
         }
+        Command::Include { scene, points } => {
+            let scene = file::load(&scene)?;
+            let points = read_points(&points)?;
+            let start = Instant::now();
+            let index = IncludeIndex::whole_scene(&scene)?;
+            let built = start.elapsed();
+            let start = Instant::now();
+            let (answers, counters) = index.include_all(&points);
+            let queried = start.elapsed();
+            emit(&lines(&answers))?;
+            let count = |a: Inclusion| answers.iter().filter(|&&x| x == a).count();
+            let tally = format!(
+                "{} IN, {} OUT, {} ON",
+                count(Inclusion::In),
+                count(Inclusion::Out),
+                count(Inclusion::On)
+            );
+            eprintln!("{}", summary("include", &tally, built, queried, &counters));
+        }
+        Command::Visp {
+            scene,
+            points,
+            view,
+        } => {
+            let scene = file::load(&scene)?;
+            let view = view.view(&scene)?;
+            let points = read_points(&points)?;
+            let start = Instant::now();
+            let index = VisibilityIndex::whole_scene(&scene, view);
+            let built = start.elapsed();
+            let start = Instant::now();
+            let (answers, counters) = index.visp_all(&points);
+            let queried = start.elapsed();
+            emit(&lines(&answers))?;
+            let count = |a: Visibility| answers.iter().filter(|&&x| x == a).count();
+            let tally = format!(
+                "{} VISIBLE, {} HIDDEN",
+                count(Visibility::Visible),
+                count(Visibility::Hidden)
+            );
+            eprintln!("{}", summary("visp", &tally, built, queried, &counters));
+        }
     }
     Ok(())
+}
+
+/// One answer per line.
+fn lines<T: std::fmt::Display>(answers: &[T]) -> String {
+    let mut text = String::with_capacity(answers.len() * 4);
+    for a in answers {
+        let _ = writeln!(text, "{a}");
+    }
+    text
+}
+
+/// The stderr summary: counts, speed, and what decided the answers.
+fn summary(
+    command: &str,
+    tally: &str,
+    built: Duration,
+    queried: Duration,
+    counters: &Counters,
+) -> String {
+    let n = counters.total();
+    let seconds = queried.as_secs_f64();
+    let rate = if seconds > 0.0 {
+        format!("{:.2} M points/s", n as f64 / seconds / 1e6)
+    } else {
+        "instant".to_owned()
+    };
+    let share = counters
+        .by_stage()
+        .iter()
+        .map(|(name, c)| {
+            let percent = if n > 0 { 100.0 * *c as f64 / n as f64 } else { 0.0 };
+            format!("{name} {c} ({percent:.1}%)")
+        })
+        .collect::<Vec<_>>()
+        .join(", ");
+    format!(
+        "kepler {command}: {n} points: {tally}; {seconds:.3} s ({rate}) after building the index \
+         in {:.3} s; decided by {share}",
+        built.as_secs_f64()
+    )
 }
 
 /// Writes to standard output; a reader that closed the pipe early (`| head`) is not an error.

@@ -1,4 +1,4 @@
-//! Mesh files: Wavefront OBJ, STL (ASCII and binary) and OFF.
+//! Mesh files: Wavefront OBJ, STL (ASCII and binary) and OFF; and point files ([`points`]).
 //!
 //! [`read_mesh`] picks the reader from the file's extension; [`obj::parse`], [`stl::parse`]
 //! and [`off::parse`] read text or bytes already in memory. Every reader keeps the input as it
@@ -22,6 +22,7 @@
 
 pub mod obj;
 pub mod off;
+pub mod points;
 pub mod stl;
 
 use crate::error::{Error, Result};

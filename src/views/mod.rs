@@ -49,6 +49,9 @@ pub enum ViewError {
     /// A coordinate is NaN or infinite.
     #[error("view coordinates must be finite numbers")]
     NotFinite,
+    /// View options that do not go together.
+    #[error("{0}")]
+    Options(&'static str),
 }
 
 /// Where the viewer is: a point (perspective) or a point at infinity (orthographic).
@@ -353,6 +356,93 @@ impl View {
                 self.up.dot(&p.coords),
                 -self.forward.dot(&p.coords),
             ),
+        }
+    }
+}
+
+/// The view options of the command line (`--view-dir`, `--up`, `--eye`, `--target`, `--fov`),
+/// resolved against a scene file's camera: options given replace the camera's, and without
+/// any the camera (or the default isometric view) is used.
+///
+/// `--view-dir` makes an orthographic view, `--eye` with `--target` a perspective one (field
+/// of view from `--fov`, else the camera's, else 40 degrees). When no `--up` is given and the
+/// camera's up vector is parallel to the view direction (looking straight down with z up),
+/// `y` is up instead.
+///
+/// ```
+/// use kepler::views::{ViewOptions, ViewError};
+/// use kepler::geometry::Vector3;
+/// let down = ViewOptions { view_dir: Some(Vector3::new(0.0, 0.0, -1.0)), ..Default::default() };
+/// assert_eq!(down.resolve(None).unwrap(), kepler::views::View::standard());
+/// let both = ViewOptions { view_dir: Some(Vector3::x()), eye: Some(Default::default()), ..Default::default() };
+/// assert!(matches!(both.resolve(None), Err(ViewError::Options(_))));
+/// ```
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ViewOptions {
+    /// The direction the camera looks along (orthographic).
+    pub view_dir: Option<Vector3>,
+    /// The direction that appears upward.
+    pub up: Option<Vector3>,
+    /// The eye point (perspective, with `target`).
+    pub eye: Option<Point3>,
+    /// The point looked at (perspective, with `eye`).
+    pub target: Option<Point3>,
+    /// The vertical field of view in degrees (perspective).
+    pub fov: Option<f64>,
+}
+
+impl ViewOptions {
+    /// The view these options describe over `camera` (a scene file's, if it has one).
+    ///
+    /// ```
+    /// use kepler::{scene::{Camera, Projection}, views::ViewOptions, geometry::Point3};
+    /// let camera = Camera { projection: Projection::Perspective { eye: [0.0, -9.0, 2.0], target: [0.0; 3], fov: 30.0 }, up: [0.0, 0.0, 1.0] };
+    /// let wider = ViewOptions { fov: Some(60.0), ..Default::default() };
+    /// let view = wider.resolve(Some(&camera)).unwrap();
+    /// assert_eq!(*view.eye(), kepler::views::Eye::Point(Point3::new(0.0, -9.0, 2.0)));
+    /// ```
+    pub fn resolve(&self, camera: Option<&Camera>) -> Result<View, ViewError> {
+        if self.view_dir.is_some() && (self.eye.is_some() || self.target.is_some()) {
+            return Err(ViewError::Options(
+                "--view-dir (orthographic) cannot be combined with --eye/--target (perspective)",
+            ));
+        }
+        if self.eye.is_some() != self.target.is_some() {
+            return Err(ViewError::Options("--eye and --target must be given together"));
+        }
+        let base = camera.copied().unwrap_or_default();
+        let base_fov = match base.projection {
+            Projection::Perspective { fov, .. } => Some(fov),
+            Projection::Orthographic { .. } => None,
+        };
+        let projection = match (self.view_dir, self.eye, self.target) {
+            (Some(d), _, _) => Projection::Orthographic { direction: d.into() },
+            (None, Some(eye), Some(target)) => Projection::Perspective {
+                eye: eye.into(),
+                target: target.into(),
+                fov: self.fov.or(base_fov).unwrap_or(40.0),
+            },
+            _ => match base.projection {
+                Projection::Perspective { eye, target, fov } => Projection::Perspective {
+                    eye,
+                    target,
+                    fov: self.fov.unwrap_or(fov),
+                },
+                orthographic => orthographic,
+            },
+        };
+        if self.fov.is_some() && matches!(projection, Projection::Orthographic { .. }) {
+            return Err(ViewError::Options(
+                "--fov applies to perspective views only (give --eye and --target)",
+            ));
+        }
+        let build = |up: [f64; 3]| View::from_camera(&Camera { projection, up });
+        match self.up {
+            Some(up) => build(up.into()),
+            None => match build(base.up) {
+                Err(ViewError::UpParallel) => build([0.0, 1.0, 0.0]),
+                other => other,
+            },
         }
     }
 }
