@@ -108,6 +108,37 @@ fn on_triangle(t: &[Point3; 3], p: &Point3) -> bool {
     })
 }
 
+/// Whether the vertical line through `p`, moved by the symbolic perturbation `(ε, ε²)` in x
+/// and y, passes through triangle `t` (through its interior: the perturbation keeps it off
+/// edges and vertices; a vertical triangle is never crossed). The parity of these crossings
+/// above a point is what [`classify_among`] counts.
+///
+/// ```
+/// use kepler::{mesh::crosses_column, geometry::Point3};
+/// let t = [Point3::new(0.0, 0.0, 0.0), Point3::new(2.0, 0.0, 1.0), Point3::new(0.0, 2.0, 5.0)];
+/// assert!(crosses_column(&t, 0.5, 0.5));
+/// assert!(!crosses_column(&t, 1.5, 1.5));
+/// // On the edge from (0,0) to (2,0): the perturbation moves the line to +y, inside.
+/// assert!(crosses_column(&t, 1.0, 0.0));
+/// ```
+pub fn crosses_column(t: &[Point3; 3], x: f64, y: f64) -> bool {
+    column_side(t, &Point3::new(x, y, 0.0)).is_some()
+}
+
+/// The turning sign of `t`'s projection when the perturbed vertical line through `p` passes
+/// through it, `None` when it does not.
+#[inline]
+fn column_side(t: &[Point3; 3], p: &Point3) -> Option<Ordering> {
+    let s0 = perturbed_side(&t[0], &t[1], p);
+    if s0 == Ordering::Equal
+        || perturbed_side(&t[1], &t[2], p) != s0
+        || perturbed_side(&t[2], &t[0], p) != s0
+    {
+        return None;
+    }
+    Some(s0)
+}
+
 /// The sign of `orient2d(a, b, p')` in the xy-plane for `p' = p + (ε, ε²)`.
 fn perturbed_side(a: &Point3, b: &Point3, p: &Point3) -> Ordering {
     match orient2d([a.x, a.y], [b.x, b.y], [p.x, p.y]) {
@@ -119,13 +150,9 @@ fn perturbed_side(a: &Point3, b: &Point3, p: &Point3) -> Ordering {
 /// Whether the upward vertical ray from the perturbed point crosses triangle `t` strictly
 /// above `p` (`p` is known not to lie on `t`).
 fn crosses_above(t: &[Point3; 3], p: &Point3) -> bool {
-    let s0 = perturbed_side(&t[0], &t[1], p);
-    if s0 == Ordering::Equal
-        || perturbed_side(&t[1], &t[2], p) != s0
-        || perturbed_side(&t[2], &t[0], p) != s0
-    {
+    let Some(s0) = column_side(t, p) else {
         return false;
-    }
+    };
     // The projection contains p' and turns with sign s0; p is below the plane when orient3d
     // (positive below a counter-clockwise-from-above triangle) has the same sign.
     orient3d(&t[0], &t[1], &t[2], p) == s0

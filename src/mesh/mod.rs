@@ -23,7 +23,9 @@ mod face;
 mod topology;
 mod tree;
 
-pub use containment::{Containment, classify_among, classify_point, classify_point_brute_force};
+pub use containment::{
+    Containment, classify_among, classify_point, classify_point_brute_force, crosses_column,
+};
 pub use face::{Face, Plane, TextureFrame};
 pub use topology::Topology;
 pub use tree::TriangleTree;
