@@ -323,3 +323,197 @@ fn a_reader_that_stops_early_is_not_an_error() {
     assert!(status.success(), "{status:?}: {err}");
     assert_eq!(err, "");
 }
+
+// ---------------------------------------------------------------------------------------------
+// `kepler include` and `kepler visp`.
+
+/// Runs a point query with `input` on standard input; it must succeed and write one summary
+/// line on stderr. Returns the answers.
+fn answers(args: &[&str], input: &str) -> Vec<String> {
+    use std::io::Write as _;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_kepler"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("the kepler binary runs");
+    let mut stdin = child.stdin.take().expect("a pipe");
+    stdin.write_all(input.as_bytes()).expect("input written");
+    drop(stdin);
+    let o = child.wait_with_output().expect("kepler finishes");
+    let err = stderr(&o);
+    assert!(o.status.success(), "kepler {args:?} failed: {err}");
+    assert_eq!(err.lines().count(), 1, "one summary line: {err}");
+    assert!(err.starts_with(&format!("kepler {}: ", args[0])), "{err}");
+    stdout(&o).lines().map(str::to_owned).collect()
+}
+
+/// The cube scene's cube has corners at ±0.5.
+const CUBE_POINTS: &str =
+    "0 0 0\n# on a face, an edge, a vertex\n0.5, 0, 0\n0.5 0.5 0\n\n0.5,0.5,0.5\n0 0 2\n";
+
+#[test]
+fn include_answers_in_order_with_a_summary() {
+    let got = answers(
+        &["include", "scenes/cube.toml", "--points", "-"],
+        CUBE_POINTS,
+    );
+    assert_eq!(got, ["IN", "ON", "ON", "ON", "OUT"]);
+}
+
+#[test]
+fn include_summary_counts_the_stages() {
+    let o = Command::new(env!("CARGO_BIN_EXE_kepler"))
+        .args([
+            "include",
+            "scenes/cube.toml",
+            "--points",
+            "tests/data/cube_points.txt",
+        ])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("runs");
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    assert_eq!(stdout(&o), "IN\nOUT\nON\n");
+    assert!(err.contains("3 points: 1 IN, 1 OUT, 1 ON"), "{err}");
+    assert!(
+        err.contains("INBOX 1 (33.3%), CBOX 1 (33.3%), TRIBOX 0 (0.0%), faces 1 (33.3%)"),
+        "{err}"
+    );
+}
+
+#[test]
+fn visp_in_the_standard_view() {
+    // From (0, 0, +inf): the centre is inside (hidden by the top face), the top face's points
+    // and a point on a side face's silhouette edge are visible, a point below is hidden.
+    let input = "0 0 0\n0.1 0.2 0.5\n0.5 0 0\n0 0 -3\n0 0 3\n";
+    let got = answers(
+        &[
+            "visp",
+            "scenes/cube.toml",
+            "--points",
+            "-",
+            "--view-dir",
+            "0,0,-1",
+        ],
+        input,
+    );
+    assert_eq!(got, ["HIDDEN", "VISIBLE", "VISIBLE", "HIDDEN", "VISIBLE"]);
+}
+
+#[test]
+fn visp_in_a_perspective_and_the_default_views() {
+    let input = "0.5 0.5 0.5\n-0.5 -0.5 -0.5\n0.2 0.2 5\n";
+    let perspective = [
+        "visp",
+        "scenes/cube.toml",
+        "--points",
+        "-",
+        "--eye",
+        "4,4,4",
+        "--target",
+        "0,0,0",
+        "--fov",
+        "30",
+    ];
+    assert_eq!(
+        answers(&perspective, input),
+        ["VISIBLE", "HIDDEN", "VISIBLE"]
+    );
+    // The default view looks along (-1,-1,-1): the same corners.
+    assert_eq!(
+        answers(&["visp", "scenes/cube.toml", "--points", "-"], input),
+        ["VISIBLE", "HIDDEN", "VISIBLE"]
+    );
+    // Looking the other way swaps the corners.
+    let reverse = [
+        "visp",
+        "scenes/cube.toml",
+        "--points",
+        "-",
+        "--view-dir",
+        "1,1,1",
+        "--up",
+        "0,0,1",
+    ];
+    assert_eq!(answers(&reverse, input), ["HIDDEN", "VISIBLE", "VISIBLE"]);
+}
+
+#[test]
+fn a_malformed_point_line_is_an_error_naming_the_line() {
+    let path = "tests/data/bad_points.txt";
+    assert_eq!(
+        fails(&["include", "scenes/cube.toml", "--points", path]),
+        format!("{path}:3: coordinate 'x' is not a number")
+    );
+    assert_eq!(
+        fails(&[
+            "visp",
+            "scenes/cube.toml",
+            "--points",
+            "tests/data/short_points.txt"
+        ]),
+        "tests/data/short_points.txt:2: expected 3 coordinates (x y z), found 2"
+    );
+    assert!(
+        fails(&["include", "scenes/cube.toml", "--points", "no/such.txt"])
+            .starts_with("no/such.txt: ")
+    );
+}
+
+#[test]
+fn include_on_an_open_mesh_is_an_error() {
+    let err = fails(&[
+        "include",
+        "scenes/meshes.toml",
+        "--points",
+        "tests/data/cube_points.txt",
+    ]);
+    assert!(err.contains("'tent'") && err.contains("open mesh"), "{err}");
+}
+
+#[test]
+fn conflicting_or_bad_view_options_are_errors() {
+    let base = [
+        "visp",
+        "scenes/cube.toml",
+        "--points",
+        "tests/data/cube_points.txt",
+    ];
+    let with = |extra: &[&str]| fails(&[&base[..], extra].concat());
+    assert!(
+        with(&[
+            "--view-dir",
+            "0,0,-1",
+            "--eye",
+            "1,1,1",
+            "--target",
+            "0,0,0"
+        ])
+        .contains("cannot be combined")
+    );
+    assert!(with(&["--eye", "1,1,1"]).contains("must be given together"));
+    assert!(with(&["--view-dir", "0,0,-1", "--fov", "30"]).contains("perspective views only"));
+    assert!(with(&["--view-dir", "0,0,0"]).contains("view direction is zero"));
+    assert!(with(&["--view-dir", "0,0,-1", "--up", "0,0,2"]).contains("parallel"));
+    assert!(
+        with(&["--eye", "1,1,1", "--target", "0,0,0", "--fov", "190"]).contains("field of view")
+    );
+}
+
+#[test]
+fn a_bad_view_vector_is_a_usage_error() {
+    let o = kepler(&[
+        "visp",
+        "scenes/cube.toml",
+        "--points",
+        "-",
+        "--view-dir",
+        "1,2",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("expected x,y,z"), "{}", stderr(&o));
+}
