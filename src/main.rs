@@ -192,7 +192,11 @@ fn summary(
         .by_stage()
         .iter()
         .map(|(name, c)| {
-            let percent = if n > 0 { 100.0 * *c as f64 / n as f64 } else { 0.0 };
+            let percent = if n > 0 {
+                100.0 * *c as f64 / n as f64
+            } else {
+                0.0
+            };
             format!("{name} {c} ({percent:.1}%)")
         })
         .collect::<Vec<_>>()

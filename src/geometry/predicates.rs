@@ -106,8 +106,9 @@ pub fn orient3d_at_infinity(a: &Point3, b: &Point3, c: &Point3, u: &Vector3) -> 
     let r2 = b - c;
     let value = r1.dot(&r2.cross(u));
     let (p, q, w) = (r1.map(f64::abs), r2.map(f64::abs), u.map(f64::abs));
-    let permanent =
-        p.x * (q.y * w.z + q.z * w.y) + p.y * (q.x * w.z + q.z * w.x) + p.z * (q.x * w.y + q.y * w.x);
+    let permanent = p.x * (q.y * w.z + q.z * w.y)
+        + p.y * (q.x * w.z + q.z * w.x)
+        + p.z * (q.x * w.y + q.y * w.x);
     let bound = 16.0 * (f64::EPSILON / 2.0) * permanent + f64::MIN_POSITIVE;
     if value > bound {
         return Ordering::Less;

@@ -171,9 +171,11 @@ impl<'s> IncludeIndex<'s> {
     /// assert_eq!(index.include(&Point3::new(0.0, 0.0, 0.5)), (Inclusion::In, Stage::Inbox));
     /// ```
     pub fn include(&self, p: &Point3) -> (Inclusion, Stage) {
-        union(self.objects.iter().map(|&id| {
-            descend(self.scene, id, p, &|leaf, _| self.grids[leaf].classify(p))
-        }))
+        union(
+            self.objects
+                .iter()
+                .map(|&id| descend(self.scene, id, p, &|leaf, _| self.grids[leaf].classify(p))),
+        )
     }
 
     /// INCLUDE of every point, in parallel, in the order given, with the counts of the stages
@@ -189,8 +191,7 @@ impl<'s> IncludeIndex<'s> {
     /// assert_eq!((c.inbox, c.cbox), (1, 1));
     /// ```
     pub fn include_all(&self, points: &[Point3]) -> (Vec<Inclusion>, Counters) {
-        let decided: Vec<(Inclusion, Stage)> =
-            points.par_iter().map(|p| self.include(p)).collect();
+        let decided: Vec<(Inclusion, Stage)> = points.par_iter().map(|p| self.include(p)).collect();
         let mut counters = Counters::default();
         let answers = decided
             .into_iter()
@@ -241,10 +242,11 @@ fn descend(
     p: &Point3,
     leaf: &impl Fn(ObjectId, &Mesh) -> Containment,
 ) -> (Inclusion, Stage) {
-    if let Some(inbox) = scene.inbox(id) {
-        if strictly_inside(&inbox.aabb, p) {
-            return (Inclusion::In, Stage::Inbox);
-        }
+    if scene
+        .inbox(id)
+        .is_some_and(|inbox| strictly_inside(&inbox.aabb, p))
+    {
+        return (Inclusion::In, Stage::Inbox);
     }
     if !scene.cbox(id).contains_point(p) {
         return (Inclusion::Out, Stage::Cbox);

@@ -123,8 +123,18 @@ impl ProjectionGrid {
                 }
             })
             .collect();
-        let lo = |k: usize| columns.iter().map(|c| c.min[k]).fold(f64::INFINITY, f64::min);
-        let hi = |k: usize| columns.iter().map(|c| c.max[k]).fold(f64::NEG_INFINITY, f64::max);
+        let lo = |k: usize| {
+            columns
+                .iter()
+                .map(|c| c.min[k])
+                .fold(f64::INFINITY, f64::min)
+        };
+        let hi = |k: usize| {
+            columns
+                .iter()
+                .map(|c| c.max[k])
+                .fold(f64::NEG_INFINITY, f64::max)
+        };
         let (origin, extent) = if columns.is_empty() {
             ([0.0; 2], [0.0; 2])
         } else {
@@ -184,7 +194,11 @@ impl ProjectionGrid {
         let mut inside = false;
         for (lo, hi, crosses) in blocks {
             if lo > top && (top == f64::NEG_INFINITY || centre.is_some()) {
-                gaps.push(Gap { lo: top, hi: lo, inside });
+                gaps.push(Gap {
+                    lo: top,
+                    hi: lo,
+                    inside,
+                });
             }
             top = top.max(hi);
             inside ^= crosses;

@@ -69,9 +69,12 @@ impl Sight {
     }
 
     /// The slab test of the box `[lo, hi]` for `t` in `[0, limit]` (closed) or `(0, limit)`
-    /// against the open box (`open`).
+    /// against the open box (`open`). A point at the eye has an empty line of sight.
     #[inline]
     fn slabs(&self, lo: [f64; 3], hi: [f64; 3], open: bool) -> bool {
+        if self.direction == Vector3::zeros() {
+            return false;
+        }
         let (mut enter, mut exit) = (0.0f64, self.limit);
         for k in 0..3 {
             let (p, d) = (self.origin[k], self.direction[k]);
@@ -99,7 +102,10 @@ fn max_abs(p: &Point3) -> f64 {
 }
 
 fn max_abs_box(b: &Aabb) -> f64 {
-    b.min.iter().chain(b.max.iter()).fold(0.0f64, |m, v| m.max(v.abs()))
+    b.min
+        .iter()
+        .chain(b.max.iter())
+        .fold(0.0f64, |m, v| m.max(v.abs()))
 }
 
 #[cfg(test)]
@@ -132,9 +138,19 @@ mod tests {
     }
 
     #[test]
+    fn a_point_at_the_eye_sees_everything() {
+        let e = Point3::new(0.5, 0.5, 0.5);
+        let s = Sight::to_eye(&e, &Eye::Point(e));
+        assert!(!s.may_meet(&unit()) && !s.surely_meets_open(&unit()));
+    }
+
+    #[test]
     fn tiny_and_huge_directions_do_not_overflow() {
         for scale in [1e-300, 1e300] {
-            let r = Sight::ray(&Point3::new(-1e10, 0.5, 0.5), &Vector3::new(scale, 0.0, 0.0));
+            let r = Sight::ray(
+                &Point3::new(-1e10, 0.5, 0.5),
+                &Vector3::new(scale, 0.0, 0.0),
+            );
             assert!(r.may_meet(&unit()) && r.surely_meets_open(&unit()));
         }
     }

@@ -108,10 +108,11 @@ fn descend(
     if !sight.may_meet(&scene.cbox(id)) {
         return (Visibility::Visible, Stage::Cbox);
     }
-    if let Some(inbox) = scene.inbox(id) {
-        if sight.surely_meets_open(&inbox.aabb) {
-            return (Visibility::Hidden, Stage::Inbox);
-        }
+    if scene
+        .inbox(id)
+        .is_some_and(|inbox| sight.surely_meets_open(&inbox.aabb))
+    {
+        return (Visibility::Hidden, Stage::Inbox);
     }
     match scene[id].content() {
         Content::Mesh(mesh) => {
@@ -427,7 +428,11 @@ fn compare_hits(ray: &Ray, a: &[Point3; 3], b: &[Point3; 3]) -> Ordering {
     product_terms(&nb, &negated, &mut terms);
     let sign = sum_sign(&terms);
     let denominator_sign = sum_sign(&da) as i8 * sum_sign(&db) as i8;
-    if denominator_sign < 0 { sign.reverse() } else { sign }
+    if denominator_sign < 0 {
+        sign.reverse()
+    } else {
+        sign
+    }
 }
 
 /// The hit point `o + t·u`, with `t` from the correctly rounded numerator and denominator.

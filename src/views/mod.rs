@@ -220,7 +220,12 @@ impl View {
     /// let e = View::perspective(Point3::origin(), Point3::new(1.0, 0.0, 0.0), Vector3::z(), 180.0);
     /// assert_eq!(e.unwrap_err(), ViewError::FieldOfView(180.0));
     /// ```
-    pub fn perspective(eye: Point3, target: Point3, up: Vector3, fov: f64) -> Result<View, ViewError> {
+    pub fn perspective(
+        eye: Point3,
+        target: Point3,
+        up: Vector3,
+        fov: f64,
+    ) -> Result<View, ViewError> {
         let coordinates = eye.iter().chain(target.iter()).chain(up.iter());
         if !coordinates.chain([fov].iter()).all(|c| c.is_finite()) {
             return Err(ViewError::NotFinite);
@@ -408,7 +413,9 @@ impl ViewOptions {
             ));
         }
         if self.eye.is_some() != self.target.is_some() {
-            return Err(ViewError::Options("--eye and --target must be given together"));
+            return Err(ViewError::Options(
+                "--eye and --target must be given together",
+            ));
         }
         let base = camera.copied().unwrap_or_default();
         let base_fov = match base.projection {
@@ -416,7 +423,9 @@ impl ViewOptions {
             Projection::Orthographic { .. } => None,
         };
         let projection = match (self.view_dir, self.eye, self.target) {
-            (Some(d), _, _) => Projection::Orthographic { direction: d.into() },
+            (Some(d), _, _) => Projection::Orthographic {
+                direction: d.into(),
+            },
             (None, Some(eye), Some(target)) => Projection::Perspective {
                 eye: eye.into(),
                 target: target.into(),
@@ -451,7 +460,8 @@ impl ViewOptions {
 /// vector must not be parallel to the direction (decided exactly).
 fn frame(direction: &Vector3, up: &Vector3) -> Result<(Vector3, Vector3, Vector3), ViewError> {
     let origin = Point3::origin();
-    if *up == Vector3::zeros() || collinear(&origin, &Point3::from(*direction), &Point3::from(*up)) {
+    if *up == Vector3::zeros() || collinear(&origin, &Point3::from(*direction), &Point3::from(*up))
+    {
         return Err(ViewError::UpParallel);
     }
     let forward = direction.normalize();
