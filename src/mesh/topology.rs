@@ -20,6 +20,10 @@ pub struct Topology {
     pub boundary_edges: usize,
     /// Edges used by more than two faces.
     pub nonmanifold_edges: usize,
+    /// Edges used by an odd number of faces (boundary edges included). With none, every
+    /// vertical ray crosses the faces an even number of times, so the mesh has an inside for
+    /// ray parity even where solids touch along an edge (four faces on it).
+    pub odd_edges: usize,
     /// Edges traversed twice in the same direction by two faces.
     pub misoriented_edges: usize,
     /// Every edge is shared by exactly two faces.
@@ -52,6 +56,7 @@ impl Topology {
             edges: 0,
             boundary_edges: 0,
             nonmanifold_edges: 0,
+            odd_edges: 0,
             misoriented_edges: 0,
             closed: false,
             consistently_oriented: false,
@@ -63,6 +68,9 @@ impl Topology {
                 1 => t.boundary_edges += 1,
                 2 => {}
                 _ => t.nonmanifold_edges += 1,
+            }
+            if group.len() % 2 == 1 {
+                t.odd_edges += 1;
             }
             if forward > 1 || group.len() - forward > 1 {
                 t.misoriented_edges += 1;

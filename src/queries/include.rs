@@ -8,7 +8,9 @@
 //! 4. Subobjects: IN if P is in any of them; else ON if it is on any; else OUT.
 //!
 //! So IN means inside some object, ON on the surface of some object and inside none. Only
-//! closed meshes have an inside: INCLUDE on an open one is an error that names it.
+//! closed meshes have an inside: INCLUDE on an open one is an error that names it. Closed here
+//! means every edge is shared by an even number of faces, so solids that touch along an edge
+//! (voxel models: four faces on the edge) are accepted; parity needs nothing more.
 //!
 //! [`include`] answers one point with no preprocessing (a leaf tests all its triangles, time
 //! linear in the faces, as in the paper); [`IncludeIndex`] builds each mesh's
@@ -220,13 +222,13 @@ fn check_closed(scene: &Scene, id: ObjectId) -> Result<()> {
     for o in subtree(scene, id) {
         if let Some(mesh) = scene[o].mesh() {
             let topology = mesh.topology();
-            if !topology.closed {
+            if topology.odd_edges > 0 {
                 return Err(Error::Object {
                     object: scene.path(o),
                     message: format!(
-                        "is an open mesh ({} boundary edges) and has no inside: INCLUDE needs \
-                         closed meshes",
-                        topology.boundary_edges
+                        "is an open mesh ({} boundary edges, {} edges on an odd number of \
+                         faces) and has no inside: INCLUDE needs closed meshes",
+                        topology.boundary_edges, topology.odd_edges
                     ),
                 });
             }
