@@ -658,31 +658,34 @@ fn random_voxels(rng: &mut Rng, n: i32, fill: f64, manifold: bool) -> Vec<[i32; 
     if filled.is_empty() {
         filled.insert([0, 0, 0]);
     }
-    while manifold {
-        let mut added = None;
-        'search: for a in &filled {
-            for i in 0..3 {
-                for j in i + 1..3 {
-                    for (di, dj) in [(1, 1), (1, -1)] {
-                        let mut b = *a;
-                        b[i] += di;
-                        b[j] += dj;
-                        let (mut n1, mut n2) = (*a, *a);
-                        n1[i] += di;
-                        n2[j] += dj;
-                        if filled.contains(&b) && !filled.contains(&n1) && !filled.contains(&n2) {
-                            added = Some(if rng.unit() < 0.5 { n1 } else { n2 });
-                            break 'search;
+    if manifold {
+        loop {
+            let mut added = None;
+            'search: for a in &filled {
+                for i in 0..3 {
+                    for j in i + 1..3 {
+                        for (di, dj) in [(1, 1), (1, -1)] {
+                            let mut b = *a;
+                            b[i] += di;
+                            b[j] += dj;
+                            let (mut n1, mut n2) = (*a, *a);
+                            n1[i] += di;
+                            n2[j] += dj;
+                            if filled.contains(&b) && !filled.contains(&n1) && !filled.contains(&n2)
+                            {
+                                added = Some(if rng.unit() < 0.5 { n1 } else { n2 });
+                                break 'search;
+                            }
                         }
                     }
                 }
             }
-        }
-        match added {
-            Some(c) => {
-                filled.insert(c);
+            match added {
+                Some(c) => {
+                    filled.insert(c);
+                }
+                None => break,
             }
-            None => break,
         }
     }
     let mut cells: Vec<[i32; 3]> = filled.into_iter().collect();

@@ -96,6 +96,19 @@ pub fn expansion(terms: &[f64]) -> Vec<f64> {
     buf
 }
 
+/// The power of two `2^-e` with `2^e <= x < 2^(e+1)` for a positive finite `x`: multiplying
+/// by it is exact (barring underflow of other, much smaller values) and brings `x` into
+/// `[1, 2)`, so a direction can be rescaled without changing it.
+///
+/// ```
+/// use kepler::geometry::exact::power_of_two_scaling;
+/// assert_eq!(power_of_two_scaling(12.0), 0.125);
+/// assert_eq!(power_of_two_scaling(1e-300) * 1e-300 >= 1.0, true);
+/// ```
+pub fn power_of_two_scaling(x: f64) -> f64 {
+    2f64.powi(-(x.log2().floor() as i32))
+}
+
 /// The smallest double that is at least the exact sum `a + b`.
 ///
 /// ```

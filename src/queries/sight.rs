@@ -10,6 +10,7 @@
 //! of an orthographic eye is scaled by a power of two (exactly) so the parameters cannot
 //! overflow; the direction to a perspective eye is rounded once, an error of the same order.
 
+use crate::geometry::exact::power_of_two_scaling;
 use crate::geometry::{Aabb, Point3, Vector3};
 use crate::views::Eye;
 
@@ -20,6 +21,8 @@ const MARGIN: f64 = 1.0 / (1u64 << 40) as f64;
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Sight {
     origin: Point3,
+    /// A perspective eye (`None` for an eye at infinity or a plain ray).
+    eye: Option<Point3>,
     direction: Vector3,
     limit: f64,
     /// The largest coordinate magnitude of the origin and a perspective eye.
@@ -32,6 +35,7 @@ impl Sight {
         match eye {
             Eye::Point(e) => Sight {
                 origin: *p,
+                eye: Some(*e),
                 direction: e - p,
                 limit: 1.0,
                 scale: max_abs(p).max(max_abs(e)),
@@ -42,15 +46,22 @@ impl Sight {
 
     /// The ray from `p` along `u` (which must not be zero).
     pub(crate) fn ray(p: &Point3, u: &Vector3) -> Sight {
-        let largest = u.amax();
-        // 2^-e for 2^e <= largest < 2^(e+1): exact scaling, sign of every component kept.
-        let scaling = 2f64.powi(-(largest.log2().floor() as i32));
+        let scaling = power_of_two_scaling(u.amax());
         Sight {
             origin: *p,
+            eye: None,
             direction: u * scaling,
             limit: f64::INFINITY,
             scale: max_abs(p),
         }
+    }
+
+    /// Whether the eye is outside the closed box `b` (an eye at infinity always is), decided
+    /// exactly. Only then does a line of sight through an INBOX inside `b` prove the point
+    /// hidden: from an eye inside a solid, points inside it are in plain view.
+    #[inline]
+    pub(crate) fn eye_outside(&self, b: &Aabb) -> bool {
+        self.eye.is_none_or(|e| !b.contains_point(&e))
     }
 
     /// Whether the sight may meet the closed box `b`; never false when it does.

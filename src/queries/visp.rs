@@ -3,7 +3,9 @@
 //!
 //! The paper's steps, for any [`View`]:
 //! 1. The line of sight from P to the eye misses CBOX(A): VISIBLE.
-//! 2. It passes through the interior of INBOX(A): HIDDEN.
+//! 2. It passes through the interior of INBOX(A), and the eye is outside CBOX(A): HIDDEN. (A
+//!    line of sight into the solid must then leave it through a face between the point and
+//!    the eye; from an eye inside the solid, points inside it are in plain view.)
 //! 3. A face of A hides P: HIDDEN. A face hides P when P lies strictly behind its plane (the
 //!    plane separates P from the eye) and the line of sight passes through the face. A face
 //!    seen edge-on hides nothing, and a point on a face (or on its plane) is not hidden by it,
@@ -105,12 +107,14 @@ fn descend(
     sight: &Sight,
     leaf: &impl Fn(ObjectId, &Mesh) -> bool,
 ) -> (Visibility, Stage) {
-    if !sight.may_meet(&scene.cbox(id)) {
+    let cbox = scene.cbox(id);
+    if !sight.may_meet(&cbox) {
         return (Visibility::Visible, Stage::Cbox);
     }
-    if scene
-        .inbox(id)
-        .is_some_and(|inbox| sight.surely_meets_open(&inbox.aabb))
+    if sight.eye_outside(&cbox)
+        && scene
+            .inbox(id)
+            .is_some_and(|inbox| sight.surely_meets_open(&inbox.aabb))
     {
         return (Visibility::Hidden, Stage::Inbox);
     }

@@ -16,6 +16,7 @@
 //! assert_eq!(view.to_view(&Point3::new(1.0, 2.0, 3.0)), Point3::new(1.0, 2.0, 3.0));
 //! ```
 
+use crate::geometry::exact::power_of_two_scaling;
 use crate::geometry::predicates::{
     orient2d, orient2d_at_infinity, orient3d, orient3d_at_infinity, project,
 };
@@ -70,7 +71,8 @@ pub enum Eye {
     /// The eye point of a perspective view.
     Point(Point3),
     /// The eye of an orthographic view: at infinity in this direction (from the scene towards
-    /// the viewer, the opposite of the view direction), kept exactly as given.
+    /// the viewer, the opposite of the view direction; [`View::orthographic`] scales it by a
+    /// power of two, exactly, so that its largest component lies in `[1, 2)`).
     Infinity(Vector3),
 }
 
@@ -202,8 +204,11 @@ impl View {
             return Err(ViewError::ZeroDirection);
         }
         let (forward, right, up) = frame(&direction, &up)?;
+        // Scaled by a power of two (exactly) so that the predicates' products stay in range
+        // for tiny or huge directions.
+        let scaling = power_of_two_scaling(direction.amax());
         Ok(View {
-            eye: Eye::Infinity(-direction),
+            eye: Eye::Infinity(-direction * scaling),
             forward,
             right,
             up,
