@@ -20,6 +20,9 @@
 use std::collections::HashSet;
 use std::path::Path;
 
+mod common;
+use common::Rng;
+
 use kepler::geometry::{Point3, Vector3};
 use kepler::mesh::Mesh;
 use kepler::queries::include::{IncludeIndex, Inclusion, include};
@@ -568,32 +571,6 @@ fn reference_agrees_with_hand_answers_on_a_unit_cube() {
 // ---------------------------------------------------------------------------------------------
 // Shapes and points.
 
-/// SplitMix64: a small deterministic generator, so failures reproduce.
-struct Rng(u64);
-
-impl Rng {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in [0, 1).
-    fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-
-    fn below(&mut self, n: u64) -> u64 {
-        self.next_u64() % n
-    }
-}
-
 /// A closed mesh of unit cubes at the given integer cells: each face of a cube whose
 /// neighbouring cell is empty, as a quad (outward, or inward when `inside_out`). Closed when
 /// no two cubes meet along an edge only (see [`random_voxels`]).
@@ -724,7 +701,7 @@ fn budget(count: usize) -> usize {
 /// `count` random points of `points` (see [`budget`]).
 fn sample(rng: &mut Rng, points: &[Point3], count: usize) -> Vec<Point3> {
     (0..budget(count))
-        .map(|_| points[rng.below(points.len() as u64) as usize])
+        .map(|_| points[rng.below(points.len())])
         .collect()
 }
 
@@ -947,7 +924,7 @@ fn random_lattice_polyhedra_agree_with_the_reference() {
             .vertices()
             .iter()
             .map(|v| {
-                let r = [0.75, 1.0, 1.25, 1.5][rng.below(4) as usize];
+                let r = [0.75, 1.0, 1.25, 1.5][rng.below(4)];
                 (v * r).map(|x| (x * 4.0).round() / 4.0)
             })
             .collect();

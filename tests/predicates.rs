@@ -6,24 +6,12 @@ use kepler::geometry::predicates::{orient2d, orient3d, orient3d_at_infinity};
 use kepler::geometry::predicates::{orient2d_at_infinity, project};
 use kepler::geometry::{Point3, Vector3};
 use kepler::views::Eye;
-use num_rational::BigRational;
 use num_traits::Signed;
 use proptest::prelude::*;
 use std::cmp::Ordering;
 
-type Q = BigRational;
-
-fn q(x: f64) -> Q {
-    BigRational::from_float(x).expect("finite")
-}
-
-fn qv(p: [f64; 3]) -> [Q; 3] {
-    p.map(q)
-}
-
-fn sub(a: &[Q; 3], b: &[Q; 3]) -> [Q; 3] {
-    [&a[0] - &b[0], &a[1] - &b[1], &a[2] - &b[2]]
-}
+mod common;
+use common::{Q, q, qsub, qv};
 
 /// det[r; s; t] with the three vectors as rows.
 fn det3(r: &[Q; 3], s: &[Q; 3], t: &[Q; 3]) -> Q {
@@ -48,13 +36,13 @@ fn arr(p: &Point3) -> [f64; 3] {
 /// The definition: the sign of -det[a - c, b - c, u].
 fn reference_3d(a: [f64; 3], b: [f64; 3], c: [f64; 3], u: [f64; 3]) -> Ordering {
     let (a, b, c, u) = (qv(a), qv(b), qv(c), qv(u));
-    sign(&-det3(&sub(&a, &c), &sub(&b, &c), &u))
+    sign(&-det3(&qsub(&a, &c), &qsub(&b, &c), &u))
 }
 
 /// Shewchuk's orient3d: the sign of det[a - d, b - d, c - d].
 fn reference_orient3d(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> Ordering {
     let (a, b, c, d) = (qv(a), qv(b), qv(c), qv(d));
-    sign(&det3(&sub(&a, &d), &sub(&b, &d), &sub(&c, &d)))
+    sign(&det3(&qsub(&a, &d), &qsub(&b, &d), &qsub(&c, &d)))
 }
 
 /// The definition: the sign of -det[a - b, u].
@@ -306,7 +294,7 @@ proptest! {
         let lambda = 2f64.powi(40);
         let d: [f64; 3] = std::array::from_fn(|k| c[k] + lambda * u[k]);
         let (qa, qb, qc, qu) = (qv(a), qv(b), qv(c), qv(u));
-        let det = det3(&sub(&qa, &qc), &sub(&qb, &qc), &qu);
+        let det = det3(&qsub(&qa, &qc), &qsub(&qb, &qc), &qu);
         let norm = |v: &[f64; 3]| v.iter().map(|x| x.abs()).sum::<f64>();
         let size = norm(&std::array::from_fn(|k| a[k] - c[k]))
             * norm(&std::array::from_fn(|k| b[k] - c[k])) * norm(&u);
@@ -691,11 +679,13 @@ fn perturbed_orient3d_antisymmetric_on_floats() {
             let exact = match eye {
                 Eye::Point(e) => {
                     let qe = qv(arr(&e));
-                    sign(&det3(&sub(&qp, &qe), &sub(&qa, &qe), &sub(&qb, &qe)))
+                    sign(&det3(&qsub(&qp, &qe), &qsub(&qa, &qe), &qsub(&qb, &qe)))
                 }
-                Eye::Infinity(u) => {
-                    sign(&-det3(&sub(&qp, &qb), &sub(&qa, &qb), &qv([u.x, u.y, u.z])))
-                }
+                Eye::Infinity(u) => sign(&-det3(
+                    &qsub(&qp, &qb),
+                    &qsub(&qa, &qb),
+                    &qv([u.x, u.y, u.z]),
+                )),
             };
             if !exact.is_eq() {
                 assert_eq!(s, exact);

@@ -12,9 +12,11 @@ use kepler::scene::{ObjectId, Scene};
 use kepler::solids;
 use kepler::views::{Eye, View};
 use nalgebra::{Matrix4, Rotation3, Unit};
-use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 use std::cmp::Ordering;
+
+mod common;
+use common::{Q, Rng, q, qcross, qdot, qsign, qsub, qv};
 
 use Visibility::{Hidden, Visible};
 
@@ -100,42 +102,6 @@ fn above() -> View {
 
 // ---------------------------------------------------------------------------------------------
 // An independent exact reference.
-
-type Q = BigRational;
-
-fn q(x: f64) -> Q {
-    BigRational::from_float(x).expect("finite")
-}
-
-fn qv(p: [f64; 3]) -> [Q; 3] {
-    p.map(q)
-}
-
-fn qsub(a: &[Q; 3], b: &[Q; 3]) -> [Q; 3] {
-    [&a[0] - &b[0], &a[1] - &b[1], &a[2] - &b[2]]
-}
-
-fn qdot(a: &[Q; 3], b: &[Q; 3]) -> Q {
-    &a[0] * &b[0] + &a[1] * &b[1] + &a[2] * &b[2]
-}
-
-fn qcross(a: &[Q; 3], b: &[Q; 3]) -> [Q; 3] {
-    [
-        &a[1] * &b[2] - &a[2] * &b[1],
-        &a[2] * &b[0] - &a[0] * &b[2],
-        &a[0] * &b[1] - &a[1] * &b[0],
-    ]
-}
-
-fn qsign(x: &Q) -> Ordering {
-    if x.is_positive() {
-        Ordering::Greater
-    } else if x.is_negative() {
-        Ordering::Less
-    } else {
-        Ordering::Equal
-    }
-}
 
 fn arr(p: &Point3) -> [f64; 3] {
     [p.x, p.y, p.z]
@@ -938,46 +904,6 @@ fn lattice_l_prism(at: [f64; 3]) -> Mesh {
         vec![],
     );
     translated(solids::prism(&l, 2.0).unwrap(), at)
-}
-
-// ---------------------------------------------------------------------------------------------
-// A small deterministic generator.
-
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        // SplitMix64.
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-
-    fn unit(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n as u64) as usize
-    }
-
-    fn int(&mut self, lo: i32, hi: i32) -> f64 {
-        f64::from(lo + self.below((hi - lo + 1) as usize) as i32)
-    }
-
-    fn vector(&mut self, r: f64) -> Vector3 {
-        Vector3::new(self.range(-r, r), self.range(-r, r), self.range(-r, r))
-    }
-
-    fn pick<T: Copy>(&mut self, items: &[T]) -> T {
-        items[self.below(items.len())]
-    }
 }
 
 /// A random mesh (a solid of several kinds) turned, scaled and moved at random.

@@ -28,7 +28,7 @@
 //! ```
 
 use super::projection_grid::ProjectionGrid;
-use super::{Counters, Stage};
+use super::{Counters, Stage, in_parallel};
 use crate::error::{Error, Result};
 use crate::geometry::{Aabb, Point3};
 use crate::mesh::{Containment, Mesh, classify_point_brute_force};
@@ -193,16 +193,7 @@ impl<'s> IncludeIndex<'s> {
     /// assert_eq!((c.inbox, c.cbox), (1, 1));
     /// ```
     pub fn include_all(&self, points: &[Point3]) -> (Vec<Inclusion>, Counters) {
-        let decided: Vec<(Inclusion, Stage)> = points.par_iter().map(|p| self.include(p)).collect();
-        let mut counters = Counters::default();
-        let answers = decided
-            .into_iter()
-            .map(|(answer, stage)| {
-                counters.record(stage);
-                answer
-            })
-            .collect();
-        (answers, counters)
+        in_parallel(points, |p| self.include(p))
     }
 }
 

@@ -21,6 +21,8 @@ pub mod projection_grid;
 mod sight;
 pub mod visp;
 
+use crate::geometry::Point3;
+use rayon::prelude::*;
 use serde::Serialize;
 
 /// What decided a query's answer, from the cheapest to the dearest.
@@ -135,4 +137,21 @@ impl Counters {
             (Stage::Faces.name(), self.faces),
         ]
     }
+}
+
+/// Answers every point with `query`, in parallel, in the order given, and counts the stages.
+fn in_parallel<T: Send>(
+    points: &[Point3],
+    query: impl Fn(&Point3) -> (T, Stage) + Sync,
+) -> (Vec<T>, Counters) {
+    let decided: Vec<(T, Stage)> = points.par_iter().map(&query).collect();
+    let mut counters = Counters::default();
+    let answers = decided
+        .into_iter()
+        .map(|(answer, stage)| {
+            counters.record(stage);
+            answer
+        })
+        .collect();
+    (answers, counters)
 }

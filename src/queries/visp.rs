@@ -29,7 +29,7 @@
 
 use super::include::subtree;
 use super::sight::Sight;
-use super::{Counters, Stage};
+use super::{Counters, Stage, in_parallel};
 use crate::geometry::exact::{accurate_sum, expansion, product_terms, sum_sign, two_sum};
 use crate::geometry::predicates::{orient3d, orient3d_at_infinity};
 use crate::geometry::{Point3, Vector3};
@@ -302,16 +302,7 @@ impl<'s> VisibilityIndex<'s> {
     /// assert_eq!((c.inbox, c.cbox), (1, 1));
     /// ```
     pub fn visp_all(&self, points: &[Point3]) -> (Vec<Visibility>, Counters) {
-        let decided: Vec<(Visibility, Stage)> = points.par_iter().map(|p| self.visp(p)).collect();
-        let mut counters = Counters::default();
-        let answers = decided
-            .into_iter()
-            .map(|(answer, stage)| {
-                counters.record(stage);
-                answer
-            })
-            .collect();
-        (answers, counters)
+        in_parallel(points, |p| self.visp(p))
     }
 
     /// The first face the ray meets (its closed triangles, so an edge or a vertex counts),
