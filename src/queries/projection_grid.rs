@@ -182,7 +182,10 @@ impl ProjectionGrid {
             .iter()
             .map(|t| {
                 let column = &self.columns[t.triangle as usize];
-                let crosses = centre.is_some_and(|[x, y]| crosses_column(&column.corners, x, y));
+                let crosses = centre.is_some_and(|[x, y]| {
+                    let within = |k: usize, v: f64| column.min[k] <= v && v <= column.max[k];
+                    within(0, x) && within(1, y) && crosses_column(&column.corners, x, y)
+                });
                 (column.min[2], column.max[2], crosses)
             })
             .collect();
