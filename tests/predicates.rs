@@ -11,22 +11,12 @@ use proptest::prelude::*;
 use std::cmp::Ordering;
 
 mod common;
-use common::{Q, q, qsub, qv};
+use common::{Q, q, qsign, qsub, qv};
 
 /// det[r; s; t] with the three vectors as rows.
 fn det3(r: &[Q; 3], s: &[Q; 3], t: &[Q; 3]) -> Q {
     &r[0] * (&s[1] * &t[2] - &s[2] * &t[1]) - &r[1] * (&s[0] * &t[2] - &s[2] * &t[0])
         + &r[2] * (&s[0] * &t[1] - &s[1] * &t[0])
-}
-
-fn sign(x: &Q) -> Ordering {
-    if x.is_positive() {
-        Ordering::Greater
-    } else if x.is_negative() {
-        Ordering::Less
-    } else {
-        Ordering::Equal
-    }
 }
 
 fn arr(p: &Point3) -> [f64; 3] {
@@ -36,19 +26,19 @@ fn arr(p: &Point3) -> [f64; 3] {
 /// The definition: the sign of -det[a - c, b - c, u].
 fn reference_3d(a: [f64; 3], b: [f64; 3], c: [f64; 3], u: [f64; 3]) -> Ordering {
     let (a, b, c, u) = (qv(a), qv(b), qv(c), qv(u));
-    sign(&-det3(&qsub(&a, &c), &qsub(&b, &c), &u))
+    qsign(&-det3(&qsub(&a, &c), &qsub(&b, &c), &u))
 }
 
 /// Shewchuk's orient3d: the sign of det[a - d, b - d, c - d].
 fn reference_orient3d(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> Ordering {
     let (a, b, c, d) = (qv(a), qv(b), qv(c), qv(d));
-    sign(&det3(&qsub(&a, &d), &qsub(&b, &d), &qsub(&c, &d)))
+    qsign(&det3(&qsub(&a, &d), &qsub(&b, &d), &qsub(&c, &d)))
 }
 
 /// The definition: the sign of -det[a - b, u].
 fn reference_2d(a: [f64; 2], b: [f64; 2], u: [f64; 2]) -> Ordering {
     let (dx, dy) = (q(a[0]) - q(b[0]), q(a[1]) - q(b[1]));
-    sign(&-(dx * q(u[1]) - dy * q(u[0])))
+    qsign(&-(dx * q(u[1]) - dy * q(u[0])))
 }
 
 fn p3(v: [f64; 3]) -> Point3 {
@@ -679,9 +669,9 @@ fn perturbed_orient3d_antisymmetric_on_floats() {
             let exact = match eye {
                 Eye::Point(e) => {
                     let qe = qv(arr(&e));
-                    sign(&det3(&qsub(&qp, &qe), &qsub(&qa, &qe), &qsub(&qb, &qe)))
+                    qsign(&det3(&qsub(&qp, &qe), &qsub(&qa, &qe), &qsub(&qb, &qe)))
                 }
-                Eye::Infinity(u) => sign(&-det3(
+                Eye::Infinity(u) => qsign(&-det3(
                     &qsub(&qp, &qb),
                     &qsub(&qa, &qb),
                     &qv([u.x, u.y, u.z]),
