@@ -8,6 +8,7 @@
 //!
 //! Modules, with dependencies pointing one way (each uses only those above it):
 //! - [`geometry`]: points, exact predicates and exact sums, polygons.
+//! - [`grid`]: Franklin's uniform grid: every intersecting pair of segments in the plane.
 //! - [`mesh`]: validated polygon meshes (faces, planes, texture coordinate systems, topology).
 //! - [`io`]: mesh files (OBJ, STL, OFF).
 //! - [`solids`]: built-in closed solids (box, Platonic, Archimedean, prism, sphere, torus, cylinder).
@@ -26,6 +27,7 @@
 pub mod bounds;
 pub mod error;
 pub mod geometry;
+pub mod grid;
 pub mod io;
 pub mod mesh;
 pub mod queries;

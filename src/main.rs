@@ -2,8 +2,10 @@
 
 use anyhow::Result;
 use clap::{Args, Parser, Subcommand};
+use geo::Line;
 use kepler::geometry::{Point3, Vector3};
-use kepler::io::points::read_points;
+use kepler::grid::{intersecting_pairs, random_segments};
+use kepler::io::points::{read_points, read_segments};
 use kepler::queries::Counters;
 use kepler::queries::include::{IncludeIndex, Inclusion};
 use kepler::queries::visp::{Visibility, VisibilityIndex};
@@ -41,6 +43,26 @@ enum Command {
         /// allowed); `-` reads standard input.
         #[arg(long)]
         points: PathBuf,
+    },
+    /// Franklin's uniform-grid segment intersection: print N, the number K of intersecting
+    /// pairs, and the seconds taken (grid and pairs, not reading or generating).
+    Segx {
+        /// Generate this many random segments in the unit square (Franklin's experiment).
+        #[arg(long, conflicts_with = "input", required_unless_present = "input")]
+        n: Option<usize>,
+        /// The length of the random segments (at most 1).
+        #[arg(long, default_value_t = 0.01)]
+        len: f64,
+        /// The seed of the random segments.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Read the segments instead: one `x1 y1 x2 y2` per line; `-` reads standard input.
+        #[arg(long)]
+        input: Option<PathBuf>,
+        /// List each intersecting pair `i j` (line numbers of the input, or 1-based indices of
+        /// the random segments) on standard output; the summary then goes to standard error.
+        #[arg(long)]
+        pairs: bool,
     },
     /// VISP: print VISIBLE or HIDDEN for each point, in order (a summary goes to stderr).
     Visp {
@@ -136,6 +158,42 @@ fn run(cli: Cli) -> Result<()> {
                 count(Inclusion::On)
             );
             eprintln!("{}", summary("include", &tally, built, queried, &counters));
+        }
+        Command::Segx {
+            n,
+            len,
+            seed,
+            input,
+            pairs,
+        } => {
+            let (lines, segments): (Vec<usize>, Vec<Line<f64>>) = match (input, n) {
+                (Some(path), _) => read_segments(&path)?.into_iter().unzip(),
+                (None, Some(n)) => {
+                    if !(0.0..=1.0).contains(&len) {
+                        anyhow::bail!("--len must be between 0 and 1, not {len}");
+                    }
+                    ((1..=n).collect(), random_segments(n, len, seed))
+                }
+                (None, None) => anyhow::bail!("give --n N or --input FILE"),
+            };
+            let start = Instant::now();
+            let found = intersecting_pairs(&segments);
+            let seconds = start.elapsed().as_secs_f64();
+            let summary = format!(
+                "N {} K {} seconds {seconds:.6}",
+                segments.len(),
+                found.len()
+            );
+            if pairs {
+                let mut text = String::with_capacity(found.len() * 12);
+                for (i, j) in &found {
+                    let _ = writeln!(text, "{} {}", lines[*i], lines[*j]);
+                }
+                emit(&text)?;
+                eprintln!("{summary}");
+            } else {
+                emit(&(summary + "\n"))?;
+            }
         }
         Command::Visp {
             scene,

@@ -1,5 +1,5 @@
 //! Point files for the point queries: one point per line, `x y z`, the coordinates separated
-//! by commas or by white space.
+//! by commas or by white space; and segment files, `x1 y1 x2 y2` per line, the same way.
 //!
 //! Blank lines and `#` comments are allowed and produce no point (so answers correspond to the
 //! points in order, not to line numbers). Any other line must hold exactly three finite
@@ -19,6 +19,7 @@ use super::{finite, strip_bom, strip_comment};
 use crate::error::{Error, Result};
 use crate::geometry::Point3;
 use crate::geometry::predicates::MAX_COORDINATE;
+use geo::{Coord, Line};
 use std::io::Read;
 use std::path::Path;
 
@@ -30,29 +31,64 @@ use std::path::Path;
 /// assert!(parse_points("1 2 nan", "p").unwrap_err().to_string().contains("not a finite number"));
 /// ```
 pub fn parse_points(text: &str, name: &str) -> Result<Vec<Point3>> {
-    let mut points = Vec::new();
+    let rows = parse_rows::<3>(text, name, "x y z")?;
+    Ok(rows.into_iter().map(|(_, c)| Point3::from(c)).collect())
+}
+
+/// Parses the text of a segment file, one segment `x1 y1 x2 y2` per line (same rules as point
+/// files), with the 1-based line of each segment.
+///
+/// ```
+/// use kepler::io::points::parse_segments;
+/// let s = parse_segments("# two\n0 0 1 1\n\n0,1,1,0\n", "s.txt").unwrap();
+/// assert_eq!(s.iter().map(|(line, _)| *line).collect::<Vec<_>>(), vec![2, 4]);
+/// assert_eq!(s[1].1.end.x, 1.0);
+/// let err = parse_segments("0 0 1\n", "s.txt").unwrap_err();
+/// assert_eq!(err.to_string(), "s.txt:1: expected 4 coordinates (x1 y1 x2 y2), found 3");
+/// ```
+pub fn parse_segments(text: &str, name: &str) -> Result<Vec<(usize, Line<f64>)>> {
+    let rows = parse_rows::<4>(text, name, "x1 y1 x2 y2")?;
+    Ok(rows
+        .into_iter()
+        .map(|(line, [x1, y1, x2, y2])| {
+            (
+                line,
+                Line::new(Coord { x: x1, y: y1 }, Coord { x: x2, y: y2 }),
+            )
+        })
+        .collect())
+}
+
+/// The rows of `N` numbers of a text, with their 1-based line numbers; `fields` names the
+/// numbers in errors.
+fn parse_rows<const N: usize>(
+    text: &str,
+    name: &str,
+    fields: &str,
+) -> Result<Vec<(usize, [f64; N])>> {
+    let mut rows = Vec::new();
     for (i, raw) in strip_bom(text).lines().enumerate() {
         let line = strip_comment(raw).trim();
         if line.is_empty() {
             continue;
         }
-        let fields: Vec<&str> = if line.contains(',') {
+        let found: Vec<&str> = if line.contains(',') {
             line.split(',').map(str::trim).collect()
         } else {
             line.split_whitespace().collect()
         };
         let at = |message: String| Error::at_line(name, i + 1, message);
-        if fields.iter().any(|f| f.is_empty()) {
+        if found.iter().any(|f| f.is_empty()) {
             return Err(at("empty coordinate between commas".into()));
         }
-        if fields.len() != 3 {
+        if found.len() != N {
             return Err(at(format!(
-                "expected 3 coordinates (x y z), found {}",
-                fields.len()
+                "expected {N} coordinates ({fields}), found {}",
+                found.len()
             )));
         }
-        let mut c = [0.0; 3];
-        for (k, field) in fields.iter().enumerate() {
+        let mut c = [0.0; N];
+        for (k, field) in found.iter().enumerate() {
             c[k] = finite(field, "coordinate").map_err(at)?;
             if c[k].abs() > MAX_COORDINATE {
                 return Err(at(format!(
@@ -60,9 +96,9 @@ pub fn parse_points(text: &str, name: &str) -> Result<Vec<Point3>> {
                 )));
             }
         }
-        points.push(Point3::from(c));
+        rows.push((i + 1, c));
     }
-    Ok(points)
+    Ok(rows)
 }
 
 /// Reads a point file, or standard input when `path` is `-`.
@@ -77,23 +113,42 @@ pub fn parse_points(text: &str, name: &str) -> Result<Vec<Point3>> {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn read_points(path: &Path) -> Result<Vec<Point3>> {
-    let name = path.display().to_string();
+    let (text, name) = read_text(path)?;
+    parse_points(&text, &name)
+}
+
+/// Reads a segment file (see [`parse_segments`]), or standard input when `path` is `-`.
+///
+/// ```
+/// let missing = kepler::io::points::read_segments(std::path::Path::new("no/such/file"));
+/// assert!(missing.unwrap_err().to_string().starts_with("no/such/file: "));
+/// ```
+pub fn read_segments(path: &Path) -> Result<Vec<(usize, Line<f64>)>> {
+    let (text, name) = read_text(path)?;
+    parse_segments(&text, &name)
+}
+
+/// The text of a file, or of standard input for `-`, and the name errors should give.
+fn read_text(path: &Path) -> Result<(String, String)> {
+    let stdin = path.as_os_str() == "-";
+    let name = if stdin {
+        "standard input".to_owned()
+    } else {
+        path.display().to_string()
+    };
     let mut bytes = Vec::new();
-    if name == "-" {
+    if stdin {
         std::io::stdin()
             .lock()
             .read_to_end(&mut bytes)
-            .map_err(|e| Error::io("standard input", e))?;
+            .map_err(|e| Error::io(&name, e))?;
     } else {
         bytes = std::fs::read(path).map_err(|e| Error::io(&name, e))?;
     }
     let text = String::from_utf8(bytes).map_err(|e| {
-        let line = 1 + e.as_bytes()[..e.utf8_error().valid_up_to()]
-            .iter()
-            .filter(|&&b| b == b'\n')
-            .count();
-        let shown = if name == "-" { "standard input" } else { &name };
-        Error::at_line(shown, line, "the text is not UTF-8")
+        let valid = &e.as_bytes()[..e.utf8_error().valid_up_to()];
+        let line = 1 + valid.iter().filter(|&&b| b == b'\n').count();
+        Error::at_line(&name, line, "the text is not UTF-8")
     })?;
-    parse_points(&text, if name == "-" { "standard input" } else { &name })
+    Ok((text, name))
 }

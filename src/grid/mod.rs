@@ -1,0 +1,469 @@
+//! Franklin's uniform grid for segment intersection (KEPLER 1981, item 4c, and his later
+//! uniform-grid work): every pair of segments in the plane that meet, in time linear in the
+//! number of segments plus the number of intersections for segments of similar lengths.
+//!
+//! The grid's cell side comes from the number of segments and their mean length (about one
+//! segment length, and no more cells than a few per segment). Each segment is listed in the
+//! cells it passes through (a column-by-column walk, widened by a margin far above rounding so
+//! that no cell it touches is missed); pairs are tested cell by cell (a compact box test
+//! first), and a pair found in several cells is reported once.
+//! Whether two segments meet, touching and collinear overlap included, is decided exactly
+//! ([`segments_meet`]); where they meet is constructed once from the input coordinates
+//! ([`meeting`]). Cells are processed in parallel (rayon).
+//!
+//! Written by hand because it is the paper's own algorithm; geo's sweep (`geo::algorithm::
+//! sweep`) finds the same pairs about three times slower and serves the tests as an oracle.
+//!
+//! ```
+//! use geo::{Line, coord};
+//! use kepler::grid::intersecting_pairs;
+//! let segments = [
+//!     Line::new(coord! { x: 0.0, y: 0.0 }, coord! { x: 2.0, y: 2.0 }),
+//!     Line::new(coord! { x: 0.0, y: 2.0 }, coord! { x: 2.0, y: 0.0 }),
+//!     Line::new(coord! { x: 2.0, y: 2.0 }, coord! { x: 3.0, y: 2.0 }), // touches the first
+//!     Line::new(coord! { x: 5.0, y: 5.0 }, coord! { x: 6.0, y: 5.0 }),
+//! ];
+//! assert_eq!(intersecting_pairs(&segments), vec![(0, 1), (0, 2)]);
+//! ```
+
+use crate::geometry::exact::{accurate_sum, product_terms, two_sum};
+use crate::geometry::polygon::segments_meet;
+use crate::geometry::predicates::orient2d;
+use geo::{Coord, Line};
+use rayon::prelude::*;
+use std::cmp::Ordering;
+
+/// Where two segments meet.
+///
+/// ```
+/// use geo::{Line, coord};
+/// use kepler::grid::{Meeting, meeting};
+/// let a = Line::new(coord! { x: 0.0, y: 0.0 }, coord! { x: 4.0, y: 0.0 });
+/// let b = Line::new(coord! { x: 1.0, y: 0.0 }, coord! { x: 9.0, y: 0.0 });
+/// assert_eq!(meeting(&a, &b), Some(Meeting::Overlap(coord! { x: 1.0, y: 0.0 }, coord! { x: 4.0, y: 0.0 })));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Meeting {
+    /// One point: a crossing (constructed once from the input coordinates, a few ulps from
+    /// the exact point) or a touching endpoint (an input point, exact).
+    Point(Coord<f64>),
+    /// A collinear overlap between these two input points (in the first segment's direction).
+    Overlap(Coord<f64>, Coord<f64>),
+}
+
+/// Where the closed segments `s` and `t` meet, or `None`; decided exactly.
+///
+/// ```
+/// use geo::{Line, coord};
+/// use kepler::grid::{Meeting, meeting};
+/// let a = Line::new(coord! { x: 0.0, y: 0.0 }, coord! { x: 2.0, y: 2.0 });
+/// let b = Line::new(coord! { x: 0.0, y: 2.0 }, coord! { x: 2.0, y: 0.0 });
+/// assert_eq!(meeting(&a, &b), Some(Meeting::Point(coord! { x: 1.0, y: 1.0 })));
+/// let c = Line::new(coord! { x: 3.0, y: 0.0 }, coord! { x: 4.0, y: 0.0 });
+/// assert_eq!(meeting(&a, &c), None);
+/// ```
+pub fn meeting(s: &Line<f64>, t: &Line<f64>) -> Option<Meeting> {
+    let (a, b, c, d) = (xy(s.start), xy(s.end), xy(t.start), xy(t.end));
+    let (o1, o2) = (orient2d(a, b, c), orient2d(a, b, d));
+    let (o3, o4) = (orient2d(c, d, a), orient2d(c, d, b));
+    let zero = Ordering::Equal;
+    if [o1, o2, o3, o4].iter().all(|&o| o != zero) {
+        return (o1 != o2 && o3 != o4).then(|| Meeting::Point(crossing(a, b, c, d)));
+    }
+    if [o1, o2, o3, o4].iter().all(|&o| o == zero) {
+        return overlap(a, b, c, d);
+    }
+    let between = |p: [f64; 2], q: [f64; 2], r: [f64; 2]| {
+        (0..2).all(|k| p[k].min(q[k]) <= r[k] && r[k] <= p[k].max(q[k]))
+    };
+    [(o1, a, b, c), (o2, a, b, d), (o3, c, d, a), (o4, c, d, b)]
+        .into_iter()
+        .find(|&(o, p, q, r)| o == zero && between(p, q, r))
+        .map(|(_, _, _, r)| Meeting::Point(coord(r)))
+}
+
+/// The crossing point of two segments that cross properly: `a + t (b - a)` with `t` the
+/// ratio of two correctly rounded exact determinants.
+fn crossing(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> Coord<f64> {
+    // t = (d - c) x (c - a) / (d - c) x (b - a).
+    let diff = |p: [f64; 2], q: [f64; 2], k: usize| {
+        let (s, e) = two_sum(p[k], -q[k]);
+        [s, e]
+    };
+    let cross = |u: [f64; 2], v: [f64; 2], w: [f64; 2], z: [f64; 2]| {
+        let mut terms = Vec::with_capacity(16);
+        product_terms(&diff(u, v, 0), &diff(w, z, 1), &mut terms);
+        let start = terms.len();
+        product_terms(&diff(u, v, 1), &diff(w, z, 0), &mut terms);
+        terms[start..].iter_mut().for_each(|x| *x = -*x);
+        accurate_sum(&terms)
+    };
+    let t = cross(d, c, c, a) / cross(d, c, b, a);
+    coord([0, 1].map(|k| a[k] + t * (b[k] - a[k])))
+}
+
+/// The overlap of two collinear segments, as input points, or `None`.
+fn overlap(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> Option<Meeting> {
+    // Along the axis where the four points are not all equal.
+    let k = if a[0] != b[0] || c[0] != d[0] || a[0] != c[0] {
+        0
+    } else {
+        1
+    };
+    let along = |p: &[f64; 2]| p[k];
+    let sort = |p: [f64; 2], q: [f64; 2]| {
+        if along(&p) <= along(&q) {
+            (p, q)
+        } else {
+            (q, p)
+        }
+    };
+    let ((a0, a1), (c0, c1)) = (sort(a, b), sort(c, d));
+    let lo = if along(&a0) >= along(&c0) { a0 } else { c0 };
+    let hi = if along(&a1) <= along(&c1) { a1 } else { c1 };
+    match along(&lo).partial_cmp(&along(&hi)) {
+        Some(Ordering::Less) => {
+            let forward = along(&a) <= along(&b);
+            let (p, q) = if forward { (lo, hi) } else { (hi, lo) };
+            Some(Meeting::Overlap(coord(p), coord(q)))
+        }
+        Some(Ordering::Equal) => Some(Meeting::Point(coord(lo))),
+        _ => None,
+    }
+}
+
+fn xy(c: Coord<f64>) -> [f64; 2] {
+    [c.x, c.y]
+}
+
+fn coord(p: [f64; 2]) -> Coord<f64> {
+    Coord { x: p[0], y: p[1] }
+}
+
+/// The relative margin by which a segment's walk is widened: 2⁻³⁰ of the largest coordinate,
+/// far above the rounding of the walk's arithmetic.
+const MARGIN: f64 = 1.0 / (1u64 << 30) as f64;
+
+/// A uniform grid over a set of segments: which cells each segment passes through, and which
+/// segments each cell lists.
+///
+/// ```
+/// use geo::{Line, coord};
+/// use kepler::grid::SegmentGrid;
+/// let segments: Vec<Line<f64>> = (0..100)
+///     .map(|i| Line::new(coord! { x: i as f64, y: 0.0 }, coord! { x: i as f64 + 1.5, y: 1.0 }))
+///     .collect();
+/// let grid = SegmentGrid::new(&segments);
+/// assert_eq!(grid.pairs().len(), 99); // each meets the next one
+/// ```
+#[derive(Debug, Clone)]
+pub struct SegmentGrid {
+    origin: [f64; 2],
+    inverse_cell: [f64; 2],
+    cells: [usize; 2],
+    margin: f64,
+    segments: usize,
+    /// Cell `c` lists `items[start[c]..start[c + 1]]`.
+    start: Vec<u32>,
+    items: Vec<Item>,
+}
+
+/// A segment as a cell lists it: the cell, the segment's index and its endpoints (copied, so
+/// that a cell's pairs are tested without reaching back into the input).
+#[derive(Debug, Clone, Copy)]
+struct Item {
+    cell: u32,
+    segment: u32,
+    a: [f64; 2],
+    b: [f64; 2],
+}
+
+impl Item {
+    /// Whether the closed bounding boxes meet (exact comparisons).
+    #[inline]
+    fn boxes_meet(&self, other: &Item) -> bool {
+        (0..2).all(|k| {
+            self.a[k].min(self.b[k]) <= other.a[k].max(other.b[k])
+                && other.a[k].min(other.b[k]) <= self.a[k].max(self.b[k])
+        })
+    }
+}
+
+impl SegmentGrid {
+    /// Builds the grid for `segments`: cell side about the mean segment length (but cells no
+    /// smaller than one per segment would give), capped at four cells per segment.
+    ///
+    /// ```
+    /// use geo::{Line, coord};
+    /// let s = [Line::new(coord! { x: 0.0, y: 0.0 }, coord! { x: 1.0, y: 1.0 })];
+    /// assert_eq!(kepler::grid::SegmentGrid::new(&s).shape(), [1, 1]);
+    /// ```
+    pub fn new(segments: &[Line<f64>]) -> SegmentGrid {
+        let (lo, hi, scale) = extent(segments);
+        let n = segments.len().max(1) as f64;
+        let size = [hi[0] - lo[0], hi[1] - lo[1]];
+        let mean_length = segments
+            .iter()
+            .map(|s| (s.dx() * s.dx() + s.dy() * s.dy()).sqrt())
+            .sum::<f64>()
+            / n;
+        let spread = (size[0].max(0.0) * size[1].max(0.0) / n).sqrt();
+        let side = mean_length.max(spread);
+        let mut cells = [0, 1].map(|k| {
+            if side > 0.0 && size[k] > 0.0 {
+                (size[k] / side).ceil().clamp(1.0, 1e6) as usize
+            } else {
+                1
+            }
+        });
+        while (cells[0] * cells[1]) as f64 > 4.0 * n + 1.0 {
+            cells = cells.map(|c| c.div_ceil(2));
+        }
+        let inverse_cell = [0, 1].map(|k| {
+            if size[k] > 0.0 {
+                cells[k] as f64 / size[k]
+            } else {
+                0.0
+            }
+        });
+        let mut grid = SegmentGrid {
+            origin: lo,
+            inverse_cell,
+            cells,
+            margin: MARGIN * scale,
+            segments: segments.len(),
+            start: Vec::new(),
+            items: Vec::new(),
+        };
+        // Every (cell, segment) of the walks, gathered per thread in one pass over the input,
+        // then sorted by cell: the cells' lists.
+        let mut items: Vec<Item> = segments
+            .par_iter()
+            .enumerate()
+            .fold(Vec::new, |mut out, (i, s)| {
+                let (a, b) = (xy(s.start), xy(s.end));
+                grid.walk(s, |cell| {
+                    out.push(Item {
+                        cell,
+                        segment: i as u32,
+                        a,
+                        b,
+                    })
+                });
+                out
+            })
+            .reduce(Vec::new, |mut x, mut y| {
+                x.append(&mut y);
+                x
+            });
+        items.par_sort_unstable_by_key(|item| item.cell);
+        let mut start = vec![0u32; cells[0] * cells[1] + 1];
+        for item in &items {
+            start[item.cell as usize + 1] += 1;
+        }
+        for c in 1..start.len() {
+            start[c] += start[c - 1];
+        }
+        grid.start = start;
+        grid.items = items;
+        grid
+    }
+
+    /// The grid's shape: cells along x and y.
+    ///
+    /// ```
+    /// use geo::{Line, coord};
+    /// let s = [Line::new(coord! { x: 0.0, y: 0.0 }, coord! { x: 0.0, y: 0.0 })];
+    /// assert_eq!(kepler::grid::SegmentGrid::new(&s).shape(), [1, 1]);
+    /// ```
+    pub fn shape(&self) -> [usize; 2] {
+        self.cells
+    }
+
+    /// The mean number of cells a segment is listed in.
+    ///
+    /// ```
+    /// use geo::{Line, coord};
+    /// let s = [Line::new(coord! { x: 0.0, y: 0.0 }, coord! { x: 1.0, y: 0.0 })];
+    /// assert_eq!(kepler::grid::SegmentGrid::new(&s).cells_per_segment(), 1.0);
+    /// ```
+    pub fn cells_per_segment(&self) -> f64 {
+        self.items.len() as f64 / self.segments.max(1) as f64
+    }
+
+    /// Every pair `(i, j)`, `i < j`, of the segments the grid was built from that meet, in
+    /// increasing order, each once.
+    ///
+    /// ```
+    /// use geo::{Line, coord};
+    /// use kepler::grid::SegmentGrid;
+    /// // Three segments through one point, and a far one.
+    /// let s = [
+    ///     Line::new(coord! { x: -1.0, y: 0.0 }, coord! { x: 1.0, y: 0.0 }),
+    ///     Line::new(coord! { x: 0.0, y: -1.0 }, coord! { x: 0.0, y: 1.0 }),
+    ///     Line::new(coord! { x: -1.0, y: -1.0 }, coord! { x: 1.0, y: 1.0 }),
+    ///     Line::new(coord! { x: 7.0, y: 7.0 }, coord! { x: 8.0, y: 7.0 }),
+    /// ];
+    /// assert_eq!(SegmentGrid::new(&s).pairs(), vec![(0, 1), (0, 2), (1, 2)]);
+    /// ```
+    pub fn pairs(&self) -> Vec<(usize, usize)> {
+        // A pair listed together in several cells is found in each: sorted, then deduplicated.
+        let mut pairs: Vec<(usize, usize)> = (0..self.cells[0] * self.cells[1])
+            .into_par_iter()
+            .flat_map_iter(|c| self.pairs_in(c))
+            .collect();
+        pairs.par_sort_unstable();
+        pairs.dedup();
+        pairs
+    }
+
+    /// The pairs of cell `c` that meet.
+    fn pairs_in<'a>(&'a self, c: usize) -> impl Iterator<Item = (usize, usize)> + 'a {
+        let here = &self.items[self.start[c] as usize..self.start[c + 1] as usize];
+        here.iter().enumerate().flat_map(move |(n, a)| {
+            here[n + 1..].iter().filter_map(move |b| {
+                if !a.boxes_meet(b) {
+                    return None;
+                }
+                let (i, j) = (a.segment as usize, b.segment as usize);
+                segments_meet(a.a, a.b, b.a, b.b).then_some((i.min(j), i.max(j)))
+            })
+        })
+    }
+
+    /// The cell index along axis `k`: a monotone function of the coordinate, clamped.
+    #[inline]
+    fn cell(&self, k: usize, v: f64) -> usize {
+        let c = (v - self.origin[k]) * self.inverse_cell[k];
+        if c >= self.cells[k] as f64 {
+            self.cells[k] - 1
+        } else if c > 0.0 {
+            c as usize
+        } else {
+            0
+        }
+    }
+
+    /// Calls `visit` with each cell segment `s` passes through, once: column by column, the
+    /// rows its part in the (widened) column spans, widened again by the margin.
+    fn walk(&self, s: &Line<f64>, mut visit: impl FnMut(u32)) {
+        let m = self.margin;
+        let (a, b) = if s.start.x <= s.end.x {
+            (s.start, s.end)
+        } else {
+            (s.end, s.start)
+        };
+        let (y_min, y_max) = (a.y.min(b.y) - m, a.y.max(b.y) + m);
+        let (c0, c1) = (self.cell(0, a.x - m), self.cell(0, b.x + m));
+        for col in c0..=c1 {
+            let (mut x0, mut x1) = (a.x, b.x);
+            if self.inverse_cell[0] > 0.0 {
+                x0 = x0.max(self.origin[0] + col as f64 / self.inverse_cell[0] - m);
+                x1 = x1.min(self.origin[0] + (col + 1) as f64 / self.inverse_cell[0] + m);
+            }
+            if x0 > x1 {
+                continue;
+            }
+            let (lo, hi) = if b.x > a.x {
+                let slope = (b.y - a.y) / (b.x - a.x);
+                let (y0, y1) = (a.y + (x0 - a.x) * slope, a.y + (x1 - a.x) * slope);
+                (y0.min(y1) - m, y0.max(y1) + m)
+            } else {
+                (y_min, y_max)
+            };
+            let (r0, r1) = (self.cell(1, lo.max(y_min)), self.cell(1, hi.min(y_max)));
+            for row in r0..=r1 {
+                visit((row * self.cells[0] + col) as u32);
+            }
+        }
+    }
+}
+
+/// The bounding box of all endpoints and the largest coordinate magnitude.
+fn extent(segments: &[Line<f64>]) -> ([f64; 2], [f64; 2], f64) {
+    let mut lo = [f64::INFINITY; 2];
+    let mut hi = [f64::NEG_INFINITY; 2];
+    let mut scale = 0.0f64;
+    for p in segments.iter().flat_map(|s| [s.start, s.end]) {
+        lo = [lo[0].min(p.x), lo[1].min(p.y)];
+        hi = [hi[0].max(p.x), hi[1].max(p.y)];
+        scale = scale.max(p.x.abs()).max(p.y.abs());
+    }
+    if segments.is_empty() {
+        return ([0.0; 2], [0.0; 2], 0.0);
+    }
+    (lo, hi, scale)
+}
+
+/// Every pair `(i, j)`, `i < j`, of `segments` that meet (touching and collinear overlap
+/// included), each once, in increasing order.
+///
+/// ```
+/// use geo::{Line, coord};
+/// let s = [
+///     Line::new(coord! { x: 0.0, y: 0.0 }, coord! { x: 1.0, y: 0.0 }),
+///     Line::new(coord! { x: 0.5, y: 0.0 }, coord! { x: 2.0, y: 0.0 }),
+/// ];
+/// assert_eq!(kepler::grid::intersecting_pairs(&s), vec![(0, 1)]);
+/// ```
+pub fn intersecting_pairs(segments: &[Line<f64>]) -> Vec<(usize, usize)> {
+    SegmentGrid::new(segments).pairs()
+}
+
+/// Every pair of `segments` that meet, with where they meet, in increasing pair order.
+///
+/// ```
+/// use geo::{Line, coord};
+/// use kepler::grid::{Meeting, intersections};
+/// let s = [
+///     Line::new(coord! { x: 0.0, y: 0.0 }, coord! { x: 4.0, y: 4.0 }),
+///     Line::new(coord! { x: 0.0, y: 4.0 }, coord! { x: 4.0, y: 0.0 }),
+/// ];
+/// assert_eq!(intersections(&s), vec![(0, 1, Meeting::Point(coord! { x: 2.0, y: 2.0 }))]);
+/// ```
+pub fn intersections(segments: &[Line<f64>]) -> Vec<(usize, usize, Meeting)> {
+    intersecting_pairs(segments)
+        .into_par_iter()
+        .filter_map(|(i, j)| meeting(&segments[i], &segments[j]).map(|m| (i, j, m)))
+        .collect()
+}
+
+/// Franklin's experiment: `n` segments of length `len` (at most 1) in the unit square, each
+/// with a uniformly random midpoint in `[len/2, 1 - len/2]²` and a uniformly random direction,
+/// from a fixed seed (SplitMix64), so runs reproduce.
+///
+/// ```
+/// let s = kepler::grid::random_segments(1000, 0.01, 7);
+/// assert_eq!(s.len(), 1000);
+/// assert!(s.iter().all(|l| (l.dx().hypot(l.dy()) - 0.01).abs() < 1e-15));
+/// assert!(s.iter().flat_map(|l| [l.start, l.end]).all(|p| (0.0..=1.0).contains(&p.x) && (0.0..=1.0).contains(&p.y)));
+/// ```
+pub fn random_segments(n: usize, len: f64, seed: u64) -> Vec<Line<f64>> {
+    let mut state = seed;
+    let mut unit = move || {
+        state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let half = len.clamp(0.0, 1.0) / 2.0;
+    (0..n)
+        .map(|_| {
+            let centre = [0, 1].map(|_| half + (1.0 - 2.0 * half) * unit());
+            let angle = std::f64::consts::TAU * unit();
+            let (dy, dx) = angle.sin_cos();
+            let (hx, hy) = (half * dx, half * dy);
+            Line::new(
+                Coord {
+                    x: centre[0] - hx,
+                    y: centre[1] - hy,
+                },
+                Coord {
+                    x: centre[0] + hx,
+                    y: centre[1] + hy,
+                },
+            )
+        })
+        .collect()
+}
