@@ -517,3 +517,210 @@ fn a_bad_view_vector_is_a_usage_error() {
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("expected x,y,z"), "{}", stderr(&o));
 }
+
+// ---------------------------------------------------------------------------------------------
+// `kepler segx`.
+
+/// Runs `kepler segx` with `input` on standard input.
+fn segx_with_stdin(args: &[&str], input: &str) -> Output {
+    use std::io::Write as _;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_kepler"))
+        .arg("segx")
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("the kepler binary runs");
+    let mut stdin = child.stdin.take().expect("a pipe");
+    stdin.write_all(input.as_bytes()).expect("input written");
+    drop(stdin);
+    child.wait_with_output().expect("kepler finishes")
+}
+
+/// Checks a summary line `N <n> K <k> seconds <s>` and returns `(n, k)`.
+fn segx_summary(line: &str) -> (usize, usize) {
+    let words: Vec<&str> = line.split_whitespace().collect();
+    assert_eq!(words.len(), 6, "{line:?}");
+    assert_eq!(
+        [words[0], words[2], words[4]],
+        ["N", "K", "seconds"],
+        "{line:?}"
+    );
+    let seconds: f64 = words[5].parse().expect("seconds");
+    assert!(seconds.is_finite() && seconds >= 0.0, "{line:?}");
+    (words[1].parse().expect("N"), words[3].parse().expect("K"))
+}
+
+/// The pairs printed by `--pairs`, one `i j` a line.
+fn segx_pairs(out: &str) -> Vec<(usize, usize)> {
+    out.lines()
+        .map(|line| {
+            let v: Vec<usize> = line
+                .split_whitespace()
+                .map(|w| w.parse().expect("an index"))
+                .collect();
+            assert_eq!(v.len(), 2, "{line:?}");
+            (v[0], v[1])
+        })
+        .collect()
+}
+
+#[test]
+fn segx_counts_the_pairs_of_random_segments() {
+    use kepler::grid::{intersecting_pairs, random_segments};
+    let out = ok(&["segx", "--n", "2000", "--len", "0.05", "--seed", "3"]);
+    assert_eq!(out.lines().count(), 1, "{out}");
+    assert!(out.ends_with('\n'));
+    let k = intersecting_pairs(&random_segments(2000, 0.05, 3)).len();
+    assert!(k > 1000, "{k}");
+    assert_eq!(segx_summary(&out), (2000, k));
+    // The defaults: length 0.01, seed 1.
+    let out = ok(&["segx", "--n", "3000"]);
+    let k = intersecting_pairs(&random_segments(3000, 0.01, 1)).len();
+    assert_eq!(segx_summary(&out), (3000, k));
+    // Another seed, other segments.
+    let other = ok(&["segx", "--n", "2000", "--len", "0.05", "--seed", "4"]);
+    let k = intersecting_pairs(&random_segments(2000, 0.05, 4)).len();
+    assert_eq!(segx_summary(&other), (2000, k));
+    assert_eq!(segx_summary(&ok(&["segx", "--n", "0"])), (0, 0));
+}
+
+#[test]
+fn segx_lists_the_pairs_of_random_segments_by_1_based_index() {
+    use kepler::grid::{intersecting_pairs, random_segments};
+    let o = kepler(&[
+        "segx", "--n", "400", "--len", "0.1", "--seed", "2", "--pairs",
+    ]);
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    assert_eq!(err.lines().count(), 1, "one summary line: {err}");
+    let expected: Vec<(usize, usize)> = intersecting_pairs(&random_segments(400, 0.1, 2))
+        .into_iter()
+        .map(|(i, j)| (i + 1, j + 1))
+        .collect();
+    assert!(!expected.is_empty());
+    assert_eq!(segx_pairs(&stdout(&o)), expected);
+    assert_eq!(segx_summary(&err), (400, expected.len()));
+}
+
+#[test]
+fn segx_reads_a_segment_file_and_lists_pairs_by_line_number() {
+    let path = "tests/data/segments_comments.txt";
+    // Comments and blank lines keep the numbering: segments on lines 2, 4, 6, 7, 8 and 9.
+    let o = kepler(&["segx", "--input", path, "--pairs"]);
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    assert_eq!(
+        stdout(&o),
+        "2 4\n2 6\n7 8\n7 9\n8 9\n",
+        "an X, a touching end, a touching end, a collinear overlap, a T"
+    );
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert_eq!(segx_summary(&err), (6, 5));
+    // Without --pairs: the summary alone, on standard output.
+    assert_eq!(segx_summary(&ok(&["segx", "--input", path])), (6, 5));
+}
+
+#[test]
+fn segx_reads_standard_input() {
+    let input = "# a star of three through (1, 1), and one apart\n\
+                 0 0 2 2\n0 2 2 0\n\n1 0 1 3\n5,5,6,6\n";
+    let o = segx_with_stdin(&["--input", "-", "--pairs"], input);
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    assert_eq!(stdout(&o), "2 3\n2 5\n3 5\n");
+    assert_eq!(segx_summary(&err), (4, 3));
+    let o = segx_with_stdin(&["--input", "-"], input);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(stderr(&o), "");
+    assert_eq!(segx_summary(&stdout(&o)), (4, 3));
+    // Nothing to read: no segments, no pairs.
+    let o = segx_with_stdin(&["--input", "-", "--pairs"], "# nothing\n\n");
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(stdout(&o), "");
+    assert_eq!(segx_summary(&stderr(&o)), (0, 0));
+}
+
+#[test]
+fn segx_errors() {
+    // A malformed segment line names the file and the line.
+    assert_eq!(
+        fails(&["segx", "--input", "tests/data/segments_short.txt"]),
+        "tests/data/segments_short.txt:3: expected 4 coordinates (x1 y1 x2 y2), found 3"
+    );
+    assert_eq!(
+        fails(&[
+            "segx",
+            "--input",
+            "tests/data/segments_short.txt",
+            "--pairs"
+        ]),
+        "tests/data/segments_short.txt:3: expected 4 coordinates (x1 y1 x2 y2), found 3"
+    );
+    let o = segx_with_stdin(&["--input", "-"], "0 0 1 1\n\n1 1 x 2\n");
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert_eq!(stdout(&o), "");
+    assert!(
+        err.starts_with("error: standard input:3: ") && err.contains('x'),
+        "{err}"
+    );
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(fails(&["segx", "--input", "no/such.txt"]).starts_with("no/such.txt: "));
+    // The random segments' length is at most 1, and not negative.
+    for len in ["--len=2", "--len=-0.5", "--len=1.000001"] {
+        let err = fails(&["segx", "--n", "10", len]);
+        assert!(
+            err.contains("--len must be between 0 and 1"),
+            "{len}: {err}"
+        );
+    }
+    assert_eq!(
+        segx_summary(&ok(&["segx", "--n", "10", "--len", "1"])).0,
+        10
+    );
+    assert_eq!(
+        segx_summary(&ok(&["segx", "--n", "10", "--len", "0"])).0,
+        10
+    );
+}
+
+#[test]
+fn segx_usage_errors() {
+    // Neither --n nor --input; both; a bad number.
+    for args in [
+        &["segx"][..],
+        &["segx", "--pairs"][..],
+        &[
+            "segx",
+            "--n",
+            "10",
+            "--input",
+            "tests/data/segments_comments.txt",
+        ][..],
+        &["segx", "--n", "ten"][..],
+        &["segx", "--n", "-3"][..],
+        &["segx", "--n", "10", "--seed", "-1"][..],
+    ] {
+        let o = kepler(args);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "kepler {args:?}: {err}");
+        assert!(!err.contains("panicked"), "{err}");
+        assert!(err.starts_with("error: "), "{err}");
+        assert_eq!(stdout(&o), "", "kepler {args:?}");
+    }
+    let err = stderr(&kepler(&["segx"]));
+    assert!(err.contains("--n") && err.contains("Usage"), "{err}");
+    let err = stderr(&kepler(&[
+        "segx",
+        "--n",
+        "10",
+        "--input",
+        "tests/data/segments_comments.txt",
+    ]));
+    assert!(err.contains("--input") && err.contains("Usage"), "{err}");
+    let err = stderr(&kepler(&["segx", "--n", "ten"]));
+    assert!(err.contains("'ten'") && err.contains("--n"), "{err}");
+}

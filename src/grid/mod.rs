@@ -140,9 +140,11 @@ fn coord(p: [f64; 2]) -> Coord<f64> {
     Coord { x: p[0], y: p[1] }
 }
 
-/// The relative margin by which a segment's walk is widened: 2⁻³⁰ of the largest coordinate,
-/// far above the rounding of the walk's arithmetic.
-const MARGIN: f64 = 1.0 / (1u64 << 30) as f64;
+/// The relative margin by which a segment's walk is widened: 2⁻⁴⁶ of the largest coordinate,
+/// 64 units in the last place of it, above the few units the walk's arithmetic (cell
+/// boundaries, the segment's height at them) can be off by; small enough that data far from
+/// the origin, with cells only thousands of ulps wide, still lists each segment in few cells.
+const MARGIN: f64 = 1.0 / (1u64 << 46) as f64;
 
 /// A uniform grid over a set of segments: which cells each segment passes through, and which
 /// segments each cell lists.
@@ -364,8 +366,10 @@ impl SegmentGrid {
             if x0 > x1 {
                 continue;
             }
-            let (lo, hi) = if b.x > a.x {
-                let slope = (b.y - a.y) / (b.x - a.x);
+            // The segment's heights at the column's ends; a slope too steep for a double (a
+            // nearly vertical segment) spans the whole height.
+            let slope = (b.y - a.y) / (b.x - a.x);
+            let (lo, hi) = if b.x > a.x && slope.is_finite() {
                 let (y0, y1) = (a.y + (x0 - a.x) * slope, a.y + (x1 - a.x) * slope);
                 (y0.min(y1) - m, y0.max(y1) + m)
             } else {
