@@ -12,7 +12,8 @@
 //! ([`meeting`]). Cells are processed in parallel (rayon).
 //!
 //! Written by hand because it is the paper's own algorithm; geo's sweep (`geo::algorithm::
-//! sweep`) finds the same pairs about three times slower and serves the tests as an oracle.
+//! sweep`) finds the same pairs 8 to 23 times slower here (`cargo bench --bench segx`) and
+//! serves the tests as an oracle.
 //!
 //! ```
 //! use geo::{Line, coord};
