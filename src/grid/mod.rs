@@ -311,25 +311,32 @@ impl SegmentGrid {
     /// ```
     pub fn pairs(&self) -> Vec<(usize, usize)> {
         // A pair listed together in several cells is found in each: sorted, then deduplicated.
-        let mut pairs: Vec<(usize, usize)> = (0..self.cells[0] * self.cells[1])
+        let mut pairs: Vec<u64> = (0..self.cells[0] * self.cells[1])
             .into_par_iter()
             .flat_map_iter(|c| self.pairs_in(c))
             .collect();
         pairs.par_sort_unstable();
         pairs.dedup();
         pairs
+            .into_iter()
+            .map(|p| ((p >> 32) as usize, (p & 0xffff_ffff) as usize))
+            .collect()
     }
 
     /// The pairs of cell `c` that meet.
-    fn pairs_in<'a>(&'a self, c: usize) -> impl Iterator<Item = (usize, usize)> + 'a {
+    /// Each pair `(i, j)`, `i < j`, as the integer `i·2³² + j`.
+    fn pairs_in<'a>(&'a self, c: usize) -> impl Iterator<Item = u64> + 'a {
         let here = &self.items[self.start[c] as usize..self.start[c + 1] as usize];
         here.iter().enumerate().flat_map(move |(n, a)| {
             here[n + 1..].iter().filter_map(move |b| {
                 if !a.boxes_meet(b) {
                     return None;
                 }
-                let (i, j) = (a.segment as usize, b.segment as usize);
-                segments_meet(a.a, a.b, b.a, b.b).then_some((i.min(j), i.max(j)))
+                if apart(a.a, a.b, b.a, b.b) || apart(b.a, b.b, a.a, a.b) {
+                    return None;
+                }
+                let (i, j) = (a.segment.min(b.segment), a.segment.max(b.segment));
+                segments_meet(a.a, a.b, b.a, b.b).then_some((u64::from(i) << 32) | u64::from(j))
             })
         })
     }
@@ -382,6 +389,30 @@ impl SegmentGrid {
             }
         }
     }
+}
+
+/// Whether `c` and `d` lie strictly on the same side of the line through `a` and `b`, as
+/// certified by a floating-point filter (Shewchuk's orient2d error bound); `false` when the
+/// filter cannot tell, and the exact test decides. Most pairs in a cell are rejected here.
+#[inline]
+fn apart(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
+    // (3 + 16ε)ε with ε = 2^-53, as in Shewchuk's ccwerrboundA.
+    const BOUND: f64 = (3.0 + 16.0 * f64::EPSILON / 2.0) * f64::EPSILON / 2.0;
+    let side = |p: [f64; 2]| {
+        let left = (a[0] - p[0]) * (b[1] - p[1]);
+        let right = (a[1] - p[1]) * (b[0] - p[0]);
+        let det = left - right;
+        let bound = BOUND * (left.abs() + right.abs()) + f64::MIN_POSITIVE;
+        if det > bound {
+            1
+        } else if det < -bound {
+            -1
+        } else {
+            0
+        }
+    };
+    let s = side(c);
+    s != 0 && s == side(d)
 }
 
 /// The bounding box of all endpoints and the largest coordinate magnitude.
