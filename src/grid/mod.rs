@@ -153,11 +153,20 @@ const MARGIN: f64 = 1.0 / (1u64 << 46) as f64;
 /// ```
 /// use geo::{Line, coord};
 /// use kepler::grid::SegmentGrid;
+/// // A zigzag: each segment meets the next one at a shared endpoint.
 /// let segments: Vec<Line<f64>> = (0..100)
-///     .map(|i| Line::new(coord! { x: i as f64, y: 0.0 }, coord! { x: i as f64 + 1.5, y: 1.0 }))
+///     .map(|i| {
+///         let (x, y) = (i as f64, (i % 2) as f64);
+///         Line::new(coord! { x: x, y: y }, coord! { x: x + 1.0, y: 1.0 - y })
+///     })
 ///     .collect();
 /// let grid = SegmentGrid::new(&segments);
-/// assert_eq!(grid.pairs().len(), 99); // each meets the next one
+/// assert_eq!(grid.pairs().len(), 99);
+/// // Parallel neighbours never meet.
+/// let parallel: Vec<Line<f64>> = (0..100)
+///     .map(|i| Line::new(coord! { x: i as f64, y: 0.0 }, coord! { x: i as f64 + 1.5, y: 1.0 }))
+///     .collect();
+/// assert!(SegmentGrid::new(&parallel).pairs().is_empty());
 /// ```
 #[derive(Debug, Clone)]
 pub struct SegmentGrid {
