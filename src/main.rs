@@ -143,21 +143,13 @@ fn run(cli: Cli) -> Result<()> {
         Command::Include { scene, points } => {
             let scene = file::load(&scene)?;
             let points = read_points(&points)?;
-            let start = Instant::now();
-            let index = IncludeIndex::whole_scene(&scene)?;
-            let built = start.elapsed();
-            let start = Instant::now();
-            let (answers, counters) = index.include_all(&points);
-            let queried = start.elapsed();
-            emit(&lines(&answers))?;
-            let count = |a: Inclusion| answers.iter().filter(|&&x| x == a).count();
-            let tally = format!(
-                "{} IN, {} OUT, {} ON",
-                count(Inclusion::In),
-                count(Inclusion::Out),
-                count(Inclusion::On)
-            );
-            eprintln!("{}", summary("include", &tally, built, queried, &counters));
+            answer_points(
+                "include",
+                &points,
+                &[Inclusion::In, Inclusion::Out, Inclusion::On],
+                || Ok(IncludeIndex::whole_scene(&scene)?),
+                |index, points| index.include_all(points),
+            )?;
         }
         Command::Segx {
             n,
@@ -203,32 +195,45 @@ fn run(cli: Cli) -> Result<()> {
             let scene = file::load(&scene)?;
             let view = view.view(&scene)?;
             let points = read_points(&points)?;
-            let start = Instant::now();
-            let index = VisibilityIndex::whole_scene(&scene, view);
-            let built = start.elapsed();
-            let start = Instant::now();
-            let (answers, counters) = index.visp_all(&points);
-            let queried = start.elapsed();
-            emit(&lines(&answers))?;
-            let count = |a: Visibility| answers.iter().filter(|&&x| x == a).count();
-            let tally = format!(
-                "{} VISIBLE, {} HIDDEN",
-                count(Visibility::Visible),
-                count(Visibility::Hidden)
-            );
-            eprintln!("{}", summary("visp", &tally, built, queried, &counters));
+            answer_points(
+                "visp",
+                &points,
+                &[Visibility::Visible, Visibility::Hidden],
+                || Ok(VisibilityIndex::whole_scene(&scene, view)),
+                |index, points| index.visp_all(points),
+            )?;
         }
     }
     Ok(())
 }
 
-/// One answer per line.
-fn lines<T: std::fmt::Display>(answers: &[T]) -> String {
+/// Builds an index, answers every point with it, prints one answer per line, and a summary
+/// on stderr with the count of each of `kinds` (in that order).
+fn answer_points<I, T: std::fmt::Display + PartialEq>(
+    command: &str,
+    points: &[Point3],
+    kinds: &[T],
+    build: impl FnOnce() -> Result<I>,
+    answer: impl FnOnce(&I, &[Point3]) -> (Vec<T>, Counters),
+) -> Result<()> {
+    let start = Instant::now();
+    let index = build()?;
+    let built = start.elapsed();
+    let start = Instant::now();
+    let (answers, counters) = answer(&index, points);
+    let queried = start.elapsed();
     let mut text = String::with_capacity(answers.len() * 4);
-    for a in answers {
+    for a in &answers {
         let _ = writeln!(text, "{a}");
     }
-    text
+    emit(&text)?;
+    let tally = kinds
+        .iter()
+        .map(|kind| format!("{} {kind}", answers.iter().filter(|&a| a == kind).count()))
+        .collect::<Vec<_>>()
+        .join(", ");
+    eprintln!("{}", summary(command, &tally, built, queried, &counters));
+    Ok(())
 }
 
 /// The stderr summary: counts, speed, and what decided the answers.

@@ -27,6 +27,10 @@
 //! assert_eq!(intersecting_pairs(&segments), vec![(0, 1), (0, 2)]);
 //! ```
 
+mod cells;
+
+pub use cells::Cells;
+
 use crate::geometry::exact::{accurate_sum, product_terms, two_sum};
 use crate::geometry::polygon::segments_meet;
 use crate::geometry::predicates::orient2d;
@@ -170,9 +174,7 @@ const MARGIN: f64 = 1.0 / (1u64 << 46) as f64;
 /// ```
 #[derive(Debug, Clone)]
 pub struct SegmentGrid {
-    origin: [f64; 2],
-    inverse_cell: [f64; 2],
-    cells: [usize; 2],
+    cells: Cells,
     margin: f64,
     segments: usize,
     /// Cell `c` lists `items[start[c]..start[c + 1]]`.
@@ -231,17 +233,8 @@ impl SegmentGrid {
         while (cells[0] * cells[1]) as f64 > 4.0 * n + 1.0 {
             cells = cells.map(|c| c.div_ceil(2));
         }
-        let inverse_cell = [0, 1].map(|k| {
-            if size[k] > 0.0 {
-                cells[k] as f64 / size[k]
-            } else {
-                0.0
-            }
-        });
         let mut grid = SegmentGrid {
-            origin: lo,
-            inverse_cell,
-            cells,
+            cells: Cells::new(lo, size, cells),
             margin: MARGIN * scale,
             segments: segments.len(),
             start: Vec::new(),
@@ -269,7 +262,7 @@ impl SegmentGrid {
                 x
             });
         items.par_sort_unstable_by_key(|item| item.cell);
-        let mut start = vec![0u32; cells[0] * cells[1] + 1];
+        let mut start = vec![0u32; grid.cells.count() + 1];
         for item in &items {
             start[item.cell as usize + 1] += 1;
         }
@@ -289,7 +282,7 @@ impl SegmentGrid {
     /// assert_eq!(kepler::grid::SegmentGrid::new(&s).shape(), [1, 1]);
     /// ```
     pub fn shape(&self) -> [usize; 2] {
-        self.cells
+        self.cells.shape()
     }
 
     /// The mean number of cells a segment is listed in.
@@ -320,7 +313,7 @@ impl SegmentGrid {
     /// ```
     pub fn pairs(&self) -> Vec<(usize, usize)> {
         // A pair listed together in several cells is found in each: sorted, then deduplicated.
-        let mut pairs: Vec<u64> = (0..self.cells[0] * self.cells[1])
+        let mut pairs: Vec<u64> = (0..self.cells.count())
             .into_par_iter()
             .flat_map_iter(|c| self.pairs_in(c))
             .collect();
@@ -350,19 +343,6 @@ impl SegmentGrid {
         })
     }
 
-    /// The cell index along axis `k`: a monotone function of the coordinate, clamped.
-    #[inline]
-    fn cell(&self, k: usize, v: f64) -> usize {
-        let c = (v - self.origin[k]) * self.inverse_cell[k];
-        if c >= self.cells[k] as f64 {
-            self.cells[k] - 1
-        } else if c > 0.0 {
-            c as usize
-        } else {
-            0
-        }
-    }
-
     /// Calls `visit` with each cell segment `s` passes through, once: column by column, the
     /// rows its part in the (widened) column spans, widened again by the margin.
     fn walk(&self, s: &Line<f64>, mut visit: impl FnMut(u32)) {
@@ -373,12 +353,12 @@ impl SegmentGrid {
             (s.end, s.start)
         };
         let (y_min, y_max) = (a.y.min(b.y) - m, a.y.max(b.y) + m);
-        let (c0, c1) = (self.cell(0, a.x - m), self.cell(0, b.x + m));
+        let (c0, c1) = (self.cells.index(0, a.x - m), self.cells.index(0, b.x + m));
         for col in c0..=c1 {
             let (mut x0, mut x1) = (a.x, b.x);
-            if self.inverse_cell[0] > 0.0 {
-                x0 = x0.max(self.origin[0] + col as f64 / self.inverse_cell[0] - m);
-                x1 = x1.min(self.origin[0] + (col + 1) as f64 / self.inverse_cell[0] + m);
+            if self.cells.shape()[0] > 1 {
+                x0 = x0.max(self.cells.coordinate(0, col as f64) - m);
+                x1 = x1.min(self.cells.coordinate(0, (col + 1) as f64) + m);
             }
             if x0 > x1 {
                 continue;
@@ -392,9 +372,12 @@ impl SegmentGrid {
             } else {
                 (y_min, y_max)
             };
-            let (r0, r1) = (self.cell(1, lo.max(y_min)), self.cell(1, hi.min(y_max)));
+            let (r0, r1) = (
+                self.cells.index(1, lo.max(y_min)),
+                self.cells.index(1, hi.min(y_max)),
+            );
             for row in r0..=r1 {
-                visit((row * self.cells[0] + col) as u32);
+                visit((row * self.cells.shape()[0] + col) as u32);
             }
         }
     }

@@ -229,6 +229,17 @@ impl Mesh {
         self.triangles[t].map(|i| self.vertices[i as usize])
     }
 
+    /// The index of the face that triangle `t` (of [`Mesh::triangles`]) belongs to: faces'
+    /// triangles are stored in face order, so a binary search over their ranges finds it.
+    ///
+    /// ```
+    /// let cube = kepler::solids::cube(1.0).unwrap();
+    /// assert_eq!((cube.face_of(0), cube.face_of(1), cube.face_of(11)), (0, 0, 5));
+    /// ```
+    pub fn face_of(&self, t: usize) -> usize {
+        self.faces.partition_point(|f| f.triangle_range().end <= t)
+    }
+
     /// The edge structure: closed, consistently oriented, boundary and non-manifold edges.
     ///
     /// ```

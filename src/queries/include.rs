@@ -122,27 +122,16 @@ impl<'s> IncludeIndex<'s> {
         for &id in objects {
             check_closed(scene, id)?;
         }
+        scene.compute_bounds_of(objects);
         let leaves: Vec<(ObjectId, &Mesh)> = objects
             .iter()
-            .flat_map(|&id| subtree(scene, id))
+            .flat_map(|&id| scene.subtree(id))
             .filter_map(|id| scene[id].mesh().map(|m| (id, m)))
             .collect();
         let built: Vec<(ObjectId, ProjectionGrid)> = leaves
             .par_iter()
-            .map(|&(id, mesh)| {
-                scene.cbox(id);
-                scene.inbox(id);
-                scene.tribox(id);
-                (id, ProjectionGrid::new(mesh))
-            })
+            .map(|&(id, mesh)| (id, ProjectionGrid::new(mesh)))
             .collect();
-        for &id in objects {
-            for o in subtree(scene, id) {
-                scene.cbox(o);
-                scene.inbox(o);
-                scene.tribox(o);
-            }
-        }
         let mut grids = SecondaryMap::new();
         grids.extend(built);
         Ok(IncludeIndex {
@@ -197,20 +186,9 @@ impl<'s> IncludeIndex<'s> {
     }
 }
 
-/// The objects of the subtree of `id`, `id` first.
-pub(crate) fn subtree(scene: &Scene, id: ObjectId) -> Vec<ObjectId> {
-    let mut out = vec![id];
-    let mut i = 0;
-    while i < out.len() {
-        out.extend_from_slice(scene[out[i]].subobjects());
-        i += 1;
-    }
-    out
-}
-
 /// An error naming the first open mesh in the subtree of `id`.
 fn check_closed(scene: &Scene, id: ObjectId) -> Result<()> {
-    for o in subtree(scene, id) {
+    for o in scene.subtree(id) {
         if let Some(mesh) = scene[o].mesh() {
             let topology = mesh.topology();
             if topology.odd_edges > 0 {

@@ -10,11 +10,12 @@
 //! structure; an R-tree ([`TriangleTree`](crate::mesh::TriangleTree)) does the same job more
 //! slowly for single queries.
 //!
-//! Cell indices come from one monotone function of a coordinate, so a point within a
-//! triangle's box (compared exactly) always lands in a cell the triangle is listed in, however
-//! the division rounds.
+//! Cell indices come from one monotone function of a coordinate ([`Cells`], shared with the
+//! segment grid), so a point within a triangle's box (compared exactly) always lands in a cell
+//! the triangle is listed in, however the division rounds.
 
 use crate::geometry::Point3;
+use crate::grid::Cells;
 use crate::mesh::{Containment, Mesh, classify_among, crosses_column};
 use rayon::prelude::*;
 
@@ -78,9 +79,7 @@ fn round_up(x: f64) -> f32 {
 /// ```
 #[derive(Debug, Clone)]
 pub struct ProjectionGrid {
-    origin: [f64; 2],
-    inverse_cell: [f64; 2],
-    cells: [usize; 2],
+    cells: Cells,
     /// Cell `c` lists `items[start[c]..start[c + 1]]`.
     start: Vec<u32>,
     items: Vec<Candidate>,
@@ -140,26 +139,17 @@ impl ProjectionGrid {
         } else {
             ([lo(0), lo(1)], [hi(0) - lo(0), hi(1) - lo(1)])
         };
-        let cells = grid_shape(columns.len(), extent);
-        let inverse_cell = [0, 1].map(|k| {
-            if extent[k] > 0.0 {
-                cells[k] as f64 / extent[k]
-            } else {
-                0.0
-            }
-        });
+        let cells = Cells::new(origin, extent, grid_shape(columns.len(), extent));
         let mut grid = ProjectionGrid {
-            origin,
-            inverse_cell,
             cells,
-            start: vec![0; cells[0] * cells[1] + 1],
+            start: vec![0; cells.count() + 1],
             items: Vec::new(),
             columns,
             gap_start: Vec::new(),
             gaps: Vec::new(),
         };
         grid.fill();
-        let per_cell: Vec<Vec<Gap>> = (0..cells[0] * cells[1])
+        let per_cell: Vec<Vec<Gap>> = (0..cells.count())
             .into_par_iter()
             .map(|c| grid.find_gaps(c))
             .collect();
@@ -222,15 +212,11 @@ impl ProjectionGrid {
 
     /// A point of the x-y plane that falls in cell `c`, if the rounded centre does.
     fn centre(&self, c: usize) -> Option<[f64; 2]> {
-        let index = [c % self.cells[0], c / self.cells[0]];
-        let xy = [0, 1].map(|k| {
-            if self.inverse_cell[k] > 0.0 {
-                self.origin[k] + (index[k] as f64 + 0.5) / self.inverse_cell[k]
-            } else {
-                self.origin[k]
-            }
-        });
-        (self.cell(0, xy[0]) == index[0] && self.cell(1, xy[1]) == index[1]).then_some(xy)
+        let nx = self.cells.shape()[0];
+        let index = [c % nx, c / nx];
+        let xy = [0, 1].map(|k| self.cells.coordinate(k, index[k] as f64 + 0.5));
+        (self.cells.index(0, xy[0]) == index[0] && self.cells.index(1, xy[1]) == index[1])
+            .then_some(xy)
     }
 
     /// Lists every triangle in the cells its box covers (counting pass, then filling pass).
@@ -238,9 +224,9 @@ impl ProjectionGrid {
         let ranges: Vec<[[usize; 2]; 2]> = self
             .columns
             .iter()
-            .map(|c| [0, 1].map(|k| [self.cell(k, c.min[k]), self.cell(k, c.max[k])]))
+            .map(|c| [0, 1].map(|k| [self.cells.index(k, c.min[k]), self.cells.index(k, c.max[k])]))
             .collect();
-        let nx = self.cells[0];
+        let nx = self.cells.shape()[0];
         for [[x0, x1], [y0, y1]] in &ranges {
             for y in *y0..=*y1 {
                 for x in *x0..=*x1 {
@@ -270,20 +256,6 @@ impl ProjectionGrid {
         }
     }
 
-    /// The cell index along axis `k` of coordinate `v`: a monotone function of `v`, clamped
-    /// to the grid.
-    #[inline]
-    fn cell(&self, k: usize, v: f64) -> usize {
-        let c = (v - self.origin[k]) * self.inverse_cell[k];
-        if c >= self.cells[k] as f64 {
-            self.cells[k] - 1
-        } else if c > 0.0 {
-            c as usize
-        } else {
-            0
-        }
-    }
-
     /// Classifies `p` against the mesh exactly (the mesh must be closed): the upward ray's
     /// crossings with the triangles of `p`'s cell that reach its column.
     ///
@@ -294,7 +266,7 @@ impl ProjectionGrid {
     /// assert_eq!(g.classify(&Point3::new(1.0, 1.0, -3.0)), Containment::Outside);
     /// ```
     pub fn classify(&self, p: &Point3) -> Containment {
-        let cell = self.cell(1, p.y) * self.cells[0] + self.cell(0, p.x);
+        let cell = self.cells.cell_of(p.x, p.y);
         let gaps = &self.gaps[self.gap_start[cell] as usize..self.gap_start[cell + 1] as usize];
         for gap in gaps {
             if p.z <= gap.lo {
@@ -334,7 +306,7 @@ impl ProjectionGrid {
     /// assert!(nx * ny >= 1 && nx * ny <= 12);
     /// ```
     pub fn shape(&self) -> [usize; 2] {
-        self.cells
+        self.cells.shape()
     }
 
     /// The average number of triangles listed per cell.
@@ -344,7 +316,7 @@ impl ProjectionGrid {
     /// assert!(g.mean_cell_load() >= 1.0);
     /// ```
     pub fn mean_cell_load(&self) -> f64 {
-        self.items.len() as f64 / (self.cells[0] * self.cells[1]) as f64
+        self.items.len() as f64 / self.cells.count() as f64
     }
 }
 

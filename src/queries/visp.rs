@@ -27,7 +27,6 @@
 //! assert_eq!(index.visp(&Point3::new(0.5, 0.5, 1.0)).0, Visibility::Visible);
 //! ```
 
-use super::include::subtree;
 use super::sight::Sight;
 use super::{Counters, Stage, in_parallel};
 use crate::geometry::exact::{accurate_sum, expansion, product_terms, sum_sign, two_sum};
@@ -203,7 +202,7 @@ pub struct VisibilityIndex<'s> {
     scene: &'s Scene,
     view: View,
     objects: Vec<ObjectId>,
-    trees: SecondaryMap<ObjectId, (TriangleTree, Vec<usize>)>,
+    trees: SecondaryMap<ObjectId, TriangleTree>,
 }
 
 impl<'s> VisibilityIndex<'s> {
@@ -216,24 +215,16 @@ impl<'s> VisibilityIndex<'s> {
     /// assert_eq!(VisibilityIndex::new(&s, &[c], View::standard()).view(), &View::standard());
     /// ```
     pub fn new(scene: &'s Scene, objects: &[ObjectId], view: View) -> VisibilityIndex<'s> {
-        let all: Vec<ObjectId> = objects.iter().flat_map(|&id| subtree(scene, id)).collect();
-        let built: Vec<_> = all
-            .par_iter()
-            .filter_map(|&id| scene[id].mesh().map(|m| (id, m)))
-            .map(|(id, mesh)| {
-                scene.cbox(id);
-                scene.inbox(id);
-                let mut faces = vec![0; mesh.triangles().len()];
-                for (f, face) in mesh.faces().iter().enumerate() {
-                    faces[face.triangle_range()].fill(f);
-                }
-                (id, (TriangleTree::new(mesh), faces))
-            })
+        scene.compute_bounds_of(objects);
+        let leaves: Vec<(ObjectId, &Mesh)> = objects
+            .iter()
+            .flat_map(|&id| scene.subtree(id))
+            .filter_map(|id| scene[id].mesh().map(|m| (id, m)))
             .collect();
-        for &id in all.iter().rev() {
-            scene.cbox(id);
-            scene.inbox(id);
-        }
+        let built: Vec<(ObjectId, TriangleTree)> = leaves
+            .par_iter()
+            .map(|&(id, mesh)| (id, TriangleTree::new(mesh)))
+            .collect();
         let mut trees = SecondaryMap::new();
         trees.extend(built);
         VisibilityIndex {
@@ -282,7 +273,6 @@ impl<'s> VisibilityIndex<'s> {
         any_hides(self.objects.iter().map(|&id| {
             descend(self.scene, id, &sight, &|leaf, _| {
                 self.trees[leaf]
-                    .0
                     .select(|b| sight.may_meet(b))
                     .any(|(_, t)| hides(eye, &t, p))
             })
@@ -328,8 +318,8 @@ impl<'s> VisibilityIndex<'s> {
         let sight = Sight::ray(&ray.origin, &ray.direction);
         let mut best: Option<(Hit, [Point3; 3])> = None;
         for &root in &self.objects {
-            for id in subtree(self.scene, root) {
-                let Some((tree, faces)) = self.trees.get(id) else {
+            for id in self.scene.subtree(root) {
+                let (Some(tree), Some(mesh)) = (self.trees.get(id), self.scene[id].mesh()) else {
                     continue;
                 };
                 if !sight.may_meet(&self.scene.cbox(id)) {
@@ -341,7 +331,7 @@ impl<'s> VisibilityIndex<'s> {
                     }
                     let candidate = Hit {
                         object: id,
-                        face: faces[t],
+                        face: mesh.face_of(t),
                         triangle: t,
                         point: Point3::origin(),
                     };

@@ -443,8 +443,29 @@ impl Scene {
     /// assert_eq!(s.walk(), vec![(g, 0), (h, 1)]);
     /// ```
     pub fn walk(&self) -> Vec<(ObjectId, usize)> {
+        self.depth_first(&self.roots)
+    }
+
+    /// The objects of the subtree of `id` in depth-first order, `id` first.
+    ///
+    /// ```
+    /// let mut s = kepler::scene::Scene::new();
+    /// let g = s.add_group(None, "g").unwrap();
+    /// let h = s.add_group(Some(g), "h").unwrap();
+    /// s.add_group(None, "other").unwrap();
+    /// assert_eq!(s.subtree(g), vec![g, h]);
+    /// ```
+    pub fn subtree(&self, id: ObjectId) -> Vec<ObjectId> {
+        self.depth_first(&[id])
+            .into_iter()
+            .map(|(o, _)| o)
+            .collect()
+    }
+
+    /// The subtrees of `starts`, in order, depth-first, with depths counted from them.
+    fn depth_first(&self, starts: &[ObjectId]) -> Vec<(ObjectId, usize)> {
         let mut out = Vec::new();
-        let mut stack: Vec<(ObjectId, usize)> = self.roots.iter().rev().map(|&r| (r, 0)).collect();
+        let mut stack: Vec<(ObjectId, usize)> = starts.iter().rev().map(|&r| (r, 0)).collect();
         while let Some((id, depth)) = stack.pop() {
             out.push((id, depth));
             stack.extend(
@@ -467,15 +488,10 @@ impl Scene {
     /// assert_eq!(s.meshes(g).len(), 1);
     /// ```
     pub fn meshes(&self, id: ObjectId) -> Vec<&Mesh> {
-        let mut out = Vec::new();
-        let mut stack = vec![id];
-        while let Some(i) = stack.pop() {
-            match &self.objects[i].content {
-                Content::Mesh(m) => out.push(m),
-                Content::Subobjects(v) => stack.extend(v.iter().rev()),
-            }
-        }
-        out
+        self.subtree(id)
+            .into_iter()
+            .filter_map(|o| self.objects[o].mesh())
+            .collect()
     }
 
     /// The path of names from the top level down to `id`, joined by `/`.
@@ -581,8 +597,22 @@ impl Scene {
     /// assert!(s.inbox(c).is_some());
     /// ```
     pub fn compute_bounds(&self) {
+        self.compute_bounds_of(&self.roots);
+    }
+
+    /// Computes (and caches) the bounds of the subtrees of `objects` only, as
+    /// [`Scene::compute_bounds`] does for the whole scene.
+    ///
+    /// ```
+    /// let mut s = kepler::scene::Scene::new();
+    /// let g = s.add_group(None, "g").unwrap();
+    /// let c = s.add_mesh(Some(g), "c", kepler::solids::cube(1.0).unwrap()).unwrap();
+    /// s.compute_bounds_of(&[g]);
+    /// assert_eq!(s.inbox(g).unwrap().aabb, s.cbox(c));
+    /// ```
+    pub fn compute_bounds_of(&self, objects: &[ObjectId]) {
         use rayon::prelude::*;
-        let walk = self.walk();
+        let walk = self.depth_first(objects);
         walk.par_iter()
             .filter(|(id, _)| self.objects[*id].mesh().is_some())
             .for_each(|&(id, _)| {

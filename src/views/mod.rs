@@ -350,23 +350,7 @@ impl View {
     /// assert!((q.x - 0.1).abs() < 1e-15 && (q.y - 0.2).abs() < 1e-15 && (q.z + 0.1).abs() < 1e-15);
     /// ```
     pub fn to_view(&self, p: &Point3) -> Point3 {
-        match self.eye {
-            Eye::Point(e) => {
-                let q = p - e;
-                let depth = self.forward.dot(&q);
-                let k = 1.0 / (self.fov.unwrap_or(90.0).to_radians() / 2.0).tan();
-                Point3::new(
-                    k * self.right.dot(&q) / depth,
-                    k * self.up.dot(&q) / depth,
-                    -1.0 / depth,
-                )
-            }
-            Eye::Infinity(_) => Point3::new(
-                self.right.dot(&p.coords),
-                self.up.dot(&p.coords),
-                -self.forward.dot(&p.coords),
-            ),
-        }
+        self.matrix().transform_point(p)
     }
 }
 

@@ -1,0 +1,111 @@
+//! The frame of a uniform grid of cells over a rectangle of the plane.
+
+/// A uniform grid of `shape[0] × shape[1]` cells over a rectangle. A coordinate's cell index
+/// is one monotone function of it, clamped to the grid, so a point inside a box always falls
+/// in a cell of the box's index range, however the arithmetic rounds; the structures built on
+/// it list each item in every cell its range covers.
+///
+/// ```
+/// use kepler::grid::Cells;
+/// let cells = Cells::new([0.0, 0.0], [10.0, 5.0], [10, 5]);
+/// assert_eq!(cells.index(0, 3.5), 3);
+/// assert_eq!(cells.index(0, -7.0), 0); // clamped
+/// assert_eq!(cells.index(1, 99.0), 4);
+/// assert_eq!(cells.cell_of(3.5, 1.2), 13); // row-major
+/// assert_eq!(cells.coordinate(0, 2.5), 2.5);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Cells {
+    origin: [f64; 2],
+    inverse_cell: [f64; 2],
+    shape: [usize; 2],
+}
+
+impl Cells {
+    /// The grid of `shape` cells (at least one along each axis) over the rectangle from
+    /// `origin` spanning `extent`; an axis of zero extent has a single cell.
+    ///
+    /// ```
+    /// let flat = kepler::grid::Cells::new([1.0, 2.0], [0.0, 4.0], [3, 4]);
+    /// assert_eq!(flat.shape(), [1, 4]);
+    /// ```
+    pub fn new(origin: [f64; 2], extent: [f64; 2], shape: [usize; 2]) -> Cells {
+        let shape = [0, 1].map(|k| if extent[k] > 0.0 { shape[k].max(1) } else { 1 });
+        let inverse_cell = [0, 1].map(|k| {
+            if extent[k] > 0.0 {
+                shape[k] as f64 / extent[k]
+            } else {
+                0.0
+            }
+        });
+        Cells {
+            origin,
+            inverse_cell,
+            shape,
+        }
+    }
+
+    /// Cells along x and y.
+    ///
+    /// ```
+    /// assert_eq!(kepler::grid::Cells::new([0.0; 2], [1.0; 2], [4, 2]).shape(), [4, 2]);
+    /// ```
+    pub fn shape(&self) -> [usize; 2] {
+        self.shape
+    }
+
+    /// The number of cells.
+    ///
+    /// ```
+    /// assert_eq!(kepler::grid::Cells::new([0.0; 2], [1.0; 2], [4, 2]).count(), 8);
+    /// ```
+    pub fn count(&self) -> usize {
+        self.shape[0] * self.shape[1]
+    }
+
+    /// The cell index along axis `k` (0 for x, 1 for y) of coordinate `v`: monotone in `v`,
+    /// clamped to the grid.
+    ///
+    /// ```
+    /// let cells = kepler::grid::Cells::new([0.0; 2], [1.0; 2], [4, 4]);
+    /// assert_eq!((cells.index(0, 0.25), cells.index(0, 1.0)), (1, 3));
+    /// ```
+    #[inline]
+    pub fn index(&self, k: usize, v: f64) -> usize {
+        let c = (v - self.origin[k]) * self.inverse_cell[k];
+        if c >= self.shape[k] as f64 {
+            self.shape[k] - 1
+        } else if c > 0.0 {
+            c as usize
+        } else {
+            0
+        }
+    }
+
+    /// The row-major index of the cell of `(x, y)`.
+    ///
+    /// ```
+    /// let cells = kepler::grid::Cells::new([0.0; 2], [1.0; 2], [4, 4]);
+    /// assert_eq!(cells.cell_of(0.9, 0.3), 7);
+    /// ```
+    #[inline]
+    pub fn cell_of(&self, x: f64, y: f64) -> usize {
+        self.index(1, y) * self.shape[0] + self.index(0, x)
+    }
+
+    /// The coordinate along axis `k` at `t` cells from the origin (rounded; cell boundaries
+    /// at whole `t`, centres at halves), or the origin on an axis of zero extent.
+    ///
+    /// ```
+    /// let cells = kepler::grid::Cells::new([1.0, 0.0], [2.0, 1.0], [4, 1]);
+    /// assert_eq!(cells.coordinate(0, 1.0), 1.5);
+    /// ```
+    #[inline]
+    pub fn coordinate(&self, k: usize, t: f64) -> f64 {
+        if self.inverse_cell[k] > 0.0 {
+            self.origin[k] + t / self.inverse_cell[k]
+        } else {
+            self.origin[k]
+        }
+    }
+}
