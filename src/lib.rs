@@ -16,6 +16,7 @@
 //! - [`scene`]: the scene graph, instancing, flattening and the scene file.
 //! - [`views`]: orthographic and perspective views, and exact predicates with the eye.
 //! - [`queries`]: INCLUDE and VISP through the hierarchy, batch INCLUDE, ray shooting.
+//! - [`hidden`]: exact hidden-line drawings (edge classes, intersection lines, visibility).
 //!
 //! ```
 //! use kepler::solids;
@@ -28,8 +29,10 @@ pub mod bounds;
 pub mod error;
 pub mod geometry;
 pub mod grid;
+pub mod hidden;
 pub mod io;
 pub mod mesh;
+pub mod output;
 pub mod queries;
 pub mod scene;
 pub mod solids;

@@ -3,15 +3,19 @@
 use anyhow::Result;
 use clap::{Args, Parser, Subcommand};
 use geo::Line;
+use indicatif::{ProgressBar, ProgressStyle};
 use kepler::geometry::{Point3, Vector3};
 use kepler::grid::{intersecting_pairs, random_segments};
+use kepler::hidden::{self, Drawing, EdgeClass, EdgeSelection};
 use kepler::io::points::{read_points, read_segments};
+use kepler::output::{SvgOptions, write_json, write_svg};
 use kepler::queries::Counters;
 use kepler::queries::include::{IncludeIndex, Inclusion};
 use kepler::queries::visp::{Visibility, VisibilityIndex};
 use kepler::scene::{Scene, file, report::BoundsReport};
 use kepler::views::{View, ViewOptions};
 use std::fmt::Write as _;
+use std::io::IsTerminal;
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -64,6 +68,43 @@ enum Command {
         #[arg(long)]
         pairs: bool,
     },
+    /// Draw the scene's visible (and hidden) lines exactly, as SVG (and JSON).
+    Render {
+        /// A scene file (.toml) or a mesh file (.obj, .stl, .off).
+        scene: PathBuf,
+        /// The SVG file to write (`-` writes standard output).
+        #[arg(short = 'o', long = "output", value_name = "FILE")]
+        output: PathBuf,
+        /// Which edges: `feature` (silhouette, boundary, crease, intersection) or `all` (smooth
+        /// edges too: a wireframe with hidden parts removed).
+        #[arg(long, value_enum, default_value_t = Edges::Feature)]
+        edges: Edges,
+        /// An edge whose faces bend by more than this many degrees is a crease.
+        #[arg(long, value_name = "DEGREES", default_value_t = 30.0)]
+        crease_angle: f64,
+        /// Hidden lines: `dashed` (their own grey dashed layers) or `omit`.
+        #[arg(long, value_enum, default_value_t = Hidden::Dashed)]
+        hidden: Hidden,
+        /// Page size in millimetres, `WIDTHxHEIGHT` (default A4 landscape).
+        #[arg(long, value_name = "WxH", value_parser = parse_page, default_value = "297x210")]
+        page: [f64; 2],
+        /// Page margin in millimetres.
+        #[arg(long, value_name = "MM", default_value_t = 10.0)]
+        margin: f64,
+        /// A stroke width in millimetres for one class, `CLASS=MM` (classes: silhouette,
+        /// boundary, crease, intersection, smooth); repeat for several.
+        #[arg(long, value_name = "CLASS=MM", value_parser = parse_stroke)]
+        stroke: Vec<(EdgeClass, f64)>,
+        /// Also write the polylines as JSON, in view coordinates, to this file.
+        #[arg(long, value_name = "FILE")]
+        json: Option<PathBuf>,
+        /// Print what each stage computed and skipped, its time, and the visible and hidden
+        /// length of each edge class (to stderr).
+        #[arg(long)]
+        stats: bool,
+        #[command(flatten)]
+        view: ViewArgs,
+    },
     /// VISP: print VISIBLE or HIDDEN for each point, in order (a summary goes to stderr).
     Visp {
         /// A scene file (.toml) or a mesh file.
@@ -109,6 +150,53 @@ impl ViewArgs {
             fov: self.fov,
         };
         Ok(options.resolve(scene.camera())?)
+    }
+}
+
+/// `--edges`.
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum Edges {
+    Feature,
+    All,
+}
+
+/// `--hidden`.
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum Hidden {
+    Dashed,
+    Omit,
+}
+
+/// Parses `WIDTHxHEIGHT` (millimetres, positive).
+fn parse_page(text: &str) -> Result<[f64; 2], String> {
+    let fields: Vec<&str> = text.split(['x', 'X']).map(str::trim).collect();
+    match fields[..] {
+        [w, h] => match (w.parse::<f64>(), h.parse::<f64>()) {
+            (Ok(w), Ok(h)) if w.is_finite() && h.is_finite() && w > 0.0 && h > 0.0 => Ok([w, h]),
+            _ => Err(format!("'{text}' is not two positive sizes in mm")),
+        },
+        _ => Err(format!(
+            "expected WIDTHxHEIGHT in mm (like 297x210), got '{text}'"
+        )),
+    }
+}
+
+/// Parses `CLASS=MM`.
+fn parse_stroke(text: &str) -> Result<(EdgeClass, f64), String> {
+    let (name, width) = text
+        .split_once('=')
+        .ok_or_else(|| format!("expected CLASS=MM, got '{text}'"))?;
+    let class = EdgeClass::ALL
+        .into_iter()
+        .find(|c| c.name() == name.trim())
+        .ok_or_else(|| {
+            format!(
+                "'{name}' is not an edge class (silhouette, boundary, crease, intersection, smooth)"
+            )
+        })?;
+    match width.trim().parse::<f64>() {
+        Ok(w) if w.is_finite() && w >= 0.0 => Ok((class, w)),
+        _ => Err(format!("'{width}' is not a stroke width in mm")),
     }
 }
 
@@ -185,6 +273,79 @@ fn run(cli: Cli) -> Result<()> {
                 eprintln!("{summary}");
             } else {
                 emit(&(summary + "\n"))?;
+            }
+        }
+        Command::Render {
+            scene: path,
+            output,
+            edges,
+            crease_angle,
+            hidden,
+            page,
+            margin,
+            stroke,
+            json,
+            stats,
+            view,
+        } => {
+            if !(crease_angle.is_finite() && (0.0..=180.0).contains(&crease_angle)) {
+                anyhow::bail!(
+                    "--crease-angle must be between 0 and 180 degrees, not {crease_angle}"
+                );
+            }
+            let started = Instant::now();
+            let scene = file::load(&path)?;
+            if scene
+                .walk()
+                .iter()
+                .all(|&(id, _)| scene[id].mesh().is_none())
+            {
+                anyhow::bail!("{}: the scene has no objects to draw", path.display());
+            }
+            let view = view.view(&scene)?;
+            let options = hidden::Options {
+                edges: match edges {
+                    Edges::Feature => EdgeSelection::Feature,
+                    Edges::All => EdgeSelection::All,
+                },
+                crease_angle,
+                hidden: hidden == Hidden::Dashed,
+            };
+            let mut svg_options = SvgOptions {
+                page,
+                margin,
+                ..SvgOptions::default()
+            };
+            for (class, width) in stroke {
+                match class {
+                    EdgeClass::Silhouette => svg_options.stroke.silhouette = width,
+                    EdgeClass::Boundary => svg_options.stroke.boundary = width,
+                    EdgeClass::Crease => svg_options.stroke.crease = width,
+                    EdgeClass::Intersection => svg_options.stroke.intersection = width,
+                    EdgeClass::Smooth => svg_options.stroke.smooth = width,
+                }
+            }
+            let loaded = started.elapsed();
+            let bar = progress_bar();
+            let drawing = hidden::draw_with_progress(&scene, &view, &options, &|done, total| {
+                if let Some(bar) = &bar {
+                    bar.set_length(total);
+                    bar.set_position(done);
+                }
+            })?;
+            if let Some(bar) = bar {
+                bar.finish_and_clear();
+            }
+            let clock = Instant::now();
+            write_file(&output, |mut out| {
+                write_svg(&drawing, &svg_options, &mut out)
+            })?;
+            if let Some(json) = &json {
+                write_file(json, |mut out| write_json(&drawing, &mut out))?;
+            }
+            let written = clock.elapsed();
+            if stats {
+                eprint!("{}", stats_report(&drawing, loaded, written));
             }
         }
         Command::Visp {
@@ -269,6 +430,78 @@ fn summary(
          in {:.3} s; decided by {share}",
         built.as_secs_f64()
     )
+}
+
+/// A progress bar on stderr, or `None` when stderr is not a terminal.
+fn progress_bar() -> Option<ProgressBar> {
+    if !std::io::stderr().is_terminal() {
+        return None;
+    }
+    let bar = ProgressBar::new(0);
+    if let Ok(style) = ProgressStyle::with_template("visibility {bar:40} {pos}/{len} lines ({eta})")
+    {
+        bar.set_style(style);
+    }
+    Some(bar)
+}
+
+/// Writes a file (or standard output for `-`) with `write`, naming the file in errors.
+fn write_file(
+    path: &std::path::Path,
+    write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> Result<()> {
+    let name = path.display().to_string();
+    if name == "-" {
+        let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+        write(&mut out).and_then(|()| out.flush())?;
+        return Ok(());
+    }
+    let file = std::fs::File::create(path).map_err(|e| kepler::Error::io(&name, e))?;
+    let mut out = std::io::BufWriter::new(file);
+    write(&mut out)
+        .and_then(|()| out.flush())
+        .map_err(|e| kepler::Error::io(&name, e))?;
+    Ok(())
+}
+
+/// The `--stats` report: each stage, then lengths per class.
+fn stats_report(drawing: &Drawing, loaded: Duration, written: Duration) -> String {
+    let mut text = String::new();
+    let _ = writeln!(text, "stage          seconds  computed / skipped");
+    let _ = writeln!(
+        text,
+        "load           {:>7.4}  scene file and meshes",
+        loaded.as_secs_f64()
+    );
+    for stage in &drawing.stages {
+        let _ = writeln!(
+            text,
+            "{:<14} {:>7.4}  {}",
+            stage.name, stage.seconds, stage.done
+        );
+        if let Some(skipped) = &stage.skipped {
+            let _ = writeln!(text, "{:<14} {:>7}  skipped: {skipped}", "", "");
+        }
+    }
+    let _ = writeln!(
+        text,
+        "write          {:>7.4}  SVG and JSON",
+        written.as_secs_f64()
+    );
+    let _ = writeln!(
+        text,
+        "class          visible length  hidden length  (view coordinates)"
+    );
+    for class in EdgeClass::ALL.into_iter().rev() {
+        let _ = writeln!(
+            text,
+            "{:<14} {:>14.6} {:>14.6}",
+            class.name(),
+            drawing.length(class, true),
+            drawing.length(class, false)
+        );
+    }
+    text
 }
 
 /// Writes to standard output; a reader that closed the pipe early (`| head`) is not an error.

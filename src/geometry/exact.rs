@@ -96,6 +96,170 @@ pub fn expansion(terms: &[f64]) -> Vec<f64> {
     buf
 }
 
+/// The exact sum of the expansions `e` and `f`, as an expansion.
+///
+/// Shewchuk's Linear-Expansion-Sum with zero elimination: the components of both inputs are
+/// merged by increasing magnitude and accumulated with a chain of [`two_sum`]s, in time linear
+/// in `e.len() + f.len()`. The sum of the result equals the sum of the inputs exactly whatever
+/// the inputs (barring overflow); when both are expansions (nonzero, nonoverlapping components
+/// in increasing magnitude; empty for zero), so is the result, of at most `e.len() + f.len()`
+/// components, so it can be fed back into this module's expansion arithmetic.
+///
+/// ```
+/// use kepler::geometry::exact::{expansion, expansion_sum};
+/// let e = expansion(&[1e100, 1.0]);
+/// let f = expansion(&[-1e100, 2f64.powi(-80)]);
+/// assert_eq!(expansion_sum(&e, &f), vec![2f64.powi(-80), 1.0]);
+/// assert!(expansion_sum(&[0.5], &[-0.5]).is_empty());
+/// assert_eq!(expansion_sum(&[], &[3.0]), vec![3.0]);
+/// ```
+pub fn expansion_sum(e: &[f64], f: &[f64]) -> Vec<f64> {
+    let mut h = Vec::with_capacity(e.len() + f.len());
+    let mut merged = merge_by_magnitude(e, f);
+    let (Some(g0), Some(g1)) = (merged.next(), merged.next()) else {
+        // At most one component in all.
+        h.extend(e.iter().chain(f).copied().filter(|&c| c != 0.0));
+        return h;
+    };
+    // Invariant: big + small + (the components emitted so far) is the exact sum of the
+    // components merged so far, and `small` is below the bits of `big`.
+    let (mut big, mut small) = two_sum(g1, g0);
+    for g in merged {
+        // Shewchuk uses Fast-Two-Sum here; TwoSum gives the same result when its
+        // precondition holds and stays exact when it does not.
+        let (r, low) = two_sum(g, small);
+        push_nonzero(&mut h, low);
+        (big, small) = two_sum(big, r);
+    }
+    push_nonzero(&mut h, small);
+    push_nonzero(&mut h, big);
+    h
+}
+
+/// The components of `e` and `f` merged by nondecreasing magnitude (each is assumed sorted).
+fn merge_by_magnitude<'a>(e: &'a [f64], f: &'a [f64]) -> impl Iterator<Item = f64> + 'a {
+    let (mut i, mut j) = (0, 0);
+    std::iter::from_fn(move || {
+        let take_e = match (e.get(i), f.get(j)) {
+            (Some(x), Some(y)) => x.abs() <= y.abs(),
+            (Some(_), None) => true,
+            (None, Some(_)) => false,
+            (None, None) => return None,
+        };
+        if take_e {
+            i += 1;
+            Some(e[i - 1])
+        } else {
+            j += 1;
+            Some(f[j - 1])
+        }
+    })
+}
+
+#[inline]
+fn push_nonzero(h: &mut Vec<f64>, x: f64) {
+    if x != 0.0 {
+        h.push(x);
+    }
+}
+
+/// The exact product of the expansion `e` and the double `b`, as an expansion of at most
+/// `2 * e.len()` components (empty when the product is zero).
+///
+/// Shewchuk's Scale-Expansion with zero elimination, with [`two_product`]. The result is
+/// exact, and an expansion when `e` is one, as long as no product of a component with `b`
+/// underflows (its rounding error must be representable: true when every such product is
+/// zero or a multiple of `2^-1074`, e.g. all of magnitude above about `2^-969`) and none
+/// overflows.
+///
+/// ```
+/// use kepler::geometry::exact::{expansion, scale_expansion};
+/// // 0.1 * 3 is not a double: the product needs two components.
+/// let p = scale_expansion(&[0.1], 3.0);
+/// assert_eq!(p.len(), 2);
+/// assert_eq!(p[1], 0.1 * 3.0);
+/// assert_eq!(scale_expansion(&expansion(&[1e100, 1.0]), 0.5), vec![0.5, 5e99]);
+/// assert!(scale_expansion(&[1.0, 1e20], 0.0).is_empty());
+/// ```
+pub fn scale_expansion(e: &[f64], b: f64) -> Vec<f64> {
+    let mut h = Vec::with_capacity(2 * e.len());
+    let Some((&first, rest)) = e.split_first() else {
+        return h;
+    };
+    let (mut big, low) = two_product(first, b);
+    push_nonzero(&mut h, low);
+    for &c in rest {
+        let (p_high, p_low) = two_product(c, b);
+        let (sum, low) = two_sum(big, p_low);
+        push_nonzero(&mut h, low);
+        // Shewchuk's Fast-Two-Sum (|p_high| >= |sum|); TwoSum is exact regardless.
+        let (s, low) = two_sum(p_high, sum);
+        push_nonzero(&mut h, low);
+        big = s;
+    }
+    push_nonzero(&mut h, big);
+    h
+}
+
+/// The exact product of the expansions `e` and `f`, as an expansion: the sum, by
+/// [`expansion_sum`], of [`scale_expansion`] of the longer one by each component of the
+/// shorter one. Exact under the same condition as [`scale_expansion`] (no product of two
+/// components underflows or overflows).
+///
+/// ```
+/// use kepler::geometry::exact::{estimate, expansion, expansion_product};
+/// // (1 + 2^-60)^2 = 1 + 2^-59 + 2^-120 exactly.
+/// let e = expansion(&[1.0, 2f64.powi(-60)]);
+/// let p = expansion_product(&e, &e);
+/// assert_eq!(p, vec![2f64.powi(-120), 2f64.powi(-59), 1.0]);
+/// assert_eq!(estimate(&p), 1.0);
+/// assert!(expansion_product(&e, &[]).is_empty());
+/// ```
+pub fn expansion_product(e: &[f64], f: &[f64]) -> Vec<f64> {
+    let (short, long) = if e.len() <= f.len() { (e, f) } else { (f, e) };
+    let mut product = Vec::new();
+    for &b in short {
+        let scaled = scale_expansion(long, b);
+        product = if product.is_empty() {
+            scaled
+        } else {
+            expansion_sum(&product, &scaled)
+        };
+    }
+    product
+}
+
+/// The expansion of `-e` (each component negated; an expansion stays one).
+///
+/// ```
+/// use kepler::geometry::exact::negated;
+/// assert_eq!(negated(&[1e-20, -3.0]), vec![-1e-20, 3.0]);
+/// ```
+pub fn negated(e: &[f64]) -> Vec<f64> {
+    e.iter().map(|&c| -c).collect()
+}
+
+/// The value of the expansion `e` correctly rounded to the nearest double (ties to even); 0
+/// for the empty expansion.
+///
+/// This is [`accurate_sum`], which rounds the exact sum of *any* list of doubles correctly
+/// (its fast path is certified by an error bound, its fallback rounds the exact expansion
+/// from the top as `math.fsum` does), so it is correct for expansions in particular, and
+/// its sign is the sign of the expansion's value (the largest component's).
+///
+/// ```
+/// use kepler::geometry::exact::{estimate, expansion};
+/// assert_eq!(estimate(&expansion(&[0.1, 0.2, -0.3])), 2f64.powi(-55));
+/// // 1 + 2^-53 is half-way between 1 and the next double; the lowest component breaks the tie.
+/// assert_eq!(estimate(&[-(2f64.powi(-80)), 2f64.powi(-53), 1.0]), 1.0);
+/// assert_eq!(estimate(&[2f64.powi(-80), 2f64.powi(-53), 1.0]), 1.0f64.next_up());
+/// assert_eq!(estimate(&[]), 0.0);
+/// ```
+#[inline]
+pub fn estimate(e: &[f64]) -> f64 {
+    accurate_sum(e)
+}
+
 /// The power of two `2^-e` with `2^e <= x < 2^(e+1)` for a positive finite `x`: multiplying
 /// by it is exact (barring underflow of other, much smaller values) and brings `x` into
 /// `[1, 2)`, so a direction can be rescaled without changing it.

@@ -12,7 +12,9 @@
 //! assert_eq!(orient3d(&a, &b, &c, &Point3::new(0.3, 0.3, 0.0)), Ordering::Equal);
 //! ```
 
-use super::exact::{product_terms, sum_sign, two_sum};
+use super::exact::{
+    expansion_product, expansion_sum, negated, product_terms, scale_expansion, sum_sign, two_sum,
+};
 use super::{Point3, Vector3};
 use robust::{Coord, Coord3D};
 use std::cmp::Ordering;
@@ -47,6 +49,184 @@ pub fn orient3d(a: &Point3, b: &Point3, c: &Point3, d: &Point3) -> Ordering {
         z: q.z,
     };
     sign(robust::orient3d(p(a), p(b), p(c), p(d)))
+}
+
+/// Half the gap between 1 and the next double (Shewchuk's ε).
+const EPS: f64 = f64::EPSILON / 2.0;
+
+/// Relative error bound of [`orient3d_estimate`]: `(8 + 256ε)ε`, to multiply by its computed
+/// permanent. See the derivation there.
+const ORIENT3D_ERROR_BOUND: f64 = (8.0 + 256.0 * EPS) * EPS;
+
+/// Relative error bound of [`orient3d_at_infinity_estimate`]: `(7 + 224ε)ε`, to multiply by
+/// its computed permanent (one rounding fewer per term than [`ORIENT3D_ERROR_BOUND`]: `u` is
+/// not a difference).
+const ORIENT3D_AT_INFINITY_ERROR_BOUND: f64 = (7.0 + 224.0 * EPS) * EPS;
+
+/// The exact difference `x - y` as an expansion (at most two components).
+fn difference(x: f64, y: f64) -> Vec<f64> {
+    let (s, e) = two_sum(x, -y);
+    [e, s].into_iter().filter(|&c| c != 0.0).collect()
+}
+
+/// The exact expansion of `p·q - r·s` for expansions `p`, `q`, `r`, `s`.
+fn minor(p: &[f64], q: &[f64], r: &[f64], s: &[f64]) -> Vec<f64> {
+    expansion_sum(&expansion_product(p, q), &negated(&expansion_product(r, s)))
+}
+
+/// The exact value, as an expansion (see [`exact`](super::exact)), of the determinant whose
+/// sign [`orient3d`] returns: `det[a - d, b - d, c - d]`, positive when `d` lies below the
+/// plane through `a`, `b`, `c` (so `estimate(&orient3d_value(..)).partial_cmp(&0.0)` is
+/// exactly `orient3d(..)`), empty when the four points are coplanar.
+///
+/// The differences are formed exactly as two-component expansions, the 2×2 minors and the
+/// products with expansion arithmetic, so the result has at most 192 components (a handful
+/// when the differences are exact). It is exact for coordinates up to
+/// [`MAX_COORDINATE`] whose nonzero values are at least about `1e-90` in magnitude (then every
+/// intermediate product is a multiple of `2^-1074` and no bit is lost to underflow). A slow
+/// fallback: try [`orient3d_estimate`] first.
+///
+/// ```
+/// use kepler::geometry::{Point3, exact::estimate, predicates::orient3d_value};
+/// let o = Point3::origin();
+/// let (x, y) = (Point3::new(1.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0));
+/// assert_eq!(orient3d_value(&o, &x, &y, &Point3::new(0.0, 0.0, 2.0)), vec![-2.0]);
+/// // Far from the origin, on and just below the plane z = 1e15 (doubles are 1/8 apart there).
+/// let (a, b, c) = (Point3::new(1e15, 0.0, 1e15), Point3::new(1e15 + 1.0, 0.0, 1e15), Point3::new(1e15, 1.0, 1e15));
+/// assert!(orient3d_value(&a, &b, &c, &Point3::new(-7.0, 1e15, 1e15)).is_empty());
+/// let d = Point3::new(3.0, 5.0, 1e15 - 0.125);
+/// assert_eq!(estimate(&orient3d_value(&a, &b, &c, &d)), 0.125);
+/// ```
+pub fn orient3d_value(a: &Point3, b: &Point3, c: &Point3, d: &Point3) -> Vec<f64> {
+    let [adx, ady, adz] = [0, 1, 2].map(|i| difference(a[i], d[i]));
+    let [bdx, bdy, bdz] = [0, 1, 2].map(|i| difference(b[i], d[i]));
+    let [cdx, cdy, cdz] = [0, 1, 2].map(|i| difference(c[i], d[i]));
+    // det = adz (bdx cdy - cdx bdy) + bdz (cdx ady - adx cdy) + cdz (adx bdy - bdx ady).
+    let t1 = expansion_product(&adz, &minor(&bdx, &cdy, &cdx, &bdy));
+    let t2 = expansion_product(&bdz, &minor(&cdx, &ady, &adx, &cdy));
+    let t3 = expansion_product(&cdz, &minor(&adx, &bdy, &bdx, &ady));
+    expansion_sum(&expansion_sum(&t1, &t2), &t3)
+}
+
+/// A floating-point value of the determinant of [`orient3d_value`] (same sign convention as
+/// [`orient3d`]) and a certified bound on its error: `|exact - value| <= bound` for finite
+/// inputs whose products do not overflow (coordinates up to [`MAX_COORDINATE`]), underflow
+/// included. When `|value| > bound` its sign is `orient3d`'s. No allocation.
+///
+/// The value is Shewchuk's `det = adz (bdx cdy - cdx bdy) + bdz (cdx ady - adx cdy) +
+/// cdz (adx bdy - bdx ady)` on the rounded differences `adx = fl(a.x - d.x)`, ...
+///
+/// The bound: each of the six monomials of the exact determinant reaches `det` through at
+/// most 8 roundings (3 differences, the inner product, the subtraction, the outer product,
+/// 2 additions), each a factor `1 + δ` with `|δ| <= ε = 2^-53`, so
+/// `|det - exact| <= γ8 · P` with `γ8 = 8ε / (1 - 8ε)` and `P` the exact sum of the
+/// monomials' magnitudes. The computed permanent `P̂` (the same expression on magnitudes,
+/// reusing the rounded products) passes through the same 8 roundings, so
+/// `P <= P̂ / (1 - ε)^8`; with the two roundings of `bound` itself it suffices that
+/// `c (1 - ε)^2 >= 8ε / ((1 - 8ε)(1 - ε)^8)`, i.e. `c >= 8ε (1 + 18ε + O(ε²))`: we use
+/// `c = (8 + 256ε)ε`. (Shewchuk's `o3derrboundA = (7 + 56ε)ε` is smaller because a sign
+/// filter need not count the last addition, which cannot change the sign.) Underflow adds
+/// an absolute error of at most `2^-1075` per product, propagated through at most the outer
+/// difference (for the inner products) and a few roundings: at most about
+/// `2^-1073 (|adz| + |bdz| + |cdz| + 2)` on `det` and likewise on `P̂`, which
+/// `MIN_POSITIVE · (1 + |adz| + |bdz| + |cdz|)` covers many times over.
+///
+/// ```
+/// use kepler::geometry::{Point3, predicates::orient3d_estimate};
+/// let o = Point3::origin();
+/// let (x, y) = (Point3::new(1.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0));
+/// let (value, bound) = orient3d_estimate(&o, &x, &y, &Point3::new(0.0, 0.0, 2.0));
+/// assert_eq!(value, -2.0);
+/// assert!(bound > 0.0 && bound < 1e-14);
+/// ```
+#[inline]
+pub fn orient3d_estimate(a: &Point3, b: &Point3, c: &Point3, d: &Point3) -> (f64, f64) {
+    let (adx, ady, adz) = (a.x - d.x, a.y - d.y, a.z - d.z);
+    let (bdx, bdy, bdz) = (b.x - d.x, b.y - d.y, b.z - d.z);
+    let (cdx, cdy, cdz) = (c.x - d.x, c.y - d.y, c.z - d.z);
+    let (bdxcdy, cdxbdy) = (bdx * cdy, cdx * bdy);
+    let (cdxady, adxcdy) = (cdx * ady, adx * cdy);
+    let (adxbdy, bdxady) = (adx * bdy, bdx * ady);
+    let det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
+    let permanent = (bdxcdy.abs() + cdxbdy.abs()) * adz.abs()
+        + (cdxady.abs() + adxcdy.abs()) * bdz.abs()
+        + (adxbdy.abs() + bdxady.abs()) * cdz.abs();
+    let outer = adz.abs() + bdz.abs() + cdz.abs();
+    let bound = ORIENT3D_ERROR_BOUND * permanent + f64::MIN_POSITIVE * (1.0 + outer);
+    (det, bound)
+}
+
+/// The exact value, as an expansion, of the determinant whose sign [`orient3d_at_infinity`]
+/// returns: `-det[a - c, b - c, u]` (the limit of `orient3d_value(a, b, c, c + λu) / λ`),
+/// empty when the plane through `a`, `b`, `c` is parallel to `u` (or degenerate).
+///
+/// Built like [`orient3d_value`] (exact two-component differences, expansion products), with
+/// at most 96 components; exact under the same conditions, with the components of `u`
+/// counted as coordinates.
+///
+/// ```
+/// use kepler::geometry::{Point3, Vector3, exact::estimate, predicates::orient3d_at_infinity_value};
+/// let (a, b, c) = (Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0));
+/// assert_eq!(orient3d_at_infinity_value(&a, &b, &c, &Vector3::new(0.1, 0.2, -1.0)), vec![1.0]);
+/// assert!(orient3d_at_infinity_value(&a, &b, &c, &Vector3::new(1.0, 1.0, 0.0)).is_empty());
+/// let v = orient3d_at_infinity_value(&a, &b, &c, &Vector3::new(0.0, 0.0, 0.1));
+/// assert_eq!(estimate(&v), -0.1);
+/// ```
+pub fn orient3d_at_infinity_value(a: &Point3, b: &Point3, c: &Point3, u: &Vector3) -> Vec<f64> {
+    let r1 = [0, 1, 2].map(|i| difference(a[i], c[i]));
+    let r2 = [0, 1, 2].map(|i| difference(b[i], c[i]));
+    // -det[r1, r2, u] = r1x (r2z uy - r2y uz) + r1y (r2x uz - r2z ux) + r1z (r2y ux - r2x uy).
+    let minor = |i: usize, j: usize| {
+        expansion_sum(
+            &scale_expansion(&r2[i], u[j]),
+            &scale_expansion(&r2[j], -u[i]),
+        )
+    };
+    let t1 = expansion_product(&r1[0], &minor(2, 1));
+    let t2 = expansion_product(&r1[1], &minor(0, 2));
+    let t3 = expansion_product(&r1[2], &minor(1, 0));
+    expansion_sum(&expansion_sum(&t1, &t2), &t3)
+}
+
+/// A floating-point value of the determinant of [`orient3d_at_infinity_value`] (same sign
+/// convention as [`orient3d_at_infinity`]) and a certified bound on its error:
+/// `|exact - value| <= bound` for finite inputs whose products do not overflow, underflow
+/// included. When `|value| > bound` its sign is `orient3d_at_infinity`'s. No allocation.
+///
+/// The value is `-det[r1, r2, u] = r1x (r2z uy - r2y uz) + r1y (r2x uz - r2z ux) +
+/// r1z (r2y ux - r2x uy)` on the rounded differences `r1 = fl(a - c)`, `r2 = fl(b - c)`.
+/// The bound is derived as in [`orient3d_estimate`], with at most 7 roundings per monomial
+/// (2 differences, inner product, subtraction, outer product, 2 additions; the negation is
+/// exact): `c (1 - ε)^2 >= 7ε / ((1 - 7ε)(1 - ε)^7)`, i.e. `c >= 7ε (1 + 16ε + O(ε²))`, and
+/// we use `c = (7 + 224ε)ε` times the computed permanent, plus
+/// `MIN_POSITIVE · (1 + |r1x| + |r1y| + |r1z|)` for underflow.
+///
+/// ```
+/// use kepler::geometry::{Point3, Vector3, predicates::orient3d_at_infinity_estimate};
+/// let (a, b, c) = (Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0));
+/// let (value, bound) = orient3d_at_infinity_estimate(&a, &b, &c, &Vector3::new(0.1, 0.2, -1.0));
+/// assert_eq!(value, 1.0);
+/// assert!(bound < 1e-15);
+/// ```
+#[inline]
+pub fn orient3d_at_infinity_estimate(
+    a: &Point3,
+    b: &Point3,
+    c: &Point3,
+    u: &Vector3,
+) -> (f64, f64) {
+    let (r1x, r1y, r1z) = (a.x - c.x, a.y - c.y, a.z - c.z);
+    let (r2x, r2y, r2z) = (b.x - c.x, b.y - c.y, b.z - c.z);
+    let (r2zuy, r2yuz) = (r2z * u.y, r2y * u.z);
+    let (r2xuz, r2zux) = (r2x * u.z, r2z * u.x);
+    let (r2yux, r2xuy) = (r2y * u.x, r2x * u.y);
+    let value = r1x * (r2zuy - r2yuz) + r1y * (r2xuz - r2zux) + r1z * (r2yux - r2xuy);
+    let permanent = (r2zuy.abs() + r2yuz.abs()) * r1x.abs()
+        + (r2xuz.abs() + r2zux.abs()) * r1y.abs()
+        + (r2yux.abs() + r2xuy.abs()) * r1z.abs();
+    let outer = r1x.abs() + r1y.abs() + r1z.abs();
+    let bound = ORIENT3D_AT_INFINITY_ERROR_BOUND * permanent + f64::MIN_POSITIVE * (1.0 + outer);
+    (value, bound)
 }
 
 /// Exact sign of the 2-D orientation of `(a, b, c)`, each given as `[x, y]`: `Greater` when

@@ -193,6 +193,15 @@ struct Item {
 }
 
 impl Item {
+    /// Whether the closed bounding boxes, grown by `m`, meet.
+    #[inline]
+    fn boxes_meet_within(&self, other: &Item, m: f64) -> bool {
+        (0..2).all(|k| {
+            self.a[k].min(self.b[k]) - m <= other.a[k].max(other.b[k])
+                && other.a[k].min(other.b[k]) - m <= self.a[k].max(self.b[k])
+        })
+    }
+
     /// Whether the closed bounding boxes meet (exact comparisons).
     #[inline]
     fn boxes_meet(&self, other: &Item) -> bool {
@@ -316,6 +325,51 @@ impl SegmentGrid {
         let mut pairs: Vec<u64> = (0..self.cells.count())
             .into_par_iter()
             .flat_map_iter(|c| self.pairs_in(c))
+            .collect();
+        pairs.par_sort_unstable();
+        pairs.dedup();
+        pairs
+            .into_iter()
+            .map(|p| ((p >> 32) as usize, (p & 0xffff_ffff) as usize))
+            .collect()
+    }
+
+    /// Every pair `(i, j)`, `i < j`, listed together in some cell whose bounding boxes, grown
+    /// by the grid's margin (2⁻⁴⁶ of the largest coordinate), meet and for which `keep(i, j)`
+    /// holds; each once, in increasing order. For callers whose segments stand for exact ones
+    /// within a few units in the last place (pictures of 3-D edges, say): the grid then still
+    /// lists every pair whose exact segments meet, and `keep` decides exactly.
+    ///
+    /// ```
+    /// use geo::{Line, coord};
+    /// use kepler::grid::SegmentGrid;
+    /// let s = [
+    ///     Line::new(coord! { x: 0.0, y: 0.0 }, coord! { x: 1.0, y: 1.0 }),
+    ///     Line::new(coord! { x: 0.0, y: 1.0 }, coord! { x: 1.0, y: 0.0 }),
+    ///     Line::new(coord! { x: 0.0, y: 2.0 }, coord! { x: 1.0, y: 2.0 }),
+    /// ];
+    /// let grid = SegmentGrid::new(&s);
+    /// assert_eq!(grid.candidates(|_, _| true), vec![(0, 1)]);
+    /// assert!(grid.candidates(|i, _| i > 0).is_empty());
+    /// ```
+    pub fn candidates<F>(&self, keep: F) -> Vec<(usize, usize)>
+    where
+        F: Fn(usize, usize) -> bool + Sync,
+    {
+        let m = self.margin;
+        let mut pairs: Vec<u64> = (0..self.cells.count())
+            .into_par_iter()
+            .flat_map_iter(|c| {
+                let here = &self.items[self.start[c] as usize..self.start[c + 1] as usize];
+                let keep = &keep;
+                here.iter().enumerate().flat_map(move |(n, a)| {
+                    here[n + 1..].iter().filter_map(move |b| {
+                        let (i, j) = (a.segment.min(b.segment), a.segment.max(b.segment));
+                        (i != j && a.boxes_meet_within(b, m) && keep(i as usize, j as usize))
+                            .then_some((u64::from(i) << 32) | u64::from(j))
+                    })
+                })
+            })
             .collect();
         pairs.par_sort_unstable();
         pairs.dedup();

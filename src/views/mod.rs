@@ -18,12 +18,16 @@
 
 use crate::geometry::exact::power_of_two_scaling;
 use crate::geometry::predicates::{
-    orient2d, orient2d_at_infinity, orient3d, orient3d_at_infinity, project,
+    orient2d, orient2d_at_infinity, orient3d, orient3d_at_infinity, orient3d_at_infinity_estimate,
+    orient3d_at_infinity_value, orient3d_estimate, orient3d_value, project,
 };
 use crate::geometry::{Point3, Vector3, predicates::collinear};
 use crate::scene::{Camera, Projection};
 use nalgebra::Matrix4;
 use std::cmp::Ordering;
+
+mod picture;
+pub use picture::Picture;
 
 /// A view that cannot be built, and why.
 ///
@@ -93,6 +97,53 @@ impl Eye {
         match self {
             Eye::Point(e) => orient3d(a, b, c, e),
             Eye::Infinity(u) => orient3d_at_infinity(a, b, c, u),
+        }
+    }
+
+    /// Whether the segment `ab` points at the eye (the eye lies on its line), so that its
+    /// picture is a single point. Exact.
+    ///
+    /// ```
+    /// use kepler::{geometry::{Point3, Vector3}, views::Eye};
+    /// let eye = Eye::Infinity(Vector3::z());
+    /// assert!(eye.sees_end_on(&Point3::new(1.0, 2.0, 0.0), &Point3::new(1.0, 2.0, 5.0)));
+    /// assert!(!eye.sees_end_on(&Point3::new(1.0, 2.0, 0.0), &Point3::new(1.0, 3.0, 5.0)));
+    /// ```
+    pub fn sees_end_on(&self, a: &Point3, b: &Point3) -> bool {
+        self.perturbation(a, b) == Ordering::Equal
+    }
+
+    /// A floating-point value of the determinant whose sign [`Eye::orient3d`] gives, and a
+    /// bound on its error: the exact determinant lies within `bound` of `value`.
+    ///
+    /// ```
+    /// use kepler::{geometry::{Point3, Vector3}, views::Eye};
+    /// let eye = Eye::Infinity(Vector3::z());
+    /// let t = [Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0)];
+    /// let (value, bound) = eye.orient3d_estimate(&t[0], &t[1], &t[2]);
+    /// assert!(value < -bound);
+    /// ```
+    #[inline]
+    pub fn orient3d_estimate(&self, a: &Point3, b: &Point3, c: &Point3) -> (f64, f64) {
+        match self {
+            Eye::Point(e) => orient3d_estimate(a, b, c, e),
+            Eye::Infinity(u) => orient3d_at_infinity_estimate(a, b, c, u),
+        }
+    }
+
+    /// The exact determinant whose sign [`Eye::orient3d`] gives, as an expansion (see
+    /// [`crate::geometry::exact`]).
+    ///
+    /// ```
+    /// use kepler::{geometry::{Point3, Vector3, exact::estimate}, views::Eye};
+    /// let eye = Eye::Point(Point3::new(0.0, 0.0, 1.0));
+    /// let t = [Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0)];
+    /// assert!(estimate(&eye.orient3d_value(&t[0], &t[1], &t[2])) < 0.0);
+    /// ```
+    pub fn orient3d_value(&self, a: &Point3, b: &Point3, c: &Point3) -> Vec<f64> {
+        match self {
+            Eye::Point(e) => orient3d_value(a, b, c, e),
+            Eye::Infinity(u) => orient3d_at_infinity_value(a, b, c, u),
         }
     }
 

@@ -1,0 +1,108 @@
+//! Chaining pieces into maximal polylines.
+
+use super::{EdgeClass, Polyline};
+use std::collections::HashMap;
+
+/// A segment's two ends.
+type Segment = [[f64; 2]; 2];
+
+/// A visible or hidden piece of an edge, in picture coordinates.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Piece {
+    /// The class of its edge.
+    pub class: EdgeClass,
+    /// Whether it is visible.
+    pub visible: bool,
+    /// Its ends.
+    pub ends: [[f64; 2]; 2],
+}
+
+/// Chains the pieces of each class and visibility into polylines, joining pieces at ends
+/// shared by exactly two of them (ends are equal only when built from the same input, since
+/// each point is computed once). Closed chains repeat their first point. Pieces of zero length
+/// are left out.
+pub(crate) fn chain(pieces: &[Piece]) -> Vec<Polyline> {
+    let mut groups: Vec<(EdgeClass, bool, Vec<Segment>)> = Vec::new();
+    for class in EdgeClass::ALL {
+        for visible in [false, true] {
+            let ends: Vec<Segment> = pieces
+                .iter()
+                .filter(|p| p.class == class && p.visible == visible && p.ends[0] != p.ends[1])
+                .map(|p| p.ends)
+                .collect();
+            if !ends.is_empty() {
+                groups.push((class, visible, ends));
+            }
+        }
+    }
+    let mut out = Vec::new();
+    for (class, visible, segments) in groups {
+        for points in chain_group(&segments) {
+            out.push(Polyline {
+                class,
+                visible,
+                points,
+            });
+        }
+    }
+    out
+}
+
+/// The bit pattern of a point, for hashing (`-0.0` and `0.0` made equal).
+fn key(p: [f64; 2]) -> [u64; 2] {
+    p.map(|x| (x + 0.0).to_bits())
+}
+
+/// Chains one group's segments.
+fn chain_group(segments: &[Segment]) -> Vec<Vec<[f64; 2]>> {
+    let mut at: HashMap<[u64; 2], Vec<usize>> = HashMap::with_capacity(segments.len() * 2);
+    for (i, s) in segments.iter().enumerate() {
+        for p in s {
+            at.entry(key(*p)).or_default().push(i);
+        }
+    }
+    let mut used = vec![false; segments.len()];
+    // The one other unused segment at point p, when exactly two segments end there.
+    let next = |p: [f64; 2], from: usize, used: &[bool]| -> Option<usize> {
+        match at.get(&key(p)).map(Vec::as_slice) {
+            Some(&[x, y]) => {
+                let other = if x == from { y } else { x };
+                (other != from && !used[other]).then_some(other)
+            }
+            _ => None,
+        }
+    };
+    let other_end = |s: usize, p: [f64; 2]| {
+        let [a, b] = segments[s];
+        if key(a) == key(p) { b } else { a }
+    };
+    let mut out = Vec::new();
+    for start in 0..segments.len() {
+        if used[start] {
+            continue;
+        }
+        used[start] = true;
+        let [a, b] = segments[start];
+        // Forwards from b, then backwards from a.
+        let mut forward = vec![a, b];
+        let (mut s, mut p) = (start, b);
+        while let Some(n) = next(p, s, &used) {
+            used[n] = true;
+            p = other_end(n, p);
+            forward.push(p);
+            s = n;
+        }
+        let mut backward = Vec::new();
+        let (mut s, mut p) = (start, a);
+        while let Some(n) = next(p, s, &used) {
+            used[n] = true;
+            p = other_end(n, p);
+            backward.push(p);
+            s = n;
+        }
+        backward.reverse();
+        backward.extend(forward);
+        out.push(backward);
+    }
+    out
+}

@@ -1,0 +1,148 @@
+//! The edges of a mesh, each once, and their classes in a view.
+//!
+//! An edge is a side of a polygon face (the diagonals of a face's triangulation are not
+//! edges). Its class depends on the view only through exact signs: the side of the picture of
+//! the edge on which each of its faces lies (`orient3d` of the edge, the face's third vertex
+//! and the eye). Two faces on the same side make a silhouette whatever their orientation, so
+//! an inside-out or inconsistently oriented mesh draws as the correct one does. Coplanar
+//! neighbours (decided exactly) share no edge at all, so a triangulated flat face draws as one
+//! polygon. Only the crease angle is a measurement (a user's threshold, not a sign).
+
+use super::EdgeClass;
+use crate::geometry::predicates::{orient2d, orient3d, project};
+use crate::geometry::{Point3, Vector3};
+use crate::mesh::Mesh;
+use crate::views::Eye;
+use std::cmp::Ordering;
+
+/// One edge of a mesh: its vertices (indices into the mesh) and class.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct MeshEdge {
+    /// The first vertex.
+    pub a: u32,
+    /// The second vertex.
+    pub b: u32,
+    /// The class in the view.
+    pub class: EdgeClass,
+    /// The triangles on its first two sides (the same twice for a boundary edge).
+    pub triangles: [u32; 2],
+}
+
+/// What [`classify`] found besides the edges.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct EdgeCounts {
+    /// Edges between coplanar faces, which are not edges of the drawing.
+    pub flat: usize,
+    /// Edges seen end-on (pointing at the eye), whose picture is a point.
+    pub end_on: usize,
+}
+
+/// A face's side of an edge: the face and its triangle's vertex off the edge.
+#[derive(Debug, Clone, Copy)]
+struct Side {
+    key: u64,
+    third: u32,
+    triangle: u32,
+}
+
+/// Every edge of `mesh` with its class as seen from `eye`; `crease_cos` is `-cos` of the
+/// crease angle (an edge is a crease when the cosine of the angle between its faces exceeds
+/// it). Coplanar and end-on edges are left out and counted.
+pub(crate) fn classify(mesh: &Mesh, eye: &Eye, crease_cos: f64) -> (Vec<MeshEdge>, EdgeCounts) {
+    let triangles = mesh.triangles();
+    let mut sides = Vec::with_capacity(triangles.len() * 3 / 2 + 8);
+    for face in mesh.faces() {
+        let v = face.vertices();
+        for i in 0..v.len() {
+            let (p, q) = (v[i], v[(i + 1) % v.len()]);
+            // The triangle of the face's triangulation that has this side.
+            let side = face.triangle_range().find_map(|t| {
+                let tri = triangles[t];
+                if !(tri.contains(&p) && tri.contains(&q)) {
+                    return None;
+                }
+                let third = tri.iter().copied().find(|&w| w != p && w != q)?;
+                Some((third, t as u32))
+            });
+            if let Some((third, triangle)) = side {
+                let key = (u64::from(p.min(q)) << 32) | u64::from(p.max(q));
+                sides.push(Side {
+                    key,
+                    third,
+                    triangle,
+                });
+            }
+        }
+    }
+    sides.sort_unstable_by_key(|s| s.key);
+    let vertices = mesh.vertices();
+    let mut edges = Vec::with_capacity(sides.len() / 2 + 1);
+    let mut counts = EdgeCounts::default();
+    for group in sides.chunk_by(|x, y| x.key == y.key) {
+        let (a, b) = ((group[0].key >> 32) as u32, group[0].key as u32);
+        let (pa, pb) = (&vertices[a as usize], &vertices[b as usize]);
+        if eye.sees_end_on(pa, pb) {
+            counts.end_on += 1;
+            continue;
+        }
+        let thirds: Vec<&Point3> = group.iter().map(|s| &vertices[s.third as usize]).collect();
+        match class_of(pa, pb, &thirds, eye, crease_cos) {
+            Some(class) => edges.push(MeshEdge {
+                a,
+                b,
+                class,
+                triangles: [group[0].triangle, group[group.len().min(2) - 1].triangle],
+            }),
+            None => counts.flat += 1,
+        }
+    }
+    (edges, counts)
+}
+
+/// The class of the edge `ab` whose faces' third vertices are `thirds`, or `None` for an
+/// edge between two coplanar faces on either side of it.
+fn class_of(
+    a: &Point3,
+    b: &Point3,
+    thirds: &[&Point3],
+    eye: &Eye,
+    crease_cos: f64,
+) -> Option<EdgeClass> {
+    let sides: Vec<Ordering> = thirds.iter().map(|c| eye.orient3d(a, b, c)).collect();
+    if sides.len() == 1 {
+        return Some(EdgeClass::Boundary);
+    }
+    if sides.contains(&Ordering::Equal) || sides.iter().all(|&s| s == sides[0]) {
+        return Some(EdgeClass::Silhouette);
+    }
+    if sides.len() > 2 {
+        return Some(EdgeClass::Crease);
+    }
+    let (c1, c2) = (thirds[0], thirds[1]);
+    if orient3d(a, b, c1, c2) == Ordering::Equal {
+        // Coplanar, and (their picture sides differing) on either side of the edge.
+        let k = (0..3)
+            .find(|&k| orient2d(project(a, k), project(b, k), project(c1, k)) != Ordering::Equal);
+        let opposite = k.is_some_and(|k| {
+            let side = |c: &Point3| orient2d(project(a, k), project(b, k), project(c, k));
+            side(c1) == side(c2).reverse()
+        });
+        if opposite {
+            return None;
+        }
+        return Some(EdgeClass::Crease);
+    }
+    // The angle between the faces: between the components of c1 - a and c2 - a across the edge.
+    let e = b - a;
+    let across = |c: &Point3| -> Vector3 {
+        let v = c - a;
+        v - e * (v.dot(&e) / e.dot(&e))
+    };
+    let (u1, u2) = (across(c1), across(c2));
+    let cos = u1.dot(&u2) / (u1.norm() * u2.norm());
+    Some(if cos > crease_cos {
+        EdgeClass::Crease
+    } else {
+        EdgeClass::Smooth
+    })
+}

@@ -1,0 +1,183 @@
+//! Intersection lines: where two faces pierce each other, in different objects or in one.
+//!
+//! Candidate triangle pairs come from the triangles' boxes (an R-tree per mesh); objects whose
+//! CBOXes do not overlap are not compared at all. Which vertices lie on which side of the
+//! other triangle's plane is decided exactly, so touching faces (a box resting on another,
+//! neighbours sharing an edge or a vertex) make no intersection line and coplanar faces none
+//! either. The part of the line inside both triangles runs between two of the points where a
+//! triangle's edge crosses the other's plane; those are ordered along the line in floating
+//! point (only ends within a few units in the last place of each other can be misordered),
+//! and each end is built once from the input coordinates, exactly as an edge's cut.
+
+use super::along::{Form, cut_point};
+use crate::geometry::Point3;
+use crate::geometry::predicates::orient3d;
+use crate::mesh::{Mesh, TriangleTree};
+use crate::views::{Eye, Picture};
+use rayon::prelude::*;
+use std::cmp::Ordering;
+
+/// An end of an intersection segment.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum End {
+    /// A vertex of one triangle, lying on the other's plane.
+    Vertex(Point3),
+    /// Where the edge `(a, b)` (vertex indices of mesh `mesh`) crosses the plane of `plane`.
+    Crossing {
+        /// Which of the two meshes (0 or 1) the edge belongs to.
+        mesh: usize,
+        /// The edge's vertices in its mesh.
+        edge: [u32; 2],
+        /// Its corners.
+        points: [Point3; 2],
+        /// The other triangle.
+        plane: [Point3; 3],
+    },
+}
+
+impl End {
+    /// The end as a rounded point (for the boxes and the order along the line).
+    fn approximate(&self, eye: &Eye) -> Point3 {
+        match self {
+            End::Vertex(p) => *p,
+            End::Crossing {
+                points: [a, b],
+                plane,
+                ..
+            } => {
+                let t = Form::Plane(*plane).zero_along(eye, a, b).unwrap_or(0.5);
+                a + (b - a) * t
+            }
+        }
+    }
+
+    /// The picture of the end, built once from the input coordinates.
+    pub(crate) fn picture(&self, picture: &Picture, eye: &Eye) -> [f64; 2] {
+        match self {
+            End::Vertex(p) => picture.point(p),
+            End::Crossing {
+                points: [a, b],
+                plane,
+                ..
+            } => cut_point(picture, eye, &Form::Plane(*plane), a, b),
+        }
+    }
+}
+
+/// A segment along which two triangles (of meshes 0 and 1, faces `faces`) pierce each other.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Segment {
+    /// Its ends.
+    pub ends: [End; 2],
+    /// Its ends, rounded.
+    pub points: [Point3; 2],
+    /// The faces whose triangles meet, in meshes 0 and 1.
+    pub faces: [usize; 2],
+}
+
+/// The intersection segments of the triangles of `m0` with those of `m1` (`same` when they are
+/// one mesh: then each pair once, and triangles sharing a vertex or a face are not compared).
+/// Candidate pairs come from a simultaneous descent of the meshes' R-trees.
+pub(crate) fn between(
+    (m0, tree0): (&Mesh, &TriangleTree),
+    (m1, tree1): (&Mesh, &TriangleTree),
+    same: bool,
+    eye: &Eye,
+) -> Vec<Segment> {
+    let candidates: Vec<(usize, usize)> = tree0
+        .overlapping(tree1)
+        .filter(|&(i, j)| {
+            !same
+                || (j > i
+                    && m0.face_of(i) != m0.face_of(j)
+                    && !shares_vertex(&m0.triangles()[i], &m0.triangles()[j]))
+        })
+        .collect();
+    candidates
+        .par_iter()
+        .filter_map(|&(i, j)| {
+            let (vi, vj) = (m0.triangles()[i], m1.triangles()[j]);
+            segment(&m0.triangle(i), &vi, &m1.triangle(j), &vj, eye).map(|ends| Segment {
+                points: ends.map(|e| e.approximate(eye)),
+                ends,
+                faces: [m0.face_of(i), m1.face_of(j)],
+            })
+        })
+        .collect()
+}
+
+/// Whether two triangles share a vertex index.
+fn shares_vertex(a: &[u32; 3], b: &[u32; 3]) -> bool {
+    a.iter().any(|v| b.contains(v))
+}
+
+/// The segment where the triangles `t0` (vertex indices `v0`, mesh 0) and `t1` (mesh 1) pierce
+/// each other, if they do along a segment of positive length.
+fn segment(
+    t0: &[Point3; 3],
+    v0: &[u32; 3],
+    t1: &[Point3; 3],
+    v1: &[u32; 3],
+    eye: &Eye,
+) -> Option<[End; 2]> {
+    let s0 = t0.map(|p| orient3d(&t1[0], &t1[1], &t1[2], &p));
+    if one_side(&s0) {
+        return None;
+    }
+    let s1 = t1.map(|p| orient3d(&t0[0], &t0[1], &t0[2], &p));
+    if one_side(&s1) {
+        return None;
+    }
+    let e0 = plane_section(t0, v0, &s0, t1, 0)?;
+    let e1 = plane_section(t1, v1, &s1, t0, 1)?;
+    // Order the four ends along the line (the direction of the normals' cross product).
+    let n0 = (t0[1] - t0[0]).cross(&(t0[2] - t0[0]));
+    let n1 = (t1[1] - t1[0]).cross(&(t1[2] - t1[0]));
+    let d = n0.cross(&n1);
+    let along = |e: &End| e.approximate(eye).coords.dot(&d);
+    let sorted = |[x, y]: [End; 2]| {
+        if along(&x) <= along(&y) {
+            [x, y]
+        } else {
+            [y, x]
+        }
+    };
+    let ([a0, b0], [a1, b1]) = (sorted(e0), sorted(e1));
+    let start = if along(&a0) >= along(&a1) { a0 } else { a1 };
+    let end = if along(&b0) <= along(&b1) { b0 } else { b1 };
+    (along(&start) < along(&end)).then_some([start, end])
+}
+
+/// Whether all three signs are equal and not zero (no contact), or all zero (coplanar).
+fn one_side(s: &[Ordering; 3]) -> bool {
+    s[0] == s[1] && s[1] == s[2]
+}
+
+/// The two ends of the section of triangle `t` by the plane of `other`, given the exact sides
+/// `s` of its vertices, or `None` when the plane only touches it at one point.
+fn plane_section(
+    t: &[Point3; 3],
+    v: &[u32; 3],
+    s: &[Ordering; 3],
+    other: &[Point3; 3],
+    mesh: usize,
+) -> Option<[End; 2]> {
+    let mut ends = Vec::with_capacity(3);
+    for i in 0..3 {
+        let j = (i + 1) % 3;
+        if s[i] == Ordering::Equal {
+            ends.push(End::Vertex(t[i]));
+        } else if s[j] != Ordering::Equal && s[i] != s[j] {
+            ends.push(End::Crossing {
+                mesh,
+                edge: [v[i], v[j]],
+                points: [t[i], t[j]],
+                plane: *other,
+            });
+        }
+    }
+    match ends[..] {
+        [a, b] => Some([a, b]),
+        _ => None,
+    }
+}

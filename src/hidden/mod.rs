@@ -1,0 +1,682 @@
+//! Hidden lines: the edges of a scene as a line drawing, split into their visible and hidden
+//! pieces, exactly.
+//!
+//! The pass, for one [`View`]:
+//! 1. **Edges.** Every side of a polygon face, once, classified by exact signs (see
+//!    [`EdgeClass`]): silhouette, boundary, crease, smooth; edges between coplanar faces and
+//!    edges seen end-on are not part of the drawing.
+//! 2. **Intersection lines.** Where faces pierce each other, between objects whose CBOXes
+//!    overlap and within each object; each end built once from the input coordinates.
+//! 3. **Cuts.** Visibility along an edge can change only where its picture crosses the picture
+//!    of a contour edge (silhouette or boundary, including the edges of faces seen edge-on) or
+//!    where the edge pierces a face. Franklin's uniform grid ([`crate::grid`]) finds the
+//!    candidate crossings among the pictures; each is decided exactly in 3-D with the eye's
+//!    predicates. Piercings come from step 2.
+//! 4. **Visibility.** Each piece between cuts is decided by one VISP query at a point inside
+//!    it, through the object hierarchy (CBOX rejects, INBOX accepts, then the faces near the
+//!    line of sight, from an R-tree). The point is never rounded: every face test is evaluated
+//!    exactly at it (see `along.rs`), so an edge lying on another object's face is on it.
+//!    A face hides the point when the point is strictly behind its plane and the line of sight
+//!    meets the closed face.
+//! 5. **Chains.** Consecutive pieces of one edge with the same visibility merge; pieces of one
+//!    class and visibility that share an end are chained into maximal polylines.
+//!
+//! Every vertex of the drawing is the picture of an input vertex, of a cut (where an edge's
+//! picture crosses a contour's, or where it pierces a face), or of an intersection line's end,
+//! each built once from input coordinates and exact expansions and rounded once (see
+//! [`Picture`]): within 1.5 units in the last place of the exact point (2 for a perspective
+//! view's vertices). The one exception is a cut of an intersection line by a contour, which is
+//! built from the line's own (rounded) ends.
+//!
+//! Picture coordinates: `x` to the right, `y` up; scene units for an orthographic view; for a
+//! perspective view, the field of view spans `y` in `[-1, 1]`. A perspective view needs every
+//! vertex strictly in front of the eye.
+//!
+//! ```
+//! use kepler::{geometry::Vector3, scene::Scene, views::View};
+//! use kepler::hidden::{EdgeClass, Options, draw};
+//! let mut scene = Scene::new();
+//! scene.add_mesh(None, "cube", kepler::solids::cube(2.0).unwrap()).unwrap();
+//! let view = View::orthographic(Vector3::new(-1.0, -2.0, -3.0), Vector3::z()).unwrap();
+//! let drawing = draw(&scene, &view, &Options::default()).unwrap();
+//! // Six silhouette edges around the outline, three creases inside it: all visible.
+//! let visible = |c| drawing.polylines.iter().filter(|p| p.visible && p.class == c)
+//!     .map(|p| p.points.len() - 1).sum::<usize>();
+//! assert_eq!((visible(EdgeClass::Silhouette), visible(EdgeClass::Crease)), (6, 3));
+//! ```
+
+mod along;
+mod chain;
+mod drawing;
+mod edges;
+mod intersections;
+
+pub use drawing::{Drawing, EdgeClass, Polyline, StageReport};
+
+use crate::geometry::Point3;
+use crate::geometry::predicates::orient3d;
+use crate::grid::SegmentGrid;
+use crate::mesh::Mesh;
+use crate::queries::Counters;
+use crate::queries::visp::{Visibility, VisibilityIndex};
+use crate::scene::{ObjectId, Scene};
+use crate::views::{Eye, Picture, View};
+use crate::{Error, Result};
+use along::{Form, cut_point, hides_along};
+use chain::{Piece, chain};
+use geo::{Line as GeoLine, coord};
+use rayon::prelude::*;
+use std::cmp::Ordering;
+use std::collections::HashMap;
+use std::sync::atomic::{AtomicU64, Ordering as Atomic};
+use std::time::Instant;
+
+/// Which edges a drawing shows.
+///
+/// ```
+/// assert_eq!(kepler::hidden::EdgeSelection::default(), kepler::hidden::EdgeSelection::Feature);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum EdgeSelection {
+    /// Silhouette, boundary, crease and intersection edges: a scanned mesh draws as a line
+    /// drawing.
+    #[default]
+    Feature,
+    /// Every edge (smooth ones too) with its hidden parts removed: a wireframe.
+    All,
+}
+
+/// The options of the hidden-line pass.
+///
+/// ```
+/// let o = kepler::hidden::Options::default();
+/// assert_eq!((o.crease_angle, o.hidden), (30.0, true));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Options {
+    /// Which edges to draw.
+    pub edges: EdgeSelection,
+    /// An edge whose faces bend by more than this many degrees is a crease.
+    pub crease_angle: f64,
+    /// Whether the drawing keeps the hidden pieces (as polylines with `visible == false`).
+    pub hidden: bool,
+}
+
+impl Default for Options {
+    fn default() -> Options {
+        Options {
+            edges: EdgeSelection::Feature,
+            crease_angle: 30.0,
+            hidden: true,
+        }
+    }
+}
+
+/// Meshes with more triangles than this use no INBOX (see [`VisibilityIndex`]).
+const INBOX_LIMIT: usize = 4096;
+
+/// Below this many lines, crossings are found by testing every pair: no grid.
+const FEW_LINES: usize = 64;
+
+/// A line of the drawing before visibility: an edge or an intersection segment.
+#[derive(Debug, Clone, Copy)]
+struct Line {
+    a: Point3,
+    b: Point3,
+    /// The pictures of `a` and `b`.
+    ends: [[f64; 2]; 2],
+    class: EdgeClass,
+    /// For an intersection segment: the two faces it lies on, which do not hide it.
+    on_faces: Option<[(ObjectId, usize); 2]>,
+    /// Whether the line is an edge between two faces turned away from the eye on a solid that
+    /// the eye is outside of: then the solid itself hides all of it.
+    back: bool,
+}
+
+impl Line {
+    /// Whether the line's picture bounds regions where the visible surface changes.
+    fn is_contour(&self) -> bool {
+        matches!(self.class, EdgeClass::Silhouette | EdgeClass::Boundary)
+    }
+}
+
+/// Where a line is cut: at parameter `t` (approximate, for ordering), the point given by the
+/// zero of a form along the line or, for collinear pictures, by an input vertex's picture.
+#[derive(Debug, Clone, Copy)]
+struct Cut {
+    t: f64,
+    at: CutAt,
+}
+
+#[derive(Debug, Clone, Copy)]
+enum CutAt {
+    Form(Form),
+    Point([f64; 2]),
+}
+
+/// Draws the scene from the view: see the module documentation.
+///
+/// ```
+/// use kepler::{scene::Scene, views::View, hidden::{Options, draw}};
+/// let mut scene = Scene::new();
+/// scene.add_mesh(None, "cube", kepler::solids::cube(2.0).unwrap()).unwrap();
+/// // Straight down: the top face's outline is visible, the bottom's lies under it, hidden.
+/// let d = draw(&scene, &View::standard(), &Options::default()).unwrap();
+/// assert_eq!(d.length(kepler::hidden::EdgeClass::Silhouette, true), 8.0);
+/// assert_eq!(d.length(kepler::hidden::EdgeClass::Silhouette, false), 8.0);
+/// ```
+pub fn draw(scene: &Scene, view: &View, options: &Options) -> Result<Drawing> {
+    draw_with_progress(scene, view, options, &|_, _| {})
+}
+
+/// [`draw`], calling `progress(done, total)` now and then while deciding visibility (the long
+/// stage), from any thread.
+///
+/// ```
+/// use kepler::{scene::Scene, views::View, hidden::{Options, draw_with_progress}};
+/// use std::sync::atomic::{AtomicU64, Ordering};
+/// let mut scene = Scene::new();
+/// scene.add_mesh(None, "cube", kepler::solids::cube(2.0).unwrap()).unwrap();
+/// let last = AtomicU64::new(0);
+/// draw_with_progress(&scene, &View::standard(), &Options::default(), &|done, _| {
+///     last.store(done, Ordering::Relaxed);
+/// }).unwrap();
+/// assert!(last.load(Ordering::Relaxed) > 0);
+/// ```
+pub fn draw_with_progress(
+    scene: &Scene,
+    view: &View,
+    options: &Options,
+    progress: &(dyn Fn(u64, u64) + Sync),
+) -> Result<Drawing> {
+    let eye = view.eye();
+    let picture = Picture::of(view);
+    let mut stages = Vec::new();
+    let leaves: Vec<(ObjectId, &Mesh)> = scene
+        .walk()
+        .into_iter()
+        .filter_map(|(id, _)| scene[id].mesh().map(|m| (id, m)))
+        .collect();
+    for &(id, mesh) in &leaves {
+        if let Some(i) = mesh.vertices().iter().position(|p| !picture.in_front(p)) {
+            return Err(Error::Object {
+                object: scene.path(id),
+                message: format!(
+                    "vertex {} ({:?}) is not in front of the eye; a perspective drawing needs \
+                     the whole scene in front of it",
+                    i,
+                    mesh.vertices()[i]
+                ),
+            });
+        }
+    }
+
+    // 1. Edges.
+    let clock = Instant::now();
+    let crease_cos = -options.crease_angle.to_radians().cos();
+    let classified: Vec<_> = leaves
+        .par_iter()
+        .map(|&(_, mesh)| {
+            let (edges, counts) = edges::classify(mesh, eye, crease_cos);
+            let pictures: Vec<[f64; 2]> =
+                mesh.vertices().iter().map(|p| picture.point(p)).collect();
+            (edges, counts, pictures)
+        })
+        .collect();
+    let mut lines = Vec::new();
+    let mut index_of: HashMap<(ObjectId, [u32; 2]), usize> = HashMap::new();
+    let (mut flat, mut end_on, mut smooth_left_out) = (0, 0, 0);
+    let mut by_class: HashMap<EdgeClass, usize> = HashMap::new();
+    let mut edge_lines = Vec::with_capacity(leaves.len());
+    for (&(id, mesh), (edges, counts, pictures)) in leaves.iter().zip(&classified) {
+        let away = turned_away(scene, id, mesh, eye);
+        let first = lines.len();
+        flat += counts.flat;
+        end_on += counts.end_on;
+        for e in edges {
+            *by_class.entry(e.class).or_default() += 1;
+            if e.class == EdgeClass::Smooth && options.edges == EdgeSelection::Feature {
+                smooth_left_out += 1;
+                continue;
+            }
+            index_of.insert((id, [e.a.min(e.b), e.a.max(e.b)]), lines.len());
+            let (a, b) = (e.a as usize, e.b as usize);
+            let back = e.class != EdgeClass::Boundary
+                && away.is_some_and(|away| {
+                    e.triangles.iter().all(|&t| {
+                        let [p, q, r] = mesh.triangle(t as usize);
+                        eye.orient3d(&p, &q, &r) == away
+                    })
+                });
+            lines.push(Line {
+                a: mesh.vertices()[a],
+                b: mesh.vertices()[b],
+                ends: [pictures[a], pictures[b]],
+                class: e.class,
+                on_faces: None,
+                back,
+            });
+        }
+        edge_lines.push((id, first..lines.len()));
+    }
+    let count = |c: EdgeClass| by_class.get(&c).copied().unwrap_or(0);
+    stages.push(StageReport {
+        name: "edges",
+        done: format!(
+            "{} objects: {} silhouette, {} boundary, {} crease, {} smooth edges",
+            leaves.len(),
+            count(EdgeClass::Silhouette),
+            count(EdgeClass::Boundary),
+            count(EdgeClass::Crease),
+            count(EdgeClass::Smooth)
+        ),
+        skipped: Some(format!(
+            "{flat} edges between coplanar faces (no edge), {end_on} seen end-on (a point){}",
+            if smooth_left_out > 0 {
+                format!(", {smooth_left_out} smooth edges not asked for (--edges all draws them)")
+            } else {
+                String::new()
+            }
+        )),
+        seconds: clock.elapsed().as_secs_f64(),
+    });
+
+    // The R-trees of the meshes, for intersections and VISP.
+    let clock = Instant::now();
+    let index = VisibilityIndex::lazy(scene, scene.roots(), view.clone(), Some(INBOX_LIMIT));
+    let large = leaves
+        .iter()
+        .filter(|(_, m)| m.triangles().len() > INBOX_LIMIT)
+        .count();
+    stages.push(StageReport {
+        name: "index",
+        done: format!("R-trees of {} meshes' triangles", leaves.len()),
+        skipped: (large > 0).then(|| {
+            format!(
+                "INBOX of {large} meshes of more than {INBOX_LIMIT} triangles (their R-trees answer directly)"
+            )
+        }),
+        seconds: clock.elapsed().as_secs_f64(),
+    });
+
+    // 2. Intersection lines (and the cuts where edges pierce faces).
+    let clock = Instant::now();
+    let ids: Vec<ObjectId> = leaves.iter().map(|&(id, _)| id).collect();
+    let mut pairs = Vec::new();
+    let mut apart = 0usize;
+    for i in 0..leaves.len() {
+        for j in i..leaves.len() {
+            if scene.cbox(ids[i]).intersects(&scene.cbox(ids[j])) {
+                pairs.push((i, j));
+            } else {
+                apart += 1;
+            }
+        }
+    }
+    let mut cuts: Vec<(usize, Cut)> = Vec::new();
+    let mut segments = 0usize;
+    let mut self_intersecting = Vec::new();
+    for &(i, j) in &pairs {
+        let ((id0, m0), (id1, m1)) = (leaves[i], leaves[j]);
+        let (Some(tree0), Some(tree1)) = (index.tree(id0), index.tree(id1)) else {
+            continue;
+        };
+        for s in intersections::between((m0, tree0), (m1, tree1), i == j, eye) {
+            segments += 1;
+            for end in &s.ends {
+                if let intersections::End::Crossing {
+                    mesh,
+                    edge,
+                    points: [a, b],
+                    plane,
+                } = end
+                {
+                    let owner = if *mesh == 0 { id0 } else { id1 };
+                    let key = (owner, [edge[0].min(edge[1]), edge[0].max(edge[1])]);
+                    if let Some(&l) = index_of.get(&key) {
+                        let form = Form::Plane(*plane);
+                        // Parameter along the line as stored (its a may be the edge's b).
+                        let (la, lb) = (lines[l].a, lines[l].b);
+                        let (p, q) = if la == *a { (a, b) } else { (b, a) };
+                        debug_assert!(*p == la && *q == lb);
+                        if let Some(t) = form.zero_along(eye, p, q) {
+                            cuts.push((
+                                l,
+                                Cut {
+                                    t,
+                                    at: CutAt::Form(form),
+                                },
+                            ));
+                        }
+                    }
+                }
+            }
+            lines.push(Line {
+                a: s.points[0],
+                b: s.points[1],
+                ends: s.ends.map(|e| e.picture(&picture, eye)),
+                class: EdgeClass::Intersection,
+                on_faces: Some([(id0, s.faces[0]), (id1, s.faces[1])]),
+                back: false,
+            });
+            if i == j {
+                self_intersecting.push(id0);
+            }
+        }
+    }
+    // A mesh that pierces itself is not a proper solid: its back faces decide nothing.
+    for (id, range) in &edge_lines {
+        if self_intersecting.contains(id) {
+            lines[range.clone()].iter_mut().for_each(|l| l.back = false);
+        }
+    }
+    stages.push(StageReport {
+        name: "intersections",
+        done: format!(
+            "{segments} segments from {} object pairs with overlapping CBOXes (each object with itself included)",
+            pairs.len()
+        ),
+        skipped: (apart > 0).then(|| format!("{apart} object pairs whose CBOXes do not overlap")),
+        seconds: clock.elapsed().as_secs_f64(),
+    });
+
+    // 3. Cuts where pictures cross a contour's.
+    let clock = Instant::now();
+    let cuts_needed = |i: usize, j: usize| {
+        (lines[j].is_contour() && !lines[i].back) || (lines[i].is_contour() && !lines[j].back)
+    };
+    let crossing_cuts = |i: usize, j: usize| -> Vec<(usize, Cut)> {
+        let mut out = Vec::new();
+        for (x, y) in [(i, j), (j, i)] {
+            if lines[y].is_contour()
+                && !lines[x].back
+                && let Some(c) = crossing(eye, &lines[x], &lines[y])
+            {
+                out.extend(c.into_iter().map(|c| (x, c)));
+            }
+        }
+        out
+    };
+    let (found, method) = if lines.len() < FEW_LINES {
+        let all: Vec<(usize, Cut)> = (0..lines.len())
+            .flat_map(|i| (i + 1..lines.len()).map(move |j| (i, j)))
+            .filter(|&(i, j)| cuts_needed(i, j))
+            .flat_map(|(i, j)| crossing_cuts(i, j))
+            .collect();
+        (
+            all,
+            format!(
+                "every pair of {} lines tested (fewer than {FEW_LINES}: no grid)",
+                lines.len()
+            ),
+        )
+    } else {
+        let segments: Vec<GeoLine<f64>> = lines
+            .iter()
+            .map(|l| {
+                GeoLine::new(
+                    coord! { x: l.ends[0][0], y: l.ends[0][1] },
+                    coord! { x: l.ends[1][0], y: l.ends[1][1] },
+                )
+            })
+            .collect();
+        let grid = SegmentGrid::new(&segments);
+        let candidates = grid.candidates(cuts_needed);
+        let all: Vec<(usize, Cut)> = candidates
+            .par_iter()
+            .flat_map_iter(|&(i, j)| crossing_cuts(i, j))
+            .collect();
+        let [nx, ny] = grid.shape();
+        (
+            all,
+            format!(
+                "uniform grid {nx}×{ny} over {} lines ({:.2} cells per line), {} candidate pairs",
+                lines.len(),
+                grid.cells_per_segment(),
+                candidates.len()
+            ),
+        )
+    };
+    let crossings = found.len();
+    cuts.extend(found);
+    stages.push(StageReport {
+        name: "cuts",
+        done: format!("{crossings} cuts where a picture crosses a contour's; {method}"),
+        skipped: None,
+        seconds: clock.elapsed().as_secs_f64(),
+    });
+
+    // 4. Visibility of each piece.
+    let clock = Instant::now();
+    cuts.par_sort_unstable_by(|x, y| x.0.cmp(&y.0).then(x.1.t.total_cmp(&y.1.t)));
+    let mut first_cut = vec![0usize; lines.len() + 1];
+    for &(l, _) in &cuts {
+        first_cut[l + 1] += 1;
+    }
+    for l in 0..lines.len() {
+        first_cut[l + 1] += first_cut[l];
+    }
+    let done = AtomicU64::new(0);
+    let total = lines.len() as u64;
+    let decided: Vec<(Vec<Piece>, Counters)> = (0..lines.len())
+        .into_par_iter()
+        .map(|l| {
+            let n = done.fetch_add(1, Atomic::Relaxed) + 1;
+            if n.is_multiple_of(1024) || n == total {
+                progress(n, total);
+            }
+            let line_cuts: Vec<Cut> = cuts[first_cut[l]..first_cut[l + 1]]
+                .iter()
+                .map(|c| c.1)
+                .collect();
+            pieces(&index, &picture, &lines[l], &line_cuts, scene)
+        })
+        .collect();
+    let mut counters = Counters::default();
+    let mut all_pieces = Vec::new();
+    for (p, c) in decided {
+        counters = counters.merged(&c);
+        all_pieces.extend(p);
+    }
+    stages.push(StageReport {
+        name: "visibility",
+        done: format!(
+            "{} pieces decided by VISP: {} by CBOX, {} by INBOX, {} by faces",
+            counters.total(),
+            counters.cbox,
+            counters.inbox,
+            counters.faces
+        ),
+        skipped: None,
+        seconds: clock.elapsed().as_secs_f64(),
+    });
+
+    // 5. Chains.
+    let clock = Instant::now();
+    if !options.hidden {
+        all_pieces.retain(|p| p.visible);
+    }
+    let polylines = chain(&all_pieces);
+    stages.push(StageReport {
+        name: "chains",
+        done: format!(
+            "{} polylines from {} runs",
+            polylines.len(),
+            all_pieces.len()
+        ),
+        skipped: (!options.hidden).then(|| "hidden pieces (not asked for)".to_string()),
+        seconds: clock.elapsed().as_secs_f64(),
+    });
+    Ok(Drawing { polylines, stages })
+}
+
+/// The cuts on `l` where its picture meets the picture of the contour `c`: a crossing (one
+/// cut), or, for collinear pictures, at the pictures of `c`'s ends inside `l`.
+fn crossing(eye: &Eye, l: &Line, c: &Line) -> Option<Vec<Cut>> {
+    // Lines with a common end meet there, at the end of each: no cut (and the exact zero
+    // determinants would take the predicates' slowest path).
+    if l.a == c.a || l.a == c.b || l.b == c.a || l.b == c.b {
+        return None;
+    }
+    let (sc, sd) = (
+        eye.orient3d(&l.a, &l.b, &c.a),
+        eye.orient3d(&l.a, &l.b, &c.b),
+    );
+    let (sa, sb) = (
+        eye.orient3d(&c.a, &c.b, &l.a),
+        eye.orient3d(&c.a, &c.b, &l.b),
+    );
+    let zero = Ordering::Equal;
+    if [sc, sd, sa, sb].iter().all(|&s| s == zero) {
+        // Collinear pictures: cut at the contour's ends that lie inside this line.
+        let [p, q] = l.ends;
+        let d = [q[0] - p[0], q[1] - p[1]];
+        let norm = d[0] * d[0] + d[1] * d[1];
+        let cuts = c
+            .ends
+            .iter()
+            .filter_map(|e| {
+                let t = ((e[0] - p[0]) * d[0] + (e[1] - p[1]) * d[1]) / norm;
+                (t > 0.0 && t < 1.0).then_some(Cut {
+                    t,
+                    at: CutAt::Point(*e),
+                })
+            })
+            .collect();
+        return Some(cuts);
+    }
+    if (sc == sd && sc != zero) || (sa == sb && sa != zero) {
+        return None;
+    }
+    // Where the contour passes behind the line it changes nothing on it. Which of two lines
+    // whose pictures cross is in front is the sign of orient3d(a, b, c0, c1) against the side
+    // of the picture of ab that c0 lies on (the same sign when c is in front).
+    let c_side = if sc != zero {
+        (sc, c.a, c.b)
+    } else {
+        (sd, c.b, c.a)
+    };
+    let volume = orient3d(&l.a, &l.b, &c_side.1, &c_side.2);
+    if volume != zero && volume != c_side.0 {
+        return None;
+    }
+    let form = Form::Sight(c.a, c.b);
+    let t = form.zero_along(eye, &l.a, &l.b)?;
+    (t > 0.0 && t < 1.0).then(|| {
+        vec![Cut {
+            t,
+            at: CutAt::Form(form),
+        }]
+    })
+}
+
+/// The visible and hidden runs of line `l` cut at `cuts` (sorted by `t`), and the stages that
+/// decided its pieces.
+fn pieces(
+    index: &VisibilityIndex,
+    picture: &Picture,
+    l: &Line,
+    cuts: &[Cut],
+    scene: &Scene,
+) -> (Vec<Piece>, Counters) {
+    let eye = index.view().eye();
+    let mut counters = Counters::default();
+    if l.back {
+        let piece = Piece {
+            class: l.class,
+            visible: false,
+            ends: l.ends,
+        };
+        return (vec![piece], counters);
+    }
+    let mut bounds: Vec<(f64, Option<CutAt>)> = vec![(0.0, None)];
+    for c in cuts.iter().filter(|c| c.t > 0.0 && c.t < 1.0) {
+        if bounds.last().is_some_and(|&(t, _)| t < c.t) {
+            bounds.push((c.t, Some(c.at)));
+        }
+    }
+    bounds.push((1.0, None));
+    let mut out: Vec<Piece> = Vec::new();
+    let mut run_start = l.ends[0];
+    let mut run_visible: Option<bool> = None;
+    for k in 0..bounds.len() - 1 {
+        let (lo, hi) = (bounds[k].0, bounds[k + 1].0);
+        let t = lo + (hi - lo) / 2.0;
+        let visible = if t > lo && t < hi {
+            let approximate = l.a + (l.b - l.a) * t;
+            let (answer, stage) = index.visp_with(&approximate, |object, tri, corners| {
+                !on_faces(l, scene, object, tri) && hides_along(eye, corners, &l.a, &l.b, t)
+            });
+            counters.record(stage);
+            answer == Visibility::Visible
+        } else {
+            // A piece too short to hold a double strictly inside: it takes its neighbour's.
+            run_visible.unwrap_or(true)
+        };
+        match run_visible {
+            Some(v) if v != visible => {
+                let at = cut_picture(picture, eye, l, bounds[k].1);
+                out.push(Piece {
+                    class: l.class,
+                    visible: v,
+                    ends: [run_start, at],
+                });
+                run_start = at;
+            }
+            _ => {}
+        }
+        run_visible = Some(visible);
+    }
+    if let Some(v) = run_visible {
+        out.push(Piece {
+            class: l.class,
+            visible: v,
+            ends: [run_start, l.ends[1]],
+        });
+    }
+    (out, counters)
+}
+
+/// Whether triangle `tri` of `object` lies on one of the faces an intersection line runs on.
+fn on_faces(l: &Line, scene: &Scene, object: ObjectId, tri: usize) -> bool {
+    l.on_faces.is_some_and(|faces| {
+        faces
+            .iter()
+            .any(|&(o, f)| o == object && scene[object].mesh().is_some_and(|m| m.face_of(tri) == f))
+    })
+}
+
+/// The picture of a cut of line `l`.
+fn cut_picture(picture: &Picture, eye: &Eye, l: &Line, at: Option<CutAt>) -> [f64; 2] {
+    match at {
+        Some(CutAt::Form(form)) => cut_point(picture, eye, &form, &l.a, &l.b),
+        Some(CutAt::Point(p)) => p,
+        None => l.ends[0],
+    }
+}
+
+/// For a mesh that bounds a solid the eye is outside of (closed, consistently oriented, not
+/// flat; the eye outside its CBOX), the sign of [`Eye::orient3d`] of a face turned away from
+/// the eye; `None` otherwise. Every point of an edge between two faces turned away is then
+/// hidden by the solid itself: its line of sight enters the solid, which it must leave through
+/// a face in front of the point before reaching the eye.
+fn turned_away(scene: &Scene, id: ObjectId, mesh: &Mesh, eye: &Eye) -> Option<Ordering> {
+    let topology = mesh.topology();
+    if !(topology.closed && topology.consistently_oriented) {
+        return None;
+    }
+    if let Eye::Point(e) = eye
+        && scene.cbox(id).contains_point(e)
+    {
+        return None;
+    }
+    // Seen from outside, an outward face is counter-clockwise: orient3d(face, eye) < 0.
+    let volume = mesh.volume();
+    if volume > 0.0 {
+        Some(Ordering::Greater)
+    } else if volume < 0.0 {
+        Some(Ordering::Less)
+    } else {
+        None
+    }
+}

@@ -1,0 +1,331 @@
+//! The SVG form of a drawing (see [`crate::output`]).
+
+use std::io::{self, Write};
+
+use crate::hidden::{Drawing, EdgeClass};
+
+/// The stroke colour of visible lines.
+const VISIBLE_COLOUR: &str = "#000000";
+/// The stroke colour of hidden lines.
+const HIDDEN_COLOUR: &str = "#909090";
+
+/// Stroke widths per edge class, in millimetres on the page.
+///
+/// ```
+/// use kepler::hidden::EdgeClass;
+/// use kepler::output::StrokeWidths;
+/// let widths = StrokeWidths { smooth: 0.1, ..StrokeWidths::default() };
+/// assert_eq!(widths.get(EdgeClass::Smooth), 0.1);
+/// assert_eq!(widths.get(EdgeClass::Silhouette), 0.5);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StrokeWidths {
+    /// Silhouette edges (default 0.5 mm).
+    pub silhouette: f64,
+    /// Boundary edges (default 0.5 mm).
+    pub boundary: f64,
+    /// Crease edges (default 0.35 mm).
+    pub crease: f64,
+    /// Intersection lines (default 0.35 mm).
+    pub intersection: f64,
+    /// Smooth edges (default 0.18 mm).
+    pub smooth: f64,
+}
+
+impl StrokeWidths {
+    /// The width for `class`, in millimetres.
+    ///
+    /// ```
+    /// use kepler::hidden::EdgeClass;
+    /// assert_eq!(kepler::output::StrokeWidths::default().get(EdgeClass::Crease), 0.35);
+    /// ```
+    pub fn get(&self, class: EdgeClass) -> f64 {
+        match class {
+            EdgeClass::Silhouette => self.silhouette,
+            EdgeClass::Boundary => self.boundary,
+            EdgeClass::Crease => self.crease,
+            EdgeClass::Intersection => self.intersection,
+            EdgeClass::Smooth => self.smooth,
+        }
+    }
+}
+
+impl Default for StrokeWidths {
+    fn default() -> Self {
+        StrokeWidths {
+            silhouette: 0.5,
+            boundary: 0.5,
+            crease: 0.35,
+            intersection: 0.35,
+            smooth: 0.18,
+        }
+    }
+}
+
+/// How [`write_svg`] lays a drawing out on the page. All lengths are in millimetres.
+///
+/// [`write_svg`] refuses options with a page size that is not finite and positive, a margin
+/// that is negative or leaves no room on the page, a stroke width that is negative or not
+/// finite, or a dash or gap length that is not finite and positive.
+///
+/// ```
+/// use kepler::output::SvgOptions;
+/// let a3_portrait = SvgOptions { page: [297.0, 420.0], margin: 15.0, ..SvgOptions::default() };
+/// assert_eq!(a3_portrait.stroke.silhouette, 0.5);
+/// assert_eq!(SvgOptions::default().page, [297.0, 210.0]);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SvgOptions {
+    /// The page's width and height (default A4 landscape, 297 × 210).
+    pub page: [f64; 2],
+    /// The blank margin kept on every side of the page (default 10).
+    pub margin: f64,
+    /// The stroke width of each class, for visible and hidden lines alike.
+    pub stroke: StrokeWidths,
+    /// The dash and gap lengths of hidden lines (default 1.5 and 1).
+    pub hidden_dash: [f64; 2],
+}
+
+impl Default for SvgOptions {
+    fn default() -> Self {
+        SvgOptions {
+            page: [297.0, 210.0],
+            margin: 10.0,
+            stroke: StrokeWidths::default(),
+            hidden_dash: [1.5, 1.0],
+        }
+    }
+}
+
+impl SvgOptions {
+    /// An error if the options are out of range (see [`SvgOptions`]).
+    fn check(&self) -> io::Result<()> {
+        let [width, height] = self.page;
+        let bad = |what: String| Err(io::Error::new(io::ErrorKind::InvalidInput, what));
+        if !(width.is_finite() && width > 0.0 && height.is_finite() && height > 0.0) {
+            return bad(format!("page size {width} × {height} mm is not positive"));
+        }
+        if !(self.margin.is_finite() && self.margin >= 0.0) {
+            return bad(format!("margin {} mm is negative", self.margin));
+        }
+        if 2.0 * self.margin >= width.min(height) {
+            return bad(format!(
+                "margin {} mm leaves no room on a {width} × {height} mm page",
+                self.margin
+            ));
+        }
+        for class in EdgeClass::ALL {
+            let w = self.stroke.get(class);
+            if !(w.is_finite() && w >= 0.0) {
+                return bad(format!("{} stroke width {w} mm is negative", class.name()));
+            }
+        }
+        let [dash, gap] = self.hidden_dash;
+        if !(dash.is_finite() && dash > 0.0 && gap.is_finite() && gap > 0.0) {
+            return bad(format!(
+                "hidden dash {dash} mm, gap {gap} mm are not positive"
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// The map from view coordinates (`y` up) to page millimetres (`y` down):
+/// `(x, y) ↦ (scale·x + tx, ty − scale·y)`, the SVG `matrix(scale 0 0 -scale tx ty)`.
+///
+/// ```
+/// use kepler::output::PageTransform;
+/// let t = PageTransform { scale: 2.0, tx: 10.0, ty: 100.0 };
+/// assert_eq!(t.to_page([1.0, 3.0]), [12.0, 94.0]);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PageTransform {
+    /// Millimetres per view unit (finite and positive).
+    pub scale: f64,
+    /// The page `x` of the view origin.
+    pub tx: f64,
+    /// The page `y` of the view origin.
+    pub ty: f64,
+}
+
+impl PageTransform {
+    /// The page position, in millimetres from the top left corner, of the view point `p`.
+    ///
+    /// ```
+    /// use kepler::output::PageTransform;
+    /// let t = PageTransform { scale: 0.5, tx: 0.0, ty: 210.0 };
+    /// assert_eq!(t.to_page([0.0, 0.0]), [0.0, 210.0]);
+    /// assert_eq!(t.to_page([4.0, 4.0]), [2.0, 208.0]);
+    /// ```
+    pub fn to_page(&self, p: [f64; 2]) -> [f64; 2] {
+        [self.scale * p[0] + self.tx, self.ty - self.scale * p[1]]
+    }
+}
+
+/// The transform [`write_svg`] uses: one uniform scale fitting the drawing's bounds
+/// ([`Drawing::bounds`]) inside the page less the margins, aspect preserved, the bounds'
+/// centre at the page's centre.
+///
+/// A drawing without extent (empty, or all its points equal) is drawn at scale 1, centred; a
+/// drawing so small or so large that the fitting scale leaves the range of `f64` gets the
+/// nearest finite positive scale. The options are assumed valid (as [`write_svg`] checks).
+///
+/// ```
+/// use kepler::hidden::{Drawing, EdgeClass, Polyline};
+/// use kepler::output::{page_transform, SvgOptions};
+/// let drawing = Drawing {
+///     polylines: vec![Polyline { class: EdgeClass::Boundary, visible: true, points: vec![[-1.0, -1.0], [1.0, 0.0]] }],
+///     stages: Vec::new(),
+/// };
+/// let t = page_transform(&drawing, &SvgOptions::default());
+/// // The width (2) fills the 277 mm between the margins; the height (1) is centred.
+/// assert_eq!(t.scale, 138.5);
+/// assert_eq!(t.to_page([-1.0, -1.0]), [10.0, 174.25]);
+/// assert_eq!(t.to_page([1.0, 0.0]), [287.0, 35.75]);
+/// ```
+pub fn page_transform(drawing: &Drawing, options: &SvgOptions) -> PageTransform {
+    let [width, height] = options.page;
+    let (centre, scale) = match drawing.bounds() {
+        None => ([0.0, 0.0], 1.0),
+        Some((lo, hi)) => {
+            // Halves, so that neither the extent nor the centre can overflow.
+            let half = [hi[0] / 2.0 - lo[0] / 2.0, hi[1] / 2.0 - lo[1] / 2.0];
+            let room = [
+                (width / 2.0 - options.margin).max(0.0),
+                (height / 2.0 - options.margin).max(0.0),
+            ];
+            let scale = (0..2)
+                .filter(|&i| half[i] > 0.0)
+                .map(|i| room[i] / half[i])
+                .reduce(f64::min)
+                .map_or(1.0, |s| s.clamp(f64::MIN_POSITIVE, f64::MAX));
+            (
+                [lo[0] / 2.0 + hi[0] / 2.0, lo[1] / 2.0 + hi[1] / 2.0],
+                scale,
+            )
+        }
+    };
+    PageTransform {
+        scale,
+        tx: width / 2.0 - scale * centre[0],
+        ty: height / 2.0 + scale * centre[1],
+    }
+}
+
+/// Writes `drawing` as an SVG document laid out by `options` (the format is described in
+/// [`crate::output`]). Path coordinates are the drawing's view coordinates, printed so that they
+/// read back as the same `f64`; a polyline without points is left out.
+///
+/// Fails with [`io::ErrorKind::InvalidInput`] if the options are out of range (see
+/// [`SvgOptions`]) or the stroke widths or dashes cannot be expressed in view units at the
+/// drawing's scale, with [`io::ErrorKind::InvalidData`] if a coordinate is not finite, and with
+/// any error of `out`.
+///
+/// ```
+/// use kepler::hidden::{Drawing, EdgeClass, Polyline};
+/// use kepler::output::{write_svg, SvgOptions};
+/// let drawing = Drawing {
+///     polylines: vec![
+///         Polyline { class: EdgeClass::Crease, visible: true, points: vec![[0.0, 0.0], [2.0, 1.0]] },
+///         Polyline { class: EdgeClass::Crease, visible: false, points: vec![[0.0, 1.0], [2.0, 0.0]] },
+///     ],
+///     stages: Vec::new(),
+/// };
+/// let mut out = Vec::new();
+/// write_svg(&drawing, &SvgOptions::default(), &mut out).unwrap();
+/// let svg = String::from_utf8(out).unwrap();
+/// assert!(svg.contains(r#"width="297mm" height="210mm" viewBox="0 0 297 210""#));
+/// assert!(svg.contains(r#"transform="matrix(138.5 0 0 -138.5 10 174.25)""#));
+/// let hidden = svg.find(r#"id="hidden-crease""#).unwrap();
+/// let visible = svg.find(r#"id="visible-crease""#).unwrap();
+/// assert!(hidden < visible);
+/// assert!(!svg.contains("visible-silhouette"));
+///
+/// let cramped = SvgOptions { margin: 200.0, ..SvgOptions::default() };
+/// assert!(write_svg(&drawing, &cramped, &mut Vec::new()).is_err());
+/// ```
+pub fn write_svg(drawing: &Drawing, options: &SvgOptions, out: &mut impl Write) -> io::Result<()> {
+    options.check()?;
+    super::check_finite(drawing)?;
+    let t = page_transform(drawing, options);
+    let in_view = |mm: f64, what: &str| {
+        let v = mm / t.scale;
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(io::Error::new(
+                io::ErrorKind::InvalidInput,
+                format!(
+                    "{what} of {mm} mm is out of range at a scale of {} mm per unit",
+                    t.scale
+                ),
+            ))
+        }
+    };
+    let dash = [
+        in_view(options.hidden_dash[0], "the hidden dash")?,
+        in_view(options.hidden_dash[1], "the hidden gap")?,
+    ];
+    let mut widths = [0.0; EdgeClass::ALL.len()];
+    for (width, class) in widths.iter_mut().zip(EdgeClass::ALL) {
+        *width = in_view(options.stroke.get(class), "a stroke width")?;
+    }
+    if !(t.tx.is_finite() && t.ty.is_finite()) {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            "the drawing cannot be placed on the page",
+        ));
+    }
+
+    let [width, height] = options.page;
+    let mut out = io::BufWriter::new(out);
+    writeln!(out, r#"<?xml version="1.0" encoding="UTF-8"?>"#)?;
+    writeln!(
+        out,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" version="1.1" width="{width}mm" height="{height}mm" viewBox="0 0 {width} {height}">"#
+    )?;
+    writeln!(
+        out,
+        r#"<g id="drawing" transform="matrix({s} 0 0 -{s} {tx} {ty})" fill="none" stroke-linecap="round" stroke-linejoin="round">"#,
+        s = t.scale,
+        tx = t.tx,
+        ty = t.ty,
+    )?;
+    for visible in [false, true] {
+        for (class, stroke_width) in EdgeClass::ALL.into_iter().zip(widths) {
+            let mut paths = drawing
+                .polylines
+                .iter()
+                .filter(|p| p.class == class && p.visible == visible && !p.points.is_empty())
+                .peekable();
+            if paths.peek().is_none() {
+                continue;
+            }
+            let name = class.name();
+            if visible {
+                writeln!(
+                    out,
+                    r#"<g id="visible-{name}" stroke="{VISIBLE_COLOUR}" stroke-width="{stroke_width}">"#
+                )?;
+            } else {
+                writeln!(
+                    out,
+                    r#"<g id="hidden-{name}" stroke="{HIDDEN_COLOUR}" stroke-width="{stroke_width}" stroke-dasharray="{} {}">"#,
+                    dash[0], dash[1]
+                )?;
+            }
+            for polyline in paths {
+                out.write_all(b"<path d=\"")?;
+                for (i, [x, y]) in polyline.points.iter().enumerate() {
+                    let command = if i == 0 { "M" } else { " L" };
+                    write!(out, "{command} {x} {y}")?;
+                }
+                out.write_all(b"\"/>\n")?;
+            }
+            writeln!(out, "</g>")?;
+        }
+    }
+    writeln!(out, "</g>")?;
+    writeln!(out, "</svg>")?;
+    out.flush()
+}

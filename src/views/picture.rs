@@ -1,0 +1,146 @@
+//! The picture map: from world coordinates to the 2-D coordinates of a drawing, exactly
+//! rounded.
+
+use super::{Eye, View};
+use crate::geometry::exact::{accurate_sum, expansion, two_product, two_sum};
+use crate::geometry::{Point3, Vector3};
+
+/// The map from world points to picture coordinates (`x` right, `y` up), as three affine
+/// forms `row·(p - origin)`: for an orthographic view `x = right·p`, `y = up·p` (scene units);
+/// for a perspective view `x = (k·right)·(p - eye) / depth`, `y = (k·up)·(p - eye) / depth`
+/// with `depth = forward·(p - eye)` and `k = 1/tan(fov/2)`, so the field of view spans `y` in
+/// `[-1, 1]`. The rows are the view's doubles, taken as exact; every picture coordinate is
+/// rounded once from the exact value of its forms (see [`Picture::point`]).
+///
+/// A perspective picture has its centre of projection exactly at the eye, so a plane through
+/// the eye maps to a line: the crossing of two edges in the picture is the picture of an exact
+/// point of 3-D space, the one the eye's predicates find.
+///
+/// ```
+/// use kepler::{geometry::Point3, views::{Picture, View}};
+/// let pic = Picture::of(&View::standard());
+/// assert_eq!(pic.point(&Point3::new(0.1, 0.2, 9.0)), [0.1, 0.2]);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Picture {
+    rows: [Vector3; 3],
+    origin: Point3,
+    perspective: bool,
+}
+
+impl Picture {
+    /// The picture map of a view.
+    ///
+    /// ```
+    /// use kepler::{geometry::{Point3, Vector3}, views::{Picture, View}};
+    /// let v = View::perspective(Point3::new(0.0, 0.0, 10.0), Point3::origin(), Vector3::y(), 90.0).unwrap();
+    /// let p = Picture::of(&v).point(&Point3::new(1.0, 2.0, 0.0));
+    /// assert!((p[0] - 0.1).abs() < 1e-15 && (p[1] - 0.2).abs() < 1e-15);
+    /// ```
+    pub fn of(view: &View) -> Picture {
+        let (right, up) = view.right_up();
+        match (view.eye(), view.fov) {
+            (Eye::Point(e), Some(fov)) => {
+                let k = 1.0 / (fov.to_radians() / 2.0).tan();
+                Picture {
+                    rows: [right * k, up * k, view.forward()],
+                    origin: *e,
+                    perspective: true,
+                }
+            }
+            _ => Picture {
+                rows: [right, up, Vector3::zeros()],
+                origin: Point3::origin(),
+                perspective: false,
+            },
+        }
+    }
+
+    /// The three rows (`x`, `y`, depth; depth is zero for an orthographic view, whose depth
+    /// form is the constant 1) and the origin they are applied from: form `k` at `p` is
+    /// `rows[k]·(p - origin)` exactly.
+    ///
+    /// ```
+    /// use kepler::{geometry::{Point3, Vector3}, views::{Picture, View}};
+    /// let (rows, origin) = Picture::of(&View::standard()).rows();
+    /// assert_eq!((rows[0], rows[1], origin), (Vector3::x(), Vector3::y(), Point3::origin()));
+    /// ```
+    pub fn rows(&self) -> ([Vector3; 3], Point3) {
+        (self.rows, self.origin)
+    }
+
+    /// Whether the map divides by depth (a perspective view).
+    ///
+    /// ```
+    /// assert!(!kepler::views::Picture::of(&kepler::views::View::standard()).is_perspective());
+    /// ```
+    pub fn is_perspective(&self) -> bool {
+        self.perspective
+    }
+
+    /// The exact value of form `k` (0: `x`, 1: `y`, 2: depth, which is 1 for an orthographic
+    /// view) at `p`, as an expansion (see [`crate::geometry::exact`]).
+    ///
+    /// ```
+    /// use kepler::{geometry::{Point3, exact::accurate_sum}, views::{Picture, View}};
+    /// let pic = Picture::of(&View::standard());
+    /// assert_eq!(accurate_sum(&pic.form(1, &Point3::new(3.0, 4.0, 5.0))), 4.0);
+    /// assert_eq!(pic.form(2, &Point3::new(3.0, 4.0, 5.0)), vec![1.0]);
+    /// ```
+    pub fn form(&self, k: usize, p: &Point3) -> Vec<f64> {
+        if k == 2 && !self.perspective {
+            return vec![1.0];
+        }
+        expansion(&self.terms(k, p))
+    }
+
+    /// The exact terms of form `k` at `p` (products of the row with `p - origin`).
+    fn terms(&self, k: usize, p: &Point3) -> Vec<f64> {
+        let row = &self.rows[k];
+        let mut out = Vec::with_capacity(12);
+        for i in 0..3 {
+            let (d, e) = two_sum(p[i], -self.origin[i]);
+            for x in [d, e] {
+                let (h, l) = two_product(row[i], x);
+                out.extend([h, l].into_iter().filter(|&v| v != 0.0));
+            }
+        }
+        out
+    }
+
+    /// The picture coordinates of `p`: each coordinate of an orthographic view is the exact
+    /// value rounded once (within half a unit in the last place); of a perspective view, the
+    /// rounded numerator over the rounded depth (within 1.5 units). `p` must lie in front of a
+    /// perspective eye.
+    ///
+    /// ```
+    /// use kepler::{geometry::{Point3, Vector3}, views::{Picture, View}};
+    /// let v = View::orthographic(Vector3::new(-1.0, -1.0, -1.0), Vector3::z()).unwrap();
+    /// let [x, y] = Picture::of(&v).point(&Point3::new(1.0, 1.0, 1.0));
+    /// assert!(x.abs() < 1e-15 && y.abs() < 1e-15);
+    /// ```
+    pub fn point(&self, p: &Point3) -> [f64; 2] {
+        let x = accurate_sum(&self.terms(0, p));
+        let y = accurate_sum(&self.terms(1, p));
+        if self.perspective {
+            let depth = accurate_sum(&self.terms(2, p));
+            [x / depth, y / depth]
+        } else {
+            [x, y]
+        }
+    }
+
+    /// Whether `p` lies strictly in front of a perspective eye (always true for an
+    /// orthographic view), decided exactly.
+    ///
+    /// ```
+    /// use kepler::{geometry::{Point3, Vector3}, views::{Picture, View}};
+    /// let v = View::perspective(Point3::new(0.0, 0.0, 10.0), Point3::origin(), Vector3::y(), 60.0).unwrap();
+    /// let pic = Picture::of(&v);
+    /// assert!(pic.in_front(&Point3::new(5.0, 5.0, 9.0)));
+    /// assert!(!pic.in_front(&Point3::new(5.0, 5.0, 10.0)));
+    /// ```
+    pub fn in_front(&self, p: &Point3) -> bool {
+        !self.perspective || self.form(2, p).last().is_some_and(|&top| top > 0.0)
+    }
+}
