@@ -13,6 +13,7 @@ use crate::geometry::predicates::{orient2d, orient3d, project};
 use crate::geometry::{Point3, Vector3};
 use crate::mesh::Mesh;
 use crate::views::Eye;
+use rayon::prelude::*;
 use std::cmp::Ordering;
 
 /// One edge of a mesh: its vertices (indices into the mesh) and class.
@@ -50,75 +51,114 @@ struct Side {
 /// it). Coplanar and end-on edges are left out and counted.
 pub(crate) fn classify(mesh: &Mesh, eye: &Eye, crease_cos: f64) -> (Vec<MeshEdge>, EdgeCounts) {
     let triangles = mesh.triangles();
-    let mut sides = Vec::with_capacity(triangles.len() * 3 / 2 + 8);
-    for face in mesh.faces() {
-        let v = face.vertices();
-        for i in 0..v.len() {
-            let (p, q) = (v[i], v[(i + 1) % v.len()]);
-            // The triangle of the face's triangulation that has this side.
-            let side = face.triangle_range().find_map(|t| {
-                let tri = triangles[t];
-                if !(tri.contains(&p) && tri.contains(&q)) {
-                    return None;
-                }
-                let third = tri.iter().copied().find(|&w| w != p && w != q)?;
-                Some((third, t as u32))
-            });
-            if let Some((third, triangle)) = side {
-                let key = (u64::from(p.min(q)) << 32) | u64::from(p.max(q));
-                sides.push(Side {
-                    key,
-                    third,
-                    triangle,
-                });
-            }
-        }
-    }
-    sides.sort_unstable_by_key(|s| s.key);
+    let mut sides: Vec<Side> = mesh
+        .faces()
+        .par_iter()
+        .flat_map_iter(|face| {
+            let v = face.vertices();
+            (0..v.len()).filter_map(move |i| {
+                let (p, q) = (v[i], v[(i + 1) % v.len()]);
+                // The triangle of the face's triangulation that has this side.
+                face.triangle_range().find_map(|t| {
+                    let tri = triangles[t];
+                    if !(tri.contains(&p) && tri.contains(&q)) {
+                        return None;
+                    }
+                    let third = tri.iter().copied().find(|&w| w != p && w != q)?;
+                    Some(Side {
+                        key: (u64::from(p.min(q)) << 32) | u64::from(p.max(q)),
+                        third,
+                        triangle: t as u32,
+                    })
+                })
+            })
+        })
+        .collect();
+    sides.par_sort_unstable_by_key(|s| s.key);
+    let groups: Vec<&[Side]> = sides.chunk_by(|x, y| x.key == y.key).collect();
     let vertices = mesh.vertices();
-    let mut edges = Vec::with_capacity(sides.len() / 2 + 1);
+    let decided: Vec<Result<MeshEdge, Left>> = groups
+        .par_iter()
+        .map(|group| {
+            let (a, b) = ((group[0].key >> 32) as u32, group[0].key as u32);
+            let (pa, pb) = (&vertices[a as usize], &vertices[b as usize]);
+            if eye.sees_end_on(pa, pb) {
+                return Err(Left::EndOn);
+            }
+            let third = |k: usize| &vertices[group[k].third as usize];
+            let class = match group.len() {
+                1 => Some(EdgeClass::Boundary),
+                2 => class_of(pa, pb, [third(0), third(1)], eye, crease_cos),
+                _ => Some(class_of_many(
+                    pa,
+                    pb,
+                    group.iter().map(|s| &vertices[s.third as usize]),
+                    eye,
+                )),
+            };
+            class.map_or(Err(Left::Flat), |class| {
+                Ok(MeshEdge {
+                    a,
+                    b,
+                    class,
+                    triangles: [group[0].triangle, group[group.len().min(2) - 1].triangle],
+                })
+            })
+        })
+        .collect();
     let mut counts = EdgeCounts::default();
-    for group in sides.chunk_by(|x, y| x.key == y.key) {
-        let (a, b) = ((group[0].key >> 32) as u32, group[0].key as u32);
-        let (pa, pb) = (&vertices[a as usize], &vertices[b as usize]);
-        if eye.sees_end_on(pa, pb) {
-            counts.end_on += 1;
-            continue;
-        }
-        let thirds: Vec<&Point3> = group.iter().map(|s| &vertices[s.third as usize]).collect();
-        match class_of(pa, pb, &thirds, eye, crease_cos) {
-            Some(class) => edges.push(MeshEdge {
-                a,
-                b,
-                class,
-                triangles: [group[0].triangle, group[group.len().min(2) - 1].triangle],
-            }),
-            None => counts.flat += 1,
+    let mut edges = Vec::with_capacity(decided.len());
+    for d in decided {
+        match d {
+            Ok(e) => edges.push(e),
+            Err(Left::Flat) => counts.flat += 1,
+            Err(Left::EndOn) => counts.end_on += 1,
         }
     }
     (edges, counts)
 }
 
-/// The class of the edge `ab` whose faces' third vertices are `thirds`, or `None` for an
-/// edge between two coplanar faces on either side of it.
+/// Why an edge is not part of the drawing.
+#[derive(Debug, Clone, Copy)]
+enum Left {
+    /// Between coplanar faces.
+    Flat,
+    /// Seen end-on.
+    EndOn,
+}
+
+/// The class of an edge `ab` of more than two faces (third vertices `thirds`): a silhouette
+/// when all lie on one side of its picture or one is seen edge-on, else a crease.
+fn class_of_many<'a>(
+    a: &Point3,
+    b: &Point3,
+    thirds: impl Iterator<Item = &'a Point3>,
+    eye: &Eye,
+) -> EdgeClass {
+    let mut seen = [false; 3];
+    for c in thirds {
+        seen[(eye.orient3d(a, b, c) as i8 + 1) as usize] = true;
+    }
+    if seen[1] || !(seen[0] && seen[2]) {
+        EdgeClass::Silhouette
+    } else {
+        EdgeClass::Crease
+    }
+}
+
+/// The class of the edge `ab` of two faces whose third vertices are `c1` and `c2`, or `None`
+/// for an edge between two coplanar faces on either side of it.
 fn class_of(
     a: &Point3,
     b: &Point3,
-    thirds: &[&Point3],
+    [c1, c2]: [&Point3; 2],
     eye: &Eye,
     crease_cos: f64,
 ) -> Option<EdgeClass> {
-    let sides: Vec<Ordering> = thirds.iter().map(|c| eye.orient3d(a, b, c)).collect();
-    if sides.len() == 1 {
-        return Some(EdgeClass::Boundary);
-    }
-    if sides.contains(&Ordering::Equal) || sides.iter().all(|&s| s == sides[0]) {
+    let (s1, s2) = (eye.orient3d(a, b, c1), eye.orient3d(a, b, c2));
+    if s1 == Ordering::Equal || s1 == s2 {
         return Some(EdgeClass::Silhouette);
     }
-    if sides.len() > 2 {
-        return Some(EdgeClass::Crease);
-    }
-    let (c1, c2) = (thirds[0], thirds[1]);
     if orient3d(a, b, c1, c2) == Ordering::Equal {
         // Coplanar, and (their picture sides differing) on either side of the edge.
         let k = (0..3)

@@ -1,7 +1,8 @@
 //! Intersection lines: where two faces pierce each other, in different objects or in one.
 //!
-//! Candidate triangle pairs come from the triangles' boxes (an R-tree per mesh); objects whose
-//! CBOXes do not overlap are not compared at all. Which vertices lie on which side of the
+//! Candidate triangle pairs are those whose boxes meet, found with a uniform 3-D grid over the
+//! region where the two meshes' boxes overlap; objects whose CBOXes do not overlap are not
+//! compared at all. Which vertices lie on which side of the
 //! other triangle's plane is decided exactly, so touching faces (a box resting on another,
 //! neighbours sharing an edge or a vertex) make no intersection line and coplanar faces none
 //! either. The part of the line inside both triangles runs between two of the points where a
@@ -10,9 +11,9 @@
 //! and each end is built once from the input coordinates, exactly as an edge's cut.
 
 use super::along::{Form, cut_point};
-use crate::geometry::Point3;
 use crate::geometry::predicates::orient3d;
-use crate::mesh::{Mesh, TriangleTree};
+use crate::geometry::{Aabb, Point3};
+use crate::mesh::Mesh;
 use crate::views::{Eye, Picture};
 use rayon::prelude::*;
 use std::cmp::Ordering;
@@ -77,31 +78,145 @@ pub(crate) struct Segment {
 
 /// The intersection segments of the triangles of `m0` with those of `m1` (`same` when they are
 /// one mesh: then each pair once, and triangles sharing a vertex or a face are not compared).
-/// Candidate pairs come from a simultaneous descent of the meshes' R-trees.
-pub(crate) fn between(
-    (m0, tree0): (&Mesh, &TriangleTree),
-    (m1, tree1): (&Mesh, &TriangleTree),
-    same: bool,
-    eye: &Eye,
-) -> Vec<Segment> {
-    let candidates: Vec<(usize, usize)> = tree0
-        .overlapping(tree1)
-        .filter(|&(i, j)| {
-            !same
-                || (j > i
-                    && m0.face_of(i) != m0.face_of(j)
-                    && !shares_vertex(&m0.triangles()[i], &m0.triangles()[j]))
-        })
-        .collect();
-    candidates
+pub(crate) fn between(m0: &Mesh, m1: &Mesh, same: bool, eye: &Eye) -> Vec<Segment> {
+    candidate_pairs(m0, m1, same)
         .par_iter()
         .filter_map(|&(i, j)| {
+            let (i, j) = (i as usize, j as usize);
             let (vi, vj) = (m0.triangles()[i], m1.triangles()[j]);
             segment(&m0.triangle(i), &vi, &m1.triangle(j), &vj, eye).map(|ends| Segment {
                 points: ends.map(|e| e.approximate(eye)),
                 ends,
                 faces: [m0.face_of(i), m1.face_of(j)],
             })
+        })
+        .collect()
+}
+
+/// The pairs of triangles (of `m0`, of `m1`) whose closed boxes meet, each once: a uniform
+/// 3-D grid over the region where the meshes' boxes overlap, cells about the size of a
+/// triangle's box, each triangle listed in the cells its box meets. A pair is reported only in
+/// the cell holding the low corner of the two boxes' overlap, so once. For one mesh (`same`),
+/// pairs sharing a vertex or a face are left out.
+fn candidate_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32)> {
+    let boxes = |m: &Mesh| -> Vec<Aabb> {
+        (0..m.triangles().len())
+            .into_par_iter()
+            .map(|t| Aabb::from_points(&m.triangle(t)))
+            .collect()
+    };
+    let b0 = boxes(m0);
+    let b1 = if same { Vec::new() } else { boxes(m1) };
+    let second = if same { &b0 } else { &b1 };
+    let whole = |b: &[Aabb]| b.iter().fold(Aabb::EMPTY, |u, x| u.union(x));
+    let (w0, w1) = (whole(&b0), whole(second));
+    let region = Aabb::new(
+        Point3::from([0, 1, 2].map(|k| w0.min[k].max(w1.min[k]))),
+        Point3::from([0, 1, 2].map(|k| w0.max[k].min(w1.max[k]))),
+    );
+    if (0..3).any(|k| region.min[k] > region.max[k]) {
+        return Vec::new();
+    }
+    let mean = b0
+        .iter()
+        .chain(second.iter())
+        .map(|b| b.size().into_iter().fold(0.0, f64::max))
+        .sum::<f64>()
+        / (b0.len() + second.len()).max(1) as f64;
+    let size = region.size();
+    // Cells twice the mean box: the total of pairs tested, about N²·(1 + e/s)⁶·s²/area for
+    // boxes of size e in cells of size s, is least at s = 2e.
+    let side = 2.0 * mean;
+    // Only occupied cells are listed (items are sorted by cell), so a surface in a large
+    // region costs nothing for the empty cells; the cap keeps cell numbers in 63 bits.
+    let shape = size.map(|e| {
+        if side > 0.0 {
+            ((e / side).ceil() as usize).clamp(1, 1 << 20)
+        } else {
+            1
+        }
+    });
+    let index = |k: usize, v: f64| -> usize {
+        if size[k] <= 0.0 {
+            return 0;
+        }
+        let c = (v - region.min[k]) / size[k] * shape[k] as f64;
+        if c >= shape[k] as f64 {
+            shape[k] - 1
+        } else if c > 0.0 {
+            c as usize
+        } else {
+            0
+        }
+    };
+    let cell_of = |c: [usize; 3]| ((c[2] * shape[1] + c[1]) * shape[0] + c[0]) as u64;
+    let list = |b: &[Aabb], mesh: u32| -> Vec<(u64, u32)> {
+        b.par_iter()
+            .enumerate()
+            .fold(Vec::new, |mut out, (t, bx)| {
+                if (0..3).any(|k| bx.max[k] < region.min[k] || bx.min[k] > region.max[k]) {
+                    return out;
+                }
+                let r = |k: usize| index(k, bx.min[k])..=index(k, bx.max[k]);
+                for z in r(2) {
+                    for y in r(1) {
+                        for x in r(0) {
+                            out.push((cell_of([x, y, z]), (mesh << 31) | t as u32));
+                        }
+                    }
+                }
+                out
+            })
+            .reduce(Vec::new, |mut x, mut y| {
+                x.append(&mut y);
+                x
+            })
+    };
+    let mut items = list(&b0, 0);
+    if !same {
+        items.extend(list(&b1, 1));
+    }
+    items.par_sort_unstable();
+    let runs: Vec<&[(u64, u32)]> = items.chunk_by(|x, y| x.0 == y.0).collect();
+    runs.par_iter()
+        .flat_map_iter(|run| {
+            let cell = run[0].0;
+            let of = |item: (u64, u32)| (item.1 & 0x7fff_ffff) as usize;
+            // Items sort by mesh within a cell (mesh 0 first): split there.
+            let split = if same {
+                run.len()
+            } else {
+                run.partition_point(|i| i.1 >> 31 == 0)
+            };
+            let (firsts, seconds) = if same {
+                (*run, *run)
+            } else {
+                run.split_at(split)
+            };
+            let mut out = Vec::new();
+            for (n, &x) in firsts.iter().enumerate() {
+                // For one mesh, each pair once: the items after x (larger triangle indices).
+                let others = if same { &seconds[n + 1..] } else { seconds };
+                for &y in others {
+                    let (i, j) = (of(x), of(y));
+                    if same && shares_vertex(&m0.triangles()[i], &m0.triangles()[j]) {
+                        continue;
+                    }
+                    let (bi, bj) = (&b0[i], &second[j]);
+                    if (0..3).any(|k| bi.min[k] > bj.max[k] || bj.min[k] > bi.max[k]) {
+                        continue;
+                    }
+                    let low = [0, 1, 2].map(|k| index(k, bi.min[k].max(bj.min[k])));
+                    if cell_of(low) != cell {
+                        continue;
+                    }
+                    if same && m0.face_of(i) == m0.face_of(j) {
+                        continue;
+                    }
+                    out.push((i as u32, j as u32));
+                }
+            }
+            out
         })
         .collect()
 }

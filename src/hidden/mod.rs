@@ -47,6 +47,7 @@
 
 mod along;
 mod chain;
+mod cover;
 mod drawing;
 mod edges;
 mod intersections;
@@ -58,12 +59,13 @@ use crate::geometry::predicates::orient3d;
 use crate::grid::SegmentGrid;
 use crate::mesh::Mesh;
 use crate::queries::Counters;
-use crate::queries::visp::{Visibility, VisibilityIndex};
+use crate::queries::visp::Visibility;
 use crate::scene::{ObjectId, Scene};
 use crate::views::{Eye, Picture, View};
 use crate::{Error, Result};
 use along::{Form, cut_point, hides_along};
 use chain::{Piece, chain};
+use cover::Occluders;
 use geo::{Line as GeoLine, coord};
 use rayon::prelude::*;
 use std::cmp::Ordering;
@@ -112,7 +114,8 @@ impl Default for Options {
     }
 }
 
-/// Meshes with more triangles than this use no INBOX (see [`VisibilityIndex`]).
+/// Meshes with more triangles than this use no INBOX: their picture cells answer directly,
+/// and the greedy INBOX of a large non-convex mesh costs more to build than it saves.
 const INBOX_LIMIT: usize = 4096;
 
 /// Below this many lines, crossings are found by testing every pair: no grid.
@@ -218,15 +221,18 @@ pub fn draw_with_progress(
         .par_iter()
         .map(|&(_, mesh)| {
             let (edges, counts) = edges::classify(mesh, eye, crease_cos);
-            let pictures: Vec<[f64; 2]> =
-                mesh.vertices().iter().map(|p| picture.point(p)).collect();
+            let pictures: Vec<[f64; 2]> = mesh
+                .vertices()
+                .par_iter()
+                .map(|p| picture.point(p))
+                .collect();
             (edges, counts, pictures)
         })
         .collect();
     let mut lines = Vec::new();
     let mut index_of: HashMap<(ObjectId, [u32; 2]), usize> = HashMap::new();
     let (mut flat, mut end_on, mut smooth_left_out) = (0, 0, 0);
-    let mut by_class: HashMap<EdgeClass, usize> = HashMap::new();
+    let mut by_class = [0usize; 5];
     let mut edge_lines = Vec::with_capacity(leaves.len());
     for (&(id, mesh), (edges, counts, pictures)) in leaves.iter().zip(&classified) {
         let away = turned_away(scene, id, mesh, eye);
@@ -234,7 +240,7 @@ pub fn draw_with_progress(
         flat += counts.flat;
         end_on += counts.end_on;
         for e in edges {
-            *by_class.entry(e.class).or_default() += 1;
+            by_class[e.class as usize] += 1;
             if e.class == EdgeClass::Smooth && options.edges == EdgeSelection::Feature {
                 smooth_left_out += 1;
                 continue;
@@ -259,7 +265,7 @@ pub fn draw_with_progress(
         }
         edge_lines.push((id, first..lines.len()));
     }
-    let count = |c: EdgeClass| by_class.get(&c).copied().unwrap_or(0);
+    let count = |c: EdgeClass| by_class[c as usize];
     stages.push(StageReport {
         name: "edges",
         done: format!(
@@ -281,19 +287,28 @@ pub fn draw_with_progress(
         seconds: clock.elapsed().as_secs_f64(),
     });
 
-    // The R-trees of the meshes, for intersections and VISP.
+    // The occluder index: each mesh's triangles by picture cells.
     let clock = Instant::now();
-    let index = VisibilityIndex::lazy(scene, scene.roots(), view.clone(), Some(INBOX_LIMIT));
+    let meshes: Vec<(ObjectId, &Mesh, &[[f64; 2]])> = leaves
+        .iter()
+        .zip(&classified)
+        .map(|(&(id, mesh), (_, _, pictures))| (id, mesh, pictures.as_slice()))
+        .collect();
+    let occluders = Occluders::new(scene, *eye, &meshes, INBOX_LIMIT);
     let large = leaves
         .iter()
         .filter(|(_, m)| m.triangles().len() > INBOX_LIMIT)
         .count();
     stages.push(StageReport {
-        name: "index",
-        done: format!("R-trees of {} meshes' triangles", leaves.len()),
+        name: "occluders",
+        done: format!(
+            "{} meshes' triangles listed by picture cells ({} entries)",
+            leaves.len(),
+            occluders.entries()
+        ),
         skipped: (large > 0).then(|| {
             format!(
-                "INBOX of {large} meshes of more than {INBOX_LIMIT} triangles (their R-trees answer directly)"
+                "INBOX of {large} meshes of more than {INBOX_LIMIT} triangles (their picture cells answer directly)"
             )
         }),
         seconds: clock.elapsed().as_secs_f64(),
@@ -318,10 +333,7 @@ pub fn draw_with_progress(
     let mut self_intersecting = Vec::new();
     for &(i, j) in &pairs {
         let ((id0, m0), (id1, m1)) = (leaves[i], leaves[j]);
-        let (Some(tree0), Some(tree1)) = (index.tree(id0), index.tree(id1)) else {
-            continue;
-        };
-        for s in intersections::between((m0, tree0), (m1, tree1), i == j, eye) {
+        for s in intersections::between(m0, m1, i == j, eye) {
             segments += 1;
             for end in &s.ends {
                 if let intersections::End::Crossing {
@@ -469,7 +481,7 @@ pub fn draw_with_progress(
                 .iter()
                 .map(|c| c.1)
                 .collect();
-            pieces(&index, &picture, &lines[l], &line_cuts, scene)
+            pieces(&occluders, scene, eye, &picture, &lines[l], &line_cuts)
         })
         .collect();
     let mut counters = Counters::default();
@@ -573,13 +585,13 @@ fn crossing(eye: &Eye, l: &Line, c: &Line) -> Option<Vec<Cut>> {
 /// The visible and hidden runs of line `l` cut at `cuts` (sorted by `t`), and the stages that
 /// decided its pieces.
 fn pieces(
-    index: &VisibilityIndex,
+    occluders: &Occluders,
+    scene: &Scene,
+    eye: &Eye,
     picture: &Picture,
     l: &Line,
     cuts: &[Cut],
-    scene: &Scene,
 ) -> (Vec<Piece>, Counters) {
-    let eye = index.view().eye();
     let mut counters = Counters::default();
     if l.back {
         let piece = Piece {
@@ -604,10 +616,18 @@ fn pieces(
         let t = lo + (hi - lo) / 2.0;
         let visible = if t > lo && t < hi {
             let approximate = l.a + (l.b - l.a) * t;
-            let (answer, stage) = index.visp_with(&approximate, |object, tri, corners| {
-                !on_faces(l, scene, object, tri) && hides_along(eye, corners, &l.a, &l.b, t)
-            });
-            counters.record(stage);
+            let hides = |object: ObjectId, tri: usize| {
+                !on_faces(l, scene, object, tri)
+                    && scene[object]
+                        .mesh()
+                        .is_some_and(|m| hides_along(eye, &m.triangle(tri), &l.a, &l.b, t))
+            };
+            let answer = occluders.visp(
+                &approximate,
+                picture.point(&approximate),
+                hides,
+                &mut counters,
+            );
             answer == Visibility::Visible
         } else {
             // A piece too short to hold a double strictly inside: it takes its neighbour's.

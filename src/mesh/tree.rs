@@ -129,27 +129,6 @@ impl TriangleTree {
             .map(|e| (e.index, e.corners))
     }
 
-    /// Every pair `(i, j)` of a triangle `i` of this tree and a triangle `j` of `other` whose
-    /// closed boxes meet (a simultaneous descent of both trees). With `other` the same tree,
-    /// each pair comes in both orders, and `(i, i)` too.
-    ///
-    /// ```
-    /// use kepler::mesh::TriangleTree;
-    /// let cube = TriangleTree::new(&kepler::solids::cube(2.0).unwrap());
-    /// let far = TriangleTree::new(&kepler::solids::cube(2.0).unwrap().transformed(
-    ///     &nalgebra::Matrix4::new_translation(&nalgebra::Vector3::new(5.0, 0.0, 0.0))).unwrap());
-    /// assert_eq!(cube.overlapping(&far).count(), 0);
-    /// assert!(cube.overlapping(&cube).any(|(i, j)| i != j));
-    /// ```
-    pub fn overlapping<'a>(
-        &'a self,
-        other: &'a TriangleTree,
-    ) -> impl Iterator<Item = (usize, usize)> + 'a {
-        self.tree
-            .intersection_candidates_with_other_tree(&other.tree)
-            .map(|(a, b)| (a.index, b.index))
-    }
-
     /// The distance from `p` to the nearest triangle (rounded, for heuristics only), or
     /// infinity for an empty tree.
     ///

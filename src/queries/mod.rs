@@ -18,7 +18,7 @@
 
 pub mod include;
 pub mod projection_grid;
-mod sight;
+pub(crate) mod sight;
 pub mod visp;
 
 use crate::geometry::Point3;

@@ -99,8 +99,10 @@ pub fn visp(scene: &Scene, id: ObjectId, view: &View, p: &Point3) -> (Visibility
     })
 }
 
-/// The paper's recursion, with the leaf test (does this mesh hide the point?) supplied.
-fn descend(
+/// The paper's recursion, with the leaf test (does this mesh hide the point?) supplied, and
+/// which objects' INBOX to use (computing one costs more than it saves for a large
+/// non-convex mesh whose faces answer through an index).
+pub(crate) fn descend(
     scene: &Scene,
     id: ObjectId,
     sight: &Sight,
@@ -140,7 +142,7 @@ fn descend(
 }
 
 /// HIDDEN at the first subobject that hides; else VISIBLE, by the dearest stage needed.
-fn any_hides(answers: impl Iterator<Item = (Visibility, Stage)>) -> (Visibility, Stage) {
+pub(crate) fn any_hides(answers: impl Iterator<Item = (Visibility, Stage)>) -> (Visibility, Stage) {
     let mut stage = Stage::Cbox;
     for (answer, s) in answers {
         if answer == Visibility::Hidden {
@@ -207,8 +209,6 @@ pub struct VisibilityIndex<'s> {
     view: View,
     objects: Vec<ObjectId>,
     trees: SecondaryMap<ObjectId, TriangleTree>,
-    /// The objects whose INBOX is not used (`None`: every object's is).
-    no_inbox: Option<SecondaryMap<ObjectId, ()>>,
 }
 
 impl<'s> VisibilityIndex<'s> {
@@ -222,20 +222,6 @@ impl<'s> VisibilityIndex<'s> {
     /// ```
     pub fn new(scene: &'s Scene, objects: &[ObjectId], view: View) -> VisibilityIndex<'s> {
         scene.compute_bounds_of(objects);
-        VisibilityIndex::lazy(scene, objects, view, None)
-    }
-
-    /// Like [`VisibilityIndex::new`], but leaves each object's INBOX and tribox to be computed
-    /// when a query first needs them (only the R-trees are built now): for passes where many
-    /// objects hide nothing. With `inbox_limit`, an object with a mesh of more triangles than
-    /// that (itself or below it) uses no INBOX at all: the greedy INBOX of a large non-convex
-    /// mesh costs more to build than its R-tree query saves.
-    pub(crate) fn lazy(
-        scene: &'s Scene,
-        objects: &[ObjectId],
-        view: View,
-        inbox_limit: Option<usize>,
-    ) -> VisibilityIndex<'s> {
         let leaves: Vec<(ObjectId, &Mesh)> = objects
             .iter()
             .flat_map(|&id| scene.subtree(id))
@@ -247,36 +233,12 @@ impl<'s> VisibilityIndex<'s> {
             .collect();
         let mut trees = SecondaryMap::new();
         trees.extend(built);
-        let no_inbox = inbox_limit.map(|limit| {
-            let mut large = SecondaryMap::new();
-            for &root in objects {
-                for id in scene.subtree(root) {
-                    let big = scene
-                        .subtree(id)
-                        .iter()
-                        .filter_map(|&o| scene[o].mesh())
-                        .any(|m| m.triangles().len() > limit);
-                    if big {
-                        large.insert(id, ());
-                    }
-                }
-            }
-            large
-        });
         VisibilityIndex {
             scene,
             view,
             objects: objects.to_vec(),
             trees,
-            no_inbox,
         }
-    }
-
-    /// Whether the INBOX of `id` is used (see [`VisibilityIndex::lazy`]).
-    fn inbox_wanted(&self, id: ObjectId) -> bool {
-        self.no_inbox
-            .as_ref()
-            .is_none_or(|large| !large.contains_key(id))
     }
 
     /// Prepares VISP from `view` for the whole scene (all its root objects).
@@ -313,38 +275,14 @@ impl<'s> VisibilityIndex<'s> {
     /// ```
     pub fn visp(&self, p: &Point3) -> (Visibility, Stage) {
         let eye = self.view.eye();
-        self.visp_with(p, |_, _, t| hides(eye, t, p))
-    }
-
-    /// VISP through the hierarchy for a point known exactly only to `hides`: `approximate`
-    /// (within a few units in the last place of the exact point, far inside the box filters'
-    /// margin) drives the CBOX and INBOX tests, and `hides(object, triangle, corners)` decides
-    /// each candidate triangle exactly.
-    pub(crate) fn visp_with(
-        &self,
-        approximate: &Point3,
-        hides: impl Fn(ObjectId, usize, &[Point3; 3]) -> bool,
-    ) -> (Visibility, Stage) {
-        let sight = Sight::to_eye(approximate, self.view.eye());
+        let sight = Sight::to_eye(p, eye);
         any_hides(self.objects.iter().map(|&id| {
-            descend(
-                self.scene,
-                id,
-                &sight,
-                &|o| self.inbox_wanted(o),
-                &|leaf, _| {
-                    self.trees[leaf]
-                        .select(|b| sight.may_meet(b))
-                        .any(|(t, corners)| hides(leaf, t, &corners))
-                },
-            )
+            descend(self.scene, id, &sight, &|_| true, &|leaf, _| {
+                self.trees[leaf]
+                    .select(|b| sight.may_meet(b))
+                    .any(|(_, t)| hides(eye, &t, p))
+            })
         }))
-    }
-
-    /// The R-tree of a mesh object's triangles (`None` for a group or an object outside the
-    /// index).
-    pub(crate) fn tree(&self, id: ObjectId) -> Option<&TriangleTree> {
-        self.trees.get(id)
     }
 
     /// VISP of every point, in parallel, in the order given, with the counts of the stages

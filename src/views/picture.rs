@@ -91,21 +91,36 @@ impl Picture {
         if k == 2 && !self.perspective {
             return vec![1.0];
         }
-        expansion(&self.terms(k, p))
+        let (terms, n) = self.terms(k, p);
+        expansion(&terms[..n])
     }
 
-    /// The exact terms of form `k` at `p` (products of the row with `p - origin`).
-    fn terms(&self, k: usize, p: &Point3) -> Vec<f64> {
+    /// The exact terms of form `k` at `p` (products of the row with `p - origin`): the first
+    /// `n` of the returned array.
+    #[inline]
+    fn terms(&self, k: usize, p: &Point3) -> ([f64; 12], usize) {
         let row = &self.rows[k];
-        let mut out = Vec::with_capacity(12);
+        let (mut out, mut n) = ([0.0; 12], 0);
         for i in 0..3 {
             let (d, e) = two_sum(p[i], -self.origin[i]);
             for x in [d, e] {
                 let (h, l) = two_product(row[i], x);
-                out.extend([h, l].into_iter().filter(|&v| v != 0.0));
+                for v in [h, l] {
+                    if v != 0.0 {
+                        out[n] = v;
+                        n += 1;
+                    }
+                }
             }
         }
-        out
+        (out, n)
+    }
+
+    /// Form `k` at `p`, rounded once.
+    #[inline]
+    fn rounded(&self, k: usize, p: &Point3) -> f64 {
+        let (terms, n) = self.terms(k, p);
+        accurate_sum(&terms[..n])
     }
 
     /// The picture coordinates of `p`: each coordinate of an orthographic view is the exact
@@ -120,10 +135,9 @@ impl Picture {
     /// assert!(x.abs() < 1e-15 && y.abs() < 1e-15);
     /// ```
     pub fn point(&self, p: &Point3) -> [f64; 2] {
-        let x = accurate_sum(&self.terms(0, p));
-        let y = accurate_sum(&self.terms(1, p));
+        let (x, y) = (self.rounded(0, p), self.rounded(1, p));
         if self.perspective {
-            let depth = accurate_sum(&self.terms(2, p));
+            let depth = self.rounded(2, p);
             [x / depth, y / depth]
         } else {
             [x, y]

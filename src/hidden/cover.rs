@@ -1,0 +1,197 @@
+//! Which triangles can hide a point: each mesh's triangles listed by the cells of the picture
+//! that their pictures cover (Franklin's uniform grid, on the picture plane).
+//!
+//! Every line of sight is a single point of the picture, so the only triangles that can hide a
+//! point are those whose pictures contain the point's picture: the ones listed in its cell.
+//! Each triangle is listed in every cell its picture's bounding box meets, grown by a margin of
+//! 2⁻⁴⁰ of the largest picture coordinate, far more than the rounding of any picture point; a
+//! cell is found by the grid's one monotone index function. So a triangle whose exact picture
+//! contains a point's exact picture is always listed in the cell of the point's rounded
+//! picture, and the exact test then decides.
+
+use crate::geometry::Point3;
+use crate::grid::Cells;
+use crate::mesh::Mesh;
+use crate::queries::sight::Sight;
+use crate::queries::visp::{Visibility, any_hides, descend};
+use crate::queries::{Counters, Stage};
+use crate::scene::{ObjectId, Scene};
+use crate::views::Eye;
+use rayon::prelude::*;
+use slotmap::SecondaryMap;
+
+/// The relative margin of the cells' lists: 2⁻⁴⁰.
+const MARGIN: f64 = 1.0 / (1u64 << 40) as f64;
+
+/// The triangles of one mesh listed by picture cells.
+#[derive(Debug)]
+pub(crate) struct PictureGrid {
+    cells: Cells,
+    /// Cell `c` lists `triangles[start[c]..start[c + 1]]`.
+    start: Vec<u32>,
+    triangles: Vec<u32>,
+}
+
+impl PictureGrid {
+    /// Lists the triangles of `mesh` whose vertices' pictures are `pictures`, in about one cell
+    /// per triangle.
+    pub(crate) fn new(mesh: &Mesh, pictures: &[[f64; 2]]) -> PictureGrid {
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for p in pictures {
+            for k in 0..2 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        let n = mesh.triangles().len().max(1);
+        let extent = [0, 1].map(|k| (hi[k] - lo[k]).max(0.0));
+        // Cells of about twice a triangle's picture (few entries per triangle: queries are far
+        // fewer than triangles), and no smaller than one per triangle.
+        let mean = mesh
+            .triangles()
+            .iter()
+            .map(|tri| {
+                let [a, b, c] = tri.map(|v| pictures[v as usize]);
+                (0..2)
+                    .map(|k| a[k].max(b[k]).max(c[k]) - a[k].min(b[k]).min(c[k]))
+                    .fold(0.0, f64::max)
+            })
+            .sum::<f64>()
+            / n as f64;
+        let side = (2.0 * mean).max((extent[0] * extent[1] / n as f64).sqrt());
+        let mut shape = [0, 1].map(|k| {
+            if side > 0.0 {
+                ((extent[k] / side).ceil() as usize).clamp(1, n)
+            } else {
+                1
+            }
+        });
+        while shape[0] * shape[1] > 4 * n {
+            shape = shape.map(|c| c.div_ceil(2));
+        }
+        let cells = Cells::new(lo, extent, shape);
+        let shape = cells.shape();
+        let margin = MARGIN * lo.iter().chain(&hi).fold(0.0f64, |m, v| m.max(v.abs()));
+        let mut items: Vec<u64> = mesh
+            .triangles()
+            .par_iter()
+            .enumerate()
+            .fold(Vec::new, |mut out, (t, tri)| {
+                let [a, b, c] = tri.map(|v| pictures[v as usize]);
+                let range = |k: usize| {
+                    let low = a[k].min(b[k]).min(c[k]) - margin;
+                    let high = a[k].max(b[k]).max(c[k]) + margin;
+                    cells.index(k, low)..=cells.index(k, high)
+                };
+                for row in range(1) {
+                    for col in range(0) {
+                        let cell = (row * shape[0] + col) as u64;
+                        out.push((cell << 32) | t as u64);
+                    }
+                }
+                out
+            })
+            .reduce(Vec::new, |mut x, mut y| {
+                x.append(&mut y);
+                x
+            });
+        items.par_sort_unstable();
+        let mut start = vec![0u32; cells.count() + 1];
+        for item in &items {
+            start[(item >> 32) as usize + 1] += 1;
+        }
+        for c in 1..start.len() {
+            start[c] += start[c - 1];
+        }
+        PictureGrid {
+            cells,
+            start,
+            triangles: items.into_iter().map(|i| i as u32).collect(),
+        }
+    }
+
+    /// The triangles listed in the cell of the picture point `p`.
+    pub(crate) fn at(&self, p: [f64; 2]) -> &[u32] {
+        let c = self.cells.cell_of(p[0], p[1]);
+        &self.triangles[self.start[c] as usize..self.start[c + 1] as usize]
+    }
+
+    /// The number of (cell, triangle) entries.
+    pub(crate) fn entries(&self) -> usize {
+        self.triangles.len()
+    }
+}
+
+/// VISP for the hidden-line pass: Franklin's hierarchy (CBOX rejects, INBOX accepts) over the
+/// whole scene, with each mesh's faces answered through its [`PictureGrid`].
+pub(crate) struct Occluders<'s> {
+    scene: &'s Scene,
+    eye: Eye,
+    grids: SecondaryMap<ObjectId, PictureGrid>,
+    /// Objects whose INBOX is not used: those with a mesh of more than the limit's triangles.
+    no_inbox: SecondaryMap<ObjectId, ()>,
+}
+
+impl<'s> Occluders<'s> {
+    /// The index over the given meshes (with their vertices' pictures); objects holding a mesh
+    /// of more than `inbox_limit` triangles use no INBOX.
+    pub(crate) fn new(
+        scene: &'s Scene,
+        eye: Eye,
+        meshes: &[(ObjectId, &Mesh, &[[f64; 2]])],
+        inbox_limit: usize,
+    ) -> Occluders<'s> {
+        let built: Vec<(ObjectId, PictureGrid)> = meshes
+            .par_iter()
+            .map(|&(id, mesh, pictures)| (id, PictureGrid::new(mesh, pictures)))
+            .collect();
+        let mut grids = SecondaryMap::new();
+        grids.extend(built);
+        let mut no_inbox = SecondaryMap::new();
+        for (id, _) in scene.walk() {
+            let large = scene
+                .subtree(id)
+                .iter()
+                .filter_map(|&o| scene[o].mesh())
+                .any(|m| m.triangles().len() > inbox_limit);
+            if large {
+                no_inbox.insert(id, ());
+            }
+        }
+        Occluders {
+            scene,
+            eye,
+            grids,
+            no_inbox,
+        }
+    }
+
+    /// The number of (cell, triangle) entries of all the grids.
+    pub(crate) fn entries(&self) -> usize {
+        self.grids.values().map(PictureGrid::entries).sum()
+    }
+
+    /// VISP of a point known exactly only to `hides`: `approximate` (within a few units in the
+    /// last place of the exact point) drives the box filters, `picture` (its rounded picture)
+    /// picks each mesh's cell, and `hides(object, triangle)` decides exactly.
+    pub(crate) fn visp(
+        &self,
+        approximate: &Point3,
+        picture: [f64; 2],
+        hides: impl Fn(ObjectId, usize) -> bool,
+        counters: &mut Counters,
+    ) -> Visibility {
+        let sight = Sight::to_eye(approximate, &self.eye);
+        let wanted = |id: ObjectId| !self.no_inbox.contains_key(id);
+        let (answer, stage): (Visibility, Stage) =
+            any_hides(self.scene.roots().iter().map(|&id| {
+                descend(self.scene, id, &sight, &wanted, &|leaf, _| {
+                    self.grids
+                        .get(leaf)
+                        .is_some_and(|g| g.at(picture).iter().any(|&t| hides(leaf, t as usize)))
+                })
+            }));
+        counters.record(stage);
+        answer
+    }
+}
