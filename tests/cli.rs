@@ -724,3 +724,198 @@ fn segx_usage_errors() {
     let err = stderr(&kepler(&["segx", "--n", "ten"]));
     assert!(err.contains("'ten'") && err.contains("--n"), "{err}");
 }
+
+/// A path for a test's output file in the temporary directory.
+fn temp_path(name: &str) -> String {
+    let dir = std::env::temp_dir().join(format!("kepler-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temporary directory");
+    dir.join(name).to_string_lossy().into_owned()
+}
+
+/// The polylines of an SVG written by `kepler render`: `(layer id, points)` in file order.
+fn svg_polylines(svg: &str) -> Vec<(String, Vec<[f64; 2]>)> {
+    let doc = roxmltree::Document::parse(svg).expect("the SVG parses");
+    let mut out = Vec::new();
+    for path in doc.descendants().filter(|n| n.has_tag_name("path")) {
+        let layer = path
+            .parent()
+            .and_then(|g| g.attribute("id"))
+            .expect("a layer id");
+        let numbers: Vec<f64> = path
+            .attribute("d")
+            .expect("path data")
+            .split_whitespace()
+            .filter(|t| *t != "M" && *t != "L")
+            .map(|t| t.parse().expect("a number"))
+            .collect();
+        let points = numbers.chunks(2).map(|c| [c[0], c[1]]).collect();
+        out.push((layer.to_string(), points));
+    }
+    out
+}
+
+/// The polylines of `kepler render --json`: `(layer id, points)`, the layer id made from the
+/// class and visibility as the SVG names it.
+fn json_polylines(json: &str) -> Vec<(String, Vec<[f64; 2]>)> {
+    let value: Value = serde_json::from_str(json).expect("the JSON parses");
+    value["polylines"]
+        .as_array()
+        .expect("a polylines array")
+        .iter()
+        .map(|p| {
+            let visible = p["visible"].as_bool().expect("visible");
+            let class = p["class"].as_str().expect("class");
+            let layer = format!("{}-{class}", if visible { "visible" } else { "hidden" });
+            // serde_json reads floats exactly with its `float_roundtrip` feature.
+            let points = p["points"]
+                .as_array()
+                .expect("points")
+                .iter()
+                .map(|xy| [0, 1].map(|k| xy[k].as_f64().expect("a number")))
+                .collect();
+            (layer, points)
+        })
+        .collect()
+}
+
+#[test]
+fn render_writes_an_svg_holding_the_json_polylines() {
+    let (svg, json) = (temp_path("cube.svg"), temp_path("cube.json"));
+    let args = [
+        "render",
+        "scenes/cube.toml",
+        "-o",
+        &svg,
+        "--json",
+        &json,
+        "--view-dir",
+        "-1,-2,-3",
+        "--up",
+        "0,0,1",
+    ];
+    assert_eq!(ok(&args), "");
+    let from_svg = svg_polylines(&std::fs::read_to_string(&svg).expect("the SVG"));
+    let mut from_json = json_polylines(&std::fs::read_to_string(&json).expect("the JSON"));
+    // The SVG lists hidden layers first, then visible ones; the same polylines, bit for bit.
+    from_json.sort_by_key(|(layer, _)| !layer.starts_with("hidden"));
+    let mut sorted_svg = from_svg.clone();
+    sorted_svg.sort_by_key(|(layer, _)| !layer.starts_with("hidden"));
+    assert_eq!(sorted_svg, from_json);
+    // The cube from a general direction: 9 visible edges (6 silhouette, 3 crease), 3 hidden.
+    let edges = |layer: &str| -> usize {
+        from_svg
+            .iter()
+            .filter(|(l, _)| l == layer)
+            .map(|(_, p)| p.len() - 1)
+            .sum()
+    };
+    assert_eq!(edges("visible-silhouette"), 6);
+    assert_eq!(edges("visible-crease"), 3);
+    assert_eq!(edges("hidden-crease"), 3);
+    assert_eq!(from_svg.len(), 1 + 3 + 3);
+}
+
+#[test]
+fn render_can_omit_hidden_lines_and_report_stats() {
+    let svg = temp_path("omit.svg");
+    let o = kepler(&[
+        "render",
+        "scenes/city.toml",
+        "-o",
+        &svg,
+        "--hidden",
+        "omit",
+        "--stats",
+        "--edges",
+        "all",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&svg).expect("the SVG");
+    assert!(!text.contains("hidden-"), "hidden layers were written");
+    assert!(text.contains(r#"id="visible-silhouette""#));
+    let stats = stderr(&o);
+    for stage in [
+        "edges",
+        "occluders",
+        "intersections",
+        "cuts",
+        "visibility",
+        "chains",
+    ] {
+        assert!(
+            stats.lines().any(|l| l.starts_with(stage)),
+            "no {stage} line: {stats}"
+        );
+    }
+    // Every class has a length line; the city's objects pierce each other.
+    let intersection = stats
+        .lines()
+        .find(|l| l.starts_with("intersection "))
+        .expect("an intersection length line");
+    let visible: f64 = intersection
+        .split_whitespace()
+        .nth(1)
+        .expect("length")
+        .parse()
+        .expect("number");
+    assert!(visible > 0.0, "{intersection}");
+}
+
+#[test]
+fn render_rejects_bad_scenes_views_and_options() {
+    let svg = temp_path("bad.svg");
+    assert!(
+        fails(&["render", "scenes/missing.toml", "-o", &svg]).starts_with("scenes/missing.toml")
+    );
+    let empty = temp_path("empty.toml");
+    std::fs::write(&empty, "# nothing here\n").expect("write the scene");
+    assert!(fails(&["render", &empty, "-o", &svg]).contains("no objects to draw"));
+    let zero = fails(&[
+        "render",
+        "scenes/cube.toml",
+        "-o",
+        &svg,
+        "--view-dir",
+        "0,0,0",
+    ]);
+    assert!(zero.contains("invalid view"), "{zero}");
+    let parallel = fails(&[
+        "render",
+        "scenes/cube.toml",
+        "-o",
+        &svg,
+        "--view-dir",
+        "0,0,-1",
+        "--up",
+        "0,0,3",
+    ]);
+    assert!(parallel.contains("invalid view"), "{parallel}");
+    let behind = fails(&[
+        "render",
+        "scenes/cube.toml",
+        "-o",
+        &svg,
+        "--eye",
+        "0,0,0.5",
+        "--target",
+        "0,0,-5",
+    ]);
+    assert!(behind.contains("in front of the eye"), "{behind}");
+    let nowhere = format!("{}/no/such/dir/out.svg", temp_path("x"));
+    assert!(fails(&["render", "scenes/cube.toml", "-o", &nowhere]).starts_with(&nowhere));
+    for bad in [
+        ["--page", "10"],
+        ["--page", "0x10"],
+        ["--stroke", "wobbly=1"],
+        ["--stroke", "crease=-1"],
+        ["--crease-angle", "400"],
+        ["--margin", "200"],
+    ] {
+        let o = kepler(&["render", "scenes/cube.toml", "-o", &svg, bad[0], bad[1]]);
+        let err = stderr(&o);
+        assert!(
+            !o.status.success() && !err.contains("panicked"),
+            "{bad:?}: {err}"
+        );
+    }
+}

@@ -1,6 +1,7 @@
 //! Chaining pieces into maximal polylines.
 
 use super::{EdgeClass, Polyline};
+use rayon::prelude::*;
 use std::collections::HashMap;
 
 /// A segment's two ends.
@@ -35,17 +36,20 @@ pub(crate) fn chain(pieces: &[Piece]) -> Vec<Polyline> {
             }
         }
     }
-    let mut out = Vec::new();
-    for (class, visible, segments) in groups {
-        for points in chain_group(&segments) {
-            out.push(Polyline {
-                class,
-                visible,
-                points,
-            });
-        }
-    }
-    out
+    let chained: Vec<Vec<Polyline>> = groups
+        .par_iter()
+        .map(|(class, visible, segments)| {
+            chain_group(segments)
+                .into_iter()
+                .map(|points| Polyline {
+                    class: *class,
+                    visible: *visible,
+                    points,
+                })
+                .collect()
+        })
+        .collect();
+    chained.into_iter().flatten().collect()
 }
 
 /// The bit pattern of a point, for hashing (`-0.0` and `0.0` made equal).

@@ -33,9 +33,9 @@ pub(crate) struct PictureGrid {
 }
 
 impl PictureGrid {
-    /// Lists the triangles of `mesh` whose vertices' pictures are `pictures`, in about one cell
-    /// per triangle.
-    pub(crate) fn new(mesh: &Mesh, pictures: &[[f64; 2]]) -> PictureGrid {
+    /// Lists the triangles of `mesh` whose vertices' pictures are `pictures`, in cells sized
+    /// for about `queries` queries (see [`cell_factor`]).
+    pub(crate) fn new(mesh: &Mesh, pictures: &[[f64; 2]], queries: usize) -> PictureGrid {
         let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
         for p in pictures {
             for k in 0..2 {
@@ -45,8 +45,8 @@ impl PictureGrid {
         }
         let n = mesh.triangles().len().max(1);
         let extent = [0, 1].map(|k| (hi[k] - lo[k]).max(0.0));
-        // Cells of about twice a triangle's picture (few entries per triangle: queries are far
-        // fewer than triangles), and no smaller than one per triangle.
+        // Cells about the size of a triangle's picture times the factor, no smaller than one
+        // per triangle would give.
         let mean = mesh
             .triangles()
             .iter()
@@ -58,7 +58,8 @@ impl PictureGrid {
             })
             .sum::<f64>()
             / n as f64;
-        let side = (2.0 * mean).max((extent[0] * extent[1] / n as f64).sqrt());
+        let side =
+            (cell_factor(n, queries) * mean).max((extent[0] * extent[1] / 4.0 / n as f64).sqrt());
         let mut shape = [0, 1].map(|k| {
             if side > 0.0 {
                 ((extent[k] / side).ceil() as usize).clamp(1, n)
@@ -122,6 +123,16 @@ impl PictureGrid {
     }
 }
 
+/// The cell side over the mean triangle picture size that balances building against querying:
+/// listing `n` triangles costs about `n·(1 + 1/x)²` entries, and `q` queries test about
+/// `q·k·(1 + x)²` triangles (`k ≈ 16`: a triangle test against an entry, times the depth of the
+/// scene), least at `x³ = n / (q·k)`; kept within `[1/4, 2]`.
+fn cell_factor(n: usize, queries: usize) -> f64 {
+    (n as f64 / (16.0 * queries.max(1) as f64))
+        .cbrt()
+        .clamp(0.25, 2.0)
+}
+
 /// VISP for the hidden-line pass: Franklin's hierarchy (CBOX rejects, INBOX accepts) over the
 /// whole scene, with each mesh's faces answered through its [`PictureGrid`].
 pub(crate) struct Occluders<'s> {
@@ -133,17 +144,18 @@ pub(crate) struct Occluders<'s> {
 }
 
 impl<'s> Occluders<'s> {
-    /// The index over the given meshes (with their vertices' pictures); objects holding a mesh
-    /// of more than `inbox_limit` triangles use no INBOX.
+    /// The index over the given meshes (with their vertices' pictures), for about `queries`
+    /// queries; objects holding a mesh of more than `inbox_limit` triangles use no INBOX.
     pub(crate) fn new(
         scene: &'s Scene,
         eye: Eye,
         meshes: &[(ObjectId, &Mesh, &[[f64; 2]])],
         inbox_limit: usize,
+        queries: usize,
     ) -> Occluders<'s> {
         let built: Vec<(ObjectId, PictureGrid)> = meshes
             .par_iter()
-            .map(|&(id, mesh, pictures)| (id, PictureGrid::new(mesh, pictures)))
+            .map(|&(id, mesh, pictures)| (id, PictureGrid::new(mesh, pictures, queries)))
             .collect();
         let mut grids = SecondaryMap::new();
         grids.extend(built);

@@ -99,6 +99,10 @@ pub(crate) fn between(m0: &Mesh, m1: &Mesh, same: bool, eye: &Eye) -> Vec<Segmen
 /// the cell holding the low corner of the two boxes' overlap, so once. For one mesh (`same`),
 /// pairs sharing a vertex or a face are left out.
 fn candidate_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32)> {
+    let (n0, n1) = (m0.triangles().len(), m1.triangles().len());
+    if n0 * n1 <= FEW_PAIRS {
+        return few_pairs(m0, m1, same);
+    }
     let boxes = |m: &Mesh| -> Vec<Aabb> {
         (0..m.triangles().len())
             .into_par_iter()
@@ -219,6 +223,32 @@ fn candidate_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32)> {
             out
         })
         .collect()
+}
+
+/// Up to this many triangle pairs, every pair is tested: no grid.
+const FEW_PAIRS: usize = 1 << 14;
+
+/// [`candidate_pairs`] by testing every pair's boxes.
+fn few_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32)> {
+    let boxes = |m: &Mesh| -> Vec<Aabb> {
+        (0..m.triangles().len()).map(|t| Aabb::from_points(&m.triangle(t))).collect()
+    };
+    let (b0, b1) = (boxes(m0), boxes(m1));
+    let mut out = Vec::new();
+    for (i, bi) in b0.iter().enumerate() {
+        let start = if same { i + 1 } else { 0 };
+        for (j, bj) in b1.iter().enumerate().skip(start) {
+            if !bi.intersects(bj)
+                || (same
+                    && (m0.face_of(i) == m0.face_of(j)
+                        || shares_vertex(&m0.triangles()[i], &m0.triangles()[j])))
+            {
+                continue;
+            }
+            out.push((i as u32, j as u32));
+        }
+    }
+    out
 }
 
 /// Whether two triangles share a vertex index.

@@ -287,33 +287,6 @@ pub fn draw_with_progress(
         seconds: clock.elapsed().as_secs_f64(),
     });
 
-    // The occluder index: each mesh's triangles by picture cells.
-    let clock = Instant::now();
-    let meshes: Vec<(ObjectId, &Mesh, &[[f64; 2]])> = leaves
-        .iter()
-        .zip(&classified)
-        .map(|(&(id, mesh), (_, _, pictures))| (id, mesh, pictures.as_slice()))
-        .collect();
-    let occluders = Occluders::new(scene, *eye, &meshes, INBOX_LIMIT);
-    let large = leaves
-        .iter()
-        .filter(|(_, m)| m.triangles().len() > INBOX_LIMIT)
-        .count();
-    stages.push(StageReport {
-        name: "occluders",
-        done: format!(
-            "{} meshes' triangles listed by picture cells ({} entries)",
-            leaves.len(),
-            occluders.entries()
-        ),
-        skipped: (large > 0).then(|| {
-            format!(
-                "INBOX of {large} meshes of more than {INBOX_LIMIT} triangles (their picture cells answer directly)"
-            )
-        }),
-        seconds: clock.elapsed().as_secs_f64(),
-    });
-
     // 2. Intersection lines (and the cuts where edges pierce faces).
     let clock = Instant::now();
     let ids: Vec<ObjectId> = leaves.iter().map(|&(id, _)| id).collect();
@@ -331,9 +304,13 @@ pub fn draw_with_progress(
     let mut cuts: Vec<(usize, Cut)> = Vec::new();
     let mut segments = 0usize;
     let mut self_intersecting = Vec::new();
-    for &(i, j) in &pairs {
-        let ((id0, m0), (id1, m1)) = (leaves[i], leaves[j]);
-        for s in intersections::between(m0, m1, i == j, eye) {
+    let found: Vec<Vec<intersections::Segment>> = pairs
+        .par_iter()
+        .map(|&(i, j)| intersections::between(leaves[i].1, leaves[j].1, i == j, eye))
+        .collect();
+    for (&(i, j), found) in pairs.iter().zip(found) {
+        let ((id0, _), (id1, _)) = (leaves[i], leaves[j]);
+        for s in found {
             segments += 1;
             for end in &s.ends {
                 if let intersections::End::Crossing {
@@ -423,28 +400,30 @@ pub fn draw_with_progress(
             ),
         )
     } else {
-        let segments: Vec<GeoLine<f64>> = lines
+        // Lines hidden by their own solid are neither cut nor contours: not in the grid.
+        let gridded: Vec<usize> = (0..lines.len()).filter(|&i| !lines[i].back).collect();
+        let segments: Vec<GeoLine<f64>> = gridded
             .iter()
-            .map(|l| {
-                GeoLine::new(
-                    coord! { x: l.ends[0][0], y: l.ends[0][1] },
-                    coord! { x: l.ends[1][0], y: l.ends[1][1] },
-                )
+            .map(|&i| {
+                let [a, b] = lines[i].ends;
+                GeoLine::new(coord! { x: a[0], y: a[1] }, coord! { x: b[0], y: b[1] })
             })
             .collect();
         let grid = SegmentGrid::new(&segments);
-        let candidates = grid.candidates(cuts_needed);
+        let candidates = grid.candidates(|i, j| cuts_needed(gridded[i], gridded[j]));
         let all: Vec<(usize, Cut)> = candidates
             .par_iter()
-            .flat_map_iter(|&(i, j)| crossing_cuts(i, j))
+            .flat_map_iter(|&(i, j)| crossing_cuts(gridded[i], gridded[j]))
             .collect();
         let [nx, ny] = grid.shape();
         (
             all,
             format!(
-                "uniform grid {nx}×{ny} over {} lines ({:.2} cells per line), {} candidate pairs",
-                lines.len(),
+                "uniform grid {nx}×{ny} over {} lines ({:.2} cells per line; {} lines hidden by \
+                 their own solid left out), {} candidate pairs",
+                gridded.len(),
                 grid.cells_per_segment(),
+                lines.len() - gridded.len(),
                 candidates.len()
             ),
         )
@@ -455,6 +434,34 @@ pub fn draw_with_progress(
         name: "cuts",
         done: format!("{crossings} cuts where a picture crosses a contour's; {method}"),
         skipped: None,
+        seconds: clock.elapsed().as_secs_f64(),
+    });
+
+    // The occluder index: each mesh's triangles by picture cells.
+    let clock = Instant::now();
+    let meshes: Vec<(ObjectId, &Mesh, &[[f64; 2]])> = leaves
+        .iter()
+        .zip(&classified)
+        .map(|(&(id, mesh), (_, _, pictures))| (id, mesh, pictures.as_slice()))
+        .collect();
+    let queries = lines.iter().filter(|l| !l.back).count() + cuts.len();
+    let occluders = Occluders::new(scene, *eye, &meshes, INBOX_LIMIT, queries);
+    let large = leaves
+        .iter()
+        .filter(|(_, m)| m.triangles().len() > INBOX_LIMIT)
+        .count();
+    stages.push(StageReport {
+        name: "occluders",
+        done: format!(
+            "{} meshes' triangles listed by picture cells ({} entries)",
+            leaves.len(),
+            occluders.entries()
+        ),
+        skipped: (large > 0).then(|| {
+            format!(
+                "INBOX of {large} meshes of more than {INBOX_LIMIT} triangles (their picture cells answer directly)"
+            )
+        }),
         seconds: clock.elapsed().as_secs_f64(),
     });
 
