@@ -485,7 +485,7 @@ fn stats_report(drawing: &Drawing, loaded: Duration, written: Duration) -> Strin
     }
     let _ = writeln!(
         text,
-        "write          {:>7.4}  SVG and JSON",
+        "write          {:>7.4}  output files",
         written.as_secs_f64()
     );
     let _ = writeln!(

@@ -68,6 +68,8 @@ use chain::{Piece, chain};
 use cover::Occluders;
 use geo::{Line as GeoLine, coord};
 use rayon::prelude::*;
+use rstar::RTree;
+use rstar::primitives::{GeomWithData, Rectangle};
 use std::cmp::Ordering;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicU64, Ordering as Atomic};
@@ -290,17 +292,8 @@ pub fn draw_with_progress(
     // 2. Intersection lines (and the cuts where edges pierce faces).
     let clock = Instant::now();
     let ids: Vec<ObjectId> = leaves.iter().map(|&(id, _)| id).collect();
-    let mut pairs = Vec::new();
-    let mut apart = 0usize;
-    for i in 0..leaves.len() {
-        for j in i..leaves.len() {
-            if scene.cbox(ids[i]).intersects(&scene.cbox(ids[j])) {
-                pairs.push((i, j));
-            } else {
-                apart += 1;
-            }
-        }
-    }
+    let pairs = overlapping_cboxes(scene, &ids);
+    let apart = leaves.len() * (leaves.len() + 1) / 2 - pairs.len();
     let mut cuts: Vec<(usize, Cut)> = Vec::new();
     let mut segments = 0usize;
     let mut self_intersecting = Vec::new();
@@ -706,4 +699,25 @@ fn turned_away(scene: &Scene, id: ObjectId, mesh: &Mesh, eye: &Eye) -> Option<Or
     } else {
         None
     }
+}
+
+/// Every pair `(i, j)`, `i <= j`, of the objects `ids` whose CBOXes meet (closed boxes), in
+/// increasing order: a simultaneous descent of an R-tree of the CBOXes with itself.
+fn overlapping_cboxes(scene: &Scene, ids: &[ObjectId]) -> Vec<(usize, usize)> {
+    let boxes: Vec<GeomWithData<Rectangle<[f64; 3]>, usize>> = ids
+        .iter()
+        .enumerate()
+        .map(|(i, &id)| {
+            let b = scene.cbox(id);
+            GeomWithData::new(Rectangle::from_corners(b.min, b.max), i)
+        })
+        .collect();
+    let tree = RTree::bulk_load(boxes);
+    let mut pairs: Vec<(usize, usize)> = tree
+        .intersection_candidates_with_other_tree(&tree)
+        .filter(|(a, b)| a.data <= b.data)
+        .map(|(a, b)| (a.data, b.data))
+        .collect();
+    pairs.sort_unstable();
+    pairs
 }
