@@ -231,7 +231,9 @@ const FEW_PAIRS: usize = 1 << 14;
 /// [`candidate_pairs`] by testing every pair's boxes.
 fn few_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32)> {
     let boxes = |m: &Mesh| -> Vec<Aabb> {
-        (0..m.triangles().len()).map(|t| Aabb::from_points(&m.triangle(t))).collect()
+        (0..m.triangles().len())
+            .map(|t| Aabb::from_points(&m.triangle(t)))
+            .collect()
     };
     let (b0, b1) = (boxes(m0), boxes(m1));
     let mut out = Vec::new();

@@ -194,332 +194,384 @@ pub fn draw_with_progress(
     options: &Options,
     progress: &(dyn Fn(u64, u64) + Sync),
 ) -> Result<Drawing> {
-    let eye = view.eye();
-    let picture = Picture::of(view);
-    let mut stages = Vec::new();
-    let leaves: Vec<(ObjectId, &Mesh)> = scene
-        .walk()
-        .into_iter()
-        .filter_map(|(id, _)| scene[id].mesh().map(|m| (id, m)))
-        .collect();
-    for &(id, mesh) in &leaves {
-        if let Some(i) = mesh.vertices().iter().position(|p| !picture.in_front(p)) {
-            return Err(Error::Object {
-                object: scene.path(id),
-                message: format!(
-                    "vertex {} ({:?}) is not in front of the eye; a perspective drawing needs \
-                     the whole scene in front of it",
-                    i,
-                    mesh.vertices()[i]
-                ),
+    let mut pass = Pass::new(scene, view)?;
+    let index_of = pass.edges(options);
+    pass.intersections(&index_of);
+    pass.contour_cuts();
+    let mut pieces = pass.visibility(progress);
+    let clock = Instant::now();
+    if !options.hidden {
+        pieces.retain(|p| p.visible);
+    }
+    let polylines = chain(&pieces);
+    pass.stage(
+        "chains",
+        clock,
+        format!("{} polylines from {} runs", polylines.len(), pieces.len()),
+        (!options.hidden).then(|| "hidden pieces (not asked for)".to_string()),
+    );
+    Ok(Drawing {
+        polylines,
+        stages: pass.stages,
+    })
+}
+
+/// A mesh of the scene in the pass: its object, its vertices' pictures, and the range of its
+/// edges in [`Pass::lines`].
+struct Leaf<'a> {
+    id: ObjectId,
+    mesh: &'a Mesh,
+    pictures: Vec<[f64; 2]>,
+    lines: std::ops::Range<usize>,
+}
+
+/// The state of one hidden-line pass, stage by stage.
+struct Pass<'a> {
+    scene: &'a Scene,
+    eye: Eye,
+    picture: Picture,
+    leaves: Vec<Leaf<'a>>,
+    /// The lines to draw: edges, then intersection segments.
+    lines: Vec<Line>,
+    /// Cuts, by line index.
+    cuts: Vec<(usize, Cut)>,
+    stages: Vec<StageReport>,
+}
+
+impl<'a> Pass<'a> {
+    /// The pass over every mesh of the scene; for a perspective view, an error naming the
+    /// first object with a vertex not strictly in front of the eye.
+    fn new(scene: &'a Scene, view: &View) -> Result<Pass<'a>> {
+        let picture = Picture::of(view);
+        let mut leaves = Vec::new();
+        for (id, _) in scene.walk() {
+            let Some(mesh) = scene[id].mesh() else {
+                continue;
+            };
+            if let Some(i) = mesh.vertices().iter().position(|p| !picture.in_front(p)) {
+                return Err(Error::Object {
+                    object: scene.path(id),
+                    message: format!(
+                        "vertex {} ({:?}) is not in front of the eye; a perspective drawing \
+                         needs the whole scene in front of it",
+                        i,
+                        mesh.vertices()[i]
+                    ),
+                });
+            }
+            leaves.push(Leaf {
+                id,
+                mesh,
+                pictures: Vec::new(),
+                lines: 0..0,
             });
         }
+        Ok(Pass {
+            scene,
+            eye: *view.eye(),
+            picture,
+            leaves,
+            lines: Vec::new(),
+            cuts: Vec::new(),
+            stages: Vec::new(),
+        })
     }
 
-    // 1. Edges.
-    let clock = Instant::now();
-    let crease_cos = -options.crease_angle.to_radians().cos();
-    let classified: Vec<_> = leaves
-        .par_iter()
-        .map(|&(_, mesh)| {
-            let (edges, counts) = edges::classify(mesh, eye, crease_cos);
-            let pictures: Vec<[f64; 2]> = mesh
-                .vertices()
-                .par_iter()
-                .map(|p| picture.point(p))
-                .collect();
-            (edges, counts, pictures)
-        })
-        .collect();
-    let mut lines = Vec::new();
-    let mut index_of: HashMap<(ObjectId, [u32; 2]), usize> = HashMap::new();
-    let (mut flat, mut end_on, mut smooth_left_out) = (0, 0, 0);
-    let mut by_class = [0usize; 5];
-    let mut edge_lines = Vec::with_capacity(leaves.len());
-    for (&(id, mesh), (edges, counts, pictures)) in leaves.iter().zip(&classified) {
-        let away = turned_away(scene, id, mesh, eye);
-        let first = lines.len();
-        flat += counts.flat;
-        end_on += counts.end_on;
-        for e in edges {
-            by_class[e.class as usize] += 1;
-            if e.class == EdgeClass::Smooth && options.edges == EdgeSelection::Feature {
-                smooth_left_out += 1;
-                continue;
-            }
-            index_of.insert((id, [e.a.min(e.b), e.a.max(e.b)]), lines.len());
-            let (a, b) = (e.a as usize, e.b as usize);
-            let back = e.class != EdgeClass::Boundary
-                && away.is_some_and(|away| {
-                    e.triangles.iter().all(|&t| {
-                        let [p, q, r] = mesh.triangle(t as usize);
-                        eye.orient3d(&p, &q, &r) == away
-                    })
-                });
-            lines.push(Line {
-                a: mesh.vertices()[a],
-                b: mesh.vertices()[b],
-                ends: [pictures[a], pictures[b]],
-                class: e.class,
-                on_faces: None,
-                back,
-            });
-        }
-        edge_lines.push((id, first..lines.len()));
+    /// Records a stage for `--stats`.
+    fn stage(&mut self, name: &'static str, clock: Instant, done: String, skipped: Option<String>) {
+        self.stages.push(StageReport {
+            name,
+            done,
+            skipped,
+            seconds: clock.elapsed().as_secs_f64(),
+        });
     }
-    let count = |c: EdgeClass| by_class[c as usize];
-    stages.push(StageReport {
-        name: "edges",
-        done: format!(
+
+    /// Stage 1: every mesh's edges, classified, and its vertices' pictures; the lines to draw.
+    /// Returns each edge line's index by object and vertex pair.
+    fn edges(&mut self, options: &Options) -> HashMap<(ObjectId, [u32; 2]), usize> {
+        let clock = Instant::now();
+        let (eye, picture) = (&self.eye, &self.picture);
+        let crease_cos = -options.crease_angle.to_radians().cos();
+        let classified: Vec<_> = self
+            .leaves
+            .par_iter()
+            .map(|leaf| {
+                let pictures: Vec<[f64; 2]> = leaf
+                    .mesh
+                    .vertices()
+                    .par_iter()
+                    .map(|p| picture.point(p))
+                    .collect();
+                (edges::classify(leaf.mesh, eye, crease_cos), pictures)
+            })
+            .collect();
+        let mut index_of = HashMap::new();
+        let (mut flat, mut end_on, mut smooth_left_out) = (0, 0, 0);
+        let mut by_class = [0usize; 5];
+        for (leaf, ((edges, counts), pictures)) in self.leaves.iter_mut().zip(classified) {
+            let mesh = leaf.mesh;
+            let away = turned_away(self.scene, leaf.id, mesh, eye);
+            let first = self.lines.len();
+            flat += counts.flat;
+            end_on += counts.end_on;
+            for e in edges {
+                by_class[e.class as usize] += 1;
+                if e.class == EdgeClass::Smooth && options.edges == EdgeSelection::Feature {
+                    smooth_left_out += 1;
+                    continue;
+                }
+                index_of.insert((leaf.id, [e.a.min(e.b), e.a.max(e.b)]), self.lines.len());
+                let (a, b) = (e.a as usize, e.b as usize);
+                let back = e.class != EdgeClass::Boundary
+                    && away.is_some_and(|away| {
+                        e.triangles.iter().all(|&t| {
+                            let [p, q, r] = mesh.triangle(t as usize);
+                            eye.orient3d(&p, &q, &r) == away
+                        })
+                    });
+                self.lines.push(Line {
+                    a: mesh.vertices()[a],
+                    b: mesh.vertices()[b],
+                    ends: [pictures[a], pictures[b]],
+                    class: e.class,
+                    on_faces: None,
+                    back,
+                });
+            }
+            leaf.pictures = pictures;
+            leaf.lines = first..self.lines.len();
+        }
+        let count = |c: EdgeClass| by_class[c as usize];
+        let done = format!(
             "{} objects: {} silhouette, {} boundary, {} crease, {} smooth edges",
-            leaves.len(),
+            self.leaves.len(),
             count(EdgeClass::Silhouette),
             count(EdgeClass::Boundary),
             count(EdgeClass::Crease),
             count(EdgeClass::Smooth)
-        ),
-        skipped: Some(format!(
-            "{flat} edges between coplanar faces (no edge), {end_on} seen end-on (a point){}",
-            if smooth_left_out > 0 {
-                format!(", {smooth_left_out} smooth edges not asked for (--edges all draws them)")
-            } else {
-                String::new()
-            }
-        )),
-        seconds: clock.elapsed().as_secs_f64(),
-    });
+        );
+        let smooth = if smooth_left_out > 0 {
+            format!(", {smooth_left_out} smooth edges not asked for (--edges all draws them)")
+        } else {
+            String::new()
+        };
+        let skipped = format!(
+            "{flat} edges between coplanar faces (no edge), {end_on} seen end-on (a point){smooth}"
+        );
+        self.stage("edges", clock, done, Some(skipped));
+        index_of
+    }
 
-    // 2. Intersection lines (and the cuts where edges pierce faces).
-    let clock = Instant::now();
-    let ids: Vec<ObjectId> = leaves.iter().map(|&(id, _)| id).collect();
-    let pairs = overlapping_cboxes(scene, &ids);
-    let apart = leaves.len() * (leaves.len() + 1) / 2 - pairs.len();
-    let mut cuts: Vec<(usize, Cut)> = Vec::new();
-    let mut segments = 0usize;
-    let mut self_intersecting = Vec::new();
-    let found: Vec<Vec<intersections::Segment>> = pairs
-        .par_iter()
-        .map(|&(i, j)| intersections::between(leaves[i].1, leaves[j].1, i == j, eye))
-        .collect();
-    for (&(i, j), found) in pairs.iter().zip(found) {
-        let ((id0, _), (id1, _)) = (leaves[i], leaves[j]);
-        for s in found {
-            segments += 1;
-            for end in &s.ends {
-                if let intersections::End::Crossing {
-                    mesh,
-                    edge,
-                    points: [a, b],
-                    plane,
-                } = end
-                {
-                    let owner = if *mesh == 0 { id0 } else { id1 };
-                    let key = (owner, [edge[0].min(edge[1]), edge[0].max(edge[1])]);
-                    if let Some(&l) = index_of.get(&key) {
-                        let form = Form::Plane(*plane);
-                        // Parameter along the line as stored (its a may be the edge's b).
-                        let (la, lb) = (lines[l].a, lines[l].b);
-                        let (p, q) = if la == *a { (a, b) } else { (b, a) };
-                        debug_assert!(*p == la && *q == lb);
-                        if let Some(t) = form.zero_along(eye, p, q) {
-                            cuts.push((
-                                l,
-                                Cut {
-                                    t,
-                                    at: CutAt::Form(form),
-                                },
-                            ));
+    /// Stage 2: intersection lines between objects whose CBOXes overlap and within each
+    /// object, and the cuts where edges pierce faces.
+    fn intersections(&mut self, index_of: &HashMap<(ObjectId, [u32; 2]), usize>) {
+        let clock = Instant::now();
+        let eye = self.eye;
+        let ids: Vec<ObjectId> = self.leaves.iter().map(|l| l.id).collect();
+        let pairs = overlapping_cboxes(self.scene, &ids);
+        let apart = ids.len() * (ids.len() + 1) / 2 - pairs.len();
+        let leaves = &self.leaves;
+        let found: Vec<Vec<intersections::Segment>> = pairs
+            .par_iter()
+            .map(|&(i, j)| intersections::between(leaves[i].mesh, leaves[j].mesh, i == j, &eye))
+            .collect();
+        let mut segments = 0usize;
+        let mut self_intersecting = Vec::new();
+        for (&(i, j), found) in pairs.iter().zip(found) {
+            let (id0, id1) = (ids[i], ids[j]);
+            for s in found {
+                segments += 1;
+                for end in &s.ends {
+                    if let intersections::End::Crossing {
+                        mesh,
+                        edge,
+                        points: [a, b],
+                        plane,
+                    } = end
+                    {
+                        let owner = if *mesh == 0 { id0 } else { id1 };
+                        let key = (owner, [edge[0].min(edge[1]), edge[0].max(edge[1])]);
+                        if let Some(&l) = index_of.get(&key) {
+                            // The parameter along the line as stored (its a may be the edge's b).
+                            let (p, q) = if self.lines[l].a == *a {
+                                (a, b)
+                            } else {
+                                (b, a)
+                            };
+                            let form = Form::Plane(*plane);
+                            if let Some(t) = form.zero_along(&eye, p, q) {
+                                let at = CutAt::Form(form);
+                                self.cuts.push((l, Cut { t, at }));
+                            }
                         }
                     }
                 }
-            }
-            lines.push(Line {
-                a: s.points[0],
-                b: s.points[1],
-                ends: s.ends.map(|e| e.picture(&picture, eye)),
-                class: EdgeClass::Intersection,
-                on_faces: Some([(id0, s.faces[0]), (id1, s.faces[1])]),
-                back: false,
-            });
-            if i == j {
-                self_intersecting.push(id0);
+                self.lines.push(Line {
+                    a: s.points[0],
+                    b: s.points[1],
+                    ends: s.ends.map(|e| e.picture(&self.picture, &eye)),
+                    class: EdgeClass::Intersection,
+                    on_faces: Some([(id0, s.faces[0]), (id1, s.faces[1])]),
+                    back: false,
+                });
+                if i == j {
+                    self_intersecting.push(i);
+                }
             }
         }
-    }
-    // A mesh that pierces itself is not a proper solid: its back faces decide nothing.
-    for (id, range) in &edge_lines {
-        if self_intersecting.contains(id) {
-            lines[range.clone()].iter_mut().for_each(|l| l.back = false);
+        // A mesh that pierces itself is not a proper solid: its back faces decide nothing.
+        for i in self_intersecting {
+            let range = self.leaves[i].lines.clone();
+            self.lines[range].iter_mut().for_each(|l| l.back = false);
         }
-    }
-    stages.push(StageReport {
-        name: "intersections",
-        done: format!(
-            "{segments} segments from {} object pairs with overlapping CBOXes (each object with itself included)",
+        let done = format!(
+            "{segments} segments from {} object pairs with overlapping CBOXes (each object with \
+             itself included)",
             pairs.len()
-        ),
-        skipped: (apart > 0).then(|| format!("{apart} object pairs whose CBOXes do not overlap")),
-        seconds: clock.elapsed().as_secs_f64(),
-    });
+        );
+        let skipped =
+            (apart > 0).then(|| format!("{apart} object pairs whose CBOXes do not overlap"));
+        self.stage("intersections", clock, done, skipped);
+    }
 
-    // 3. Cuts where pictures cross a contour's.
-    let clock = Instant::now();
-    let cuts_needed = |i: usize, j: usize| {
-        (lines[j].is_contour() && !lines[i].back) || (lines[i].is_contour() && !lines[j].back)
-    };
-    let crossing_cuts = |i: usize, j: usize| -> Vec<(usize, Cut)> {
-        let mut out = Vec::new();
-        for (x, y) in [(i, j), (j, i)] {
-            if lines[y].is_contour()
-                && !lines[x].back
-                && let Some(c) = crossing(eye, &lines[x], &lines[y])
-            {
-                out.extend(c.into_iter().map(|c| (x, c)));
+    /// Stage 3: the cuts where a line's picture crosses the picture of a contour in front of
+    /// it, from the uniform grid over the lines' pictures (or every pair, for few lines).
+    fn contour_cuts(&mut self) {
+        let clock = Instant::now();
+        let (lines, eye) = (&self.lines, &self.eye);
+        let cuts_needed = |i: usize, j: usize| {
+            (lines[j].is_contour() && !lines[i].back) || (lines[i].is_contour() && !lines[j].back)
+        };
+        let crossing_cuts = |i: usize, j: usize| -> Vec<(usize, Cut)> {
+            let mut out = Vec::new();
+            for (x, y) in [(i, j), (j, i)] {
+                if lines[y].is_contour()
+                    && !lines[x].back
+                    && let Some(c) = crossing(eye, &lines[x], &lines[y])
+                {
+                    out.extend(c.into_iter().map(|c| (x, c)));
+                }
             }
-        }
-        out
-    };
-    let (found, method) = if lines.len() < FEW_LINES {
-        let all: Vec<(usize, Cut)> = (0..lines.len())
-            .flat_map(|i| (i + 1..lines.len()).map(move |j| (i, j)))
-            .filter(|&(i, j)| cuts_needed(i, j))
-            .flat_map(|(i, j)| crossing_cuts(i, j))
-            .collect();
-        (
-            all,
-            format!(
+            out
+        };
+        let (found, method) = if lines.len() < FEW_LINES {
+            let all: Vec<(usize, Cut)> = (0..lines.len())
+                .flat_map(|i| (i + 1..lines.len()).map(move |j| (i, j)))
+                .filter(|&(i, j)| cuts_needed(i, j))
+                .flat_map(|(i, j)| crossing_cuts(i, j))
+                .collect();
+            let method = format!(
                 "every pair of {} lines tested (fewer than {FEW_LINES}: no grid)",
                 lines.len()
-            ),
-        )
-    } else {
-        // Lines hidden by their own solid are neither cut nor contours: not in the grid.
-        let gridded: Vec<usize> = (0..lines.len()).filter(|&i| !lines[i].back).collect();
-        let segments: Vec<GeoLine<f64>> = gridded
-            .iter()
-            .map(|&i| {
-                let [a, b] = lines[i].ends;
-                GeoLine::new(coord! { x: a[0], y: a[1] }, coord! { x: b[0], y: b[1] })
-            })
-            .collect();
-        let grid = SegmentGrid::new(&segments);
-        let candidates = grid.candidates(|i, j| cuts_needed(gridded[i], gridded[j]));
-        let all: Vec<(usize, Cut)> = candidates
-            .par_iter()
-            .flat_map_iter(|&(i, j)| crossing_cuts(gridded[i], gridded[j]))
-            .collect();
-        let [nx, ny] = grid.shape();
-        (
-            all,
-            format!(
+            );
+            (all, method)
+        } else {
+            // Lines hidden by their own solid are neither cut nor contours: not in the grid.
+            let gridded: Vec<usize> = (0..lines.len()).filter(|&i| !lines[i].back).collect();
+            let segments: Vec<GeoLine<f64>> = gridded
+                .iter()
+                .map(|&i| {
+                    let [a, b] = lines[i].ends;
+                    GeoLine::new(coord! { x: a[0], y: a[1] }, coord! { x: b[0], y: b[1] })
+                })
+                .collect();
+            let grid = SegmentGrid::new(&segments);
+            let candidates = grid.candidates(|i, j| cuts_needed(gridded[i], gridded[j]));
+            let all: Vec<(usize, Cut)> = candidates
+                .par_iter()
+                .flat_map_iter(|&(i, j)| crossing_cuts(gridded[i], gridded[j]))
+                .collect();
+            let [nx, ny] = grid.shape();
+            let method = format!(
                 "uniform grid {nx}×{ny} over {} lines ({:.2} cells per line; {} lines hidden by \
                  their own solid left out), {} candidate pairs",
                 gridded.len(),
                 grid.cells_per_segment(),
                 lines.len() - gridded.len(),
                 candidates.len()
-            ),
-        )
-    };
-    let crossings = found.len();
-    cuts.extend(found);
-    stages.push(StageReport {
-        name: "cuts",
-        done: format!("{crossings} cuts where a picture crosses a contour's; {method}"),
-        skipped: None,
-        seconds: clock.elapsed().as_secs_f64(),
-    });
+            );
+            (all, method)
+        };
+        let done = format!(
+            "{} cuts where a picture crosses a contour's; {method}",
+            found.len()
+        );
+        self.cuts.extend(found);
+        self.stage("cuts", clock, done, None);
+    }
 
-    // The occluder index: each mesh's triangles by picture cells.
-    let clock = Instant::now();
-    let meshes: Vec<(ObjectId, &Mesh, &[[f64; 2]])> = leaves
-        .iter()
-        .zip(&classified)
-        .map(|(&(id, mesh), (_, _, pictures))| (id, mesh, pictures.as_slice()))
-        .collect();
-    let queries = lines.iter().filter(|l| !l.back).count() + cuts.len();
-    let occluders = Occluders::new(scene, *eye, &meshes, INBOX_LIMIT, queries);
-    let large = leaves
-        .iter()
-        .filter(|(_, m)| m.triangles().len() > INBOX_LIMIT)
-        .count();
-    stages.push(StageReport {
-        name: "occluders",
-        done: format!(
+    /// Stage 4: the occluder index, then the visible and hidden runs of every line.
+    fn visibility(&mut self, progress: &(dyn Fn(u64, u64) + Sync)) -> Vec<Piece> {
+        let clock = Instant::now();
+        let meshes: Vec<(ObjectId, &Mesh, &[[f64; 2]])> = self
+            .leaves
+            .iter()
+            .map(|l| (l.id, l.mesh, l.pictures.as_slice()))
+            .collect();
+        let queries = self.lines.iter().filter(|l| !l.back).count() + self.cuts.len();
+        let occluders = Occluders::new(self.scene, self.eye, &meshes, INBOX_LIMIT, queries);
+        let large = meshes
+            .iter()
+            .filter(|(_, m, _)| m.triangles().len() > INBOX_LIMIT)
+            .count();
+        let done = format!(
             "{} meshes' triangles listed by picture cells ({} entries)",
-            leaves.len(),
+            meshes.len(),
             occluders.entries()
-        ),
-        skipped: (large > 0).then(|| {
+        );
+        let skipped = (large > 0).then(|| {
             format!(
-                "INBOX of {large} meshes of more than {INBOX_LIMIT} triangles (their picture cells answer directly)"
+                "INBOX of {large} meshes of more than {INBOX_LIMIT} triangles (their picture \
+                 cells answer directly)"
             )
-        }),
-        seconds: clock.elapsed().as_secs_f64(),
-    });
+        });
+        self.stage("occluders", clock, done, skipped);
 
-    // 4. Visibility of each piece.
-    let clock = Instant::now();
-    cuts.par_sort_unstable_by(|x, y| x.0.cmp(&y.0).then(x.1.t.total_cmp(&y.1.t)));
-    let mut first_cut = vec![0usize; lines.len() + 1];
-    for &(l, _) in &cuts {
-        first_cut[l + 1] += 1;
-    }
-    for l in 0..lines.len() {
-        first_cut[l + 1] += first_cut[l];
-    }
-    let done = AtomicU64::new(0);
-    let total = lines.len() as u64;
-    let decided: Vec<(Vec<Piece>, Counters)> = (0..lines.len())
-        .into_par_iter()
-        .map(|l| {
-            let n = done.fetch_add(1, Atomic::Relaxed) + 1;
-            if n.is_multiple_of(1024) || n == total {
-                progress(n, total);
-            }
-            let line_cuts: Vec<Cut> = cuts[first_cut[l]..first_cut[l + 1]]
-                .iter()
-                .map(|c| c.1)
-                .collect();
-            pieces(&occluders, scene, eye, &picture, &lines[l], &line_cuts)
-        })
-        .collect();
-    let mut counters = Counters::default();
-    let mut all_pieces = Vec::new();
-    for (p, c) in decided {
-        counters = counters.merged(&c);
-        all_pieces.extend(p);
-    }
-    stages.push(StageReport {
-        name: "visibility",
-        done: format!(
+        let clock = Instant::now();
+        let cuts = &mut self.cuts;
+        cuts.par_sort_unstable_by(|x, y| x.0.cmp(&y.0).then(x.1.t.total_cmp(&y.1.t)));
+        let lines = &self.lines;
+        let mut first_cut = vec![0usize; lines.len() + 1];
+        for &(l, _) in cuts.iter() {
+            first_cut[l + 1] += 1;
+        }
+        for l in 0..lines.len() {
+            first_cut[l + 1] += first_cut[l];
+        }
+        let done = AtomicU64::new(0);
+        let total = lines.len() as u64;
+        let (scene, eye, picture) = (self.scene, &self.eye, &self.picture);
+        let decided: Vec<(Vec<Piece>, Counters)> = (0..lines.len())
+            .into_par_iter()
+            .map(|l| {
+                let n = done.fetch_add(1, Atomic::Relaxed) + 1;
+                if n.is_multiple_of(1024) || n == total {
+                    progress(n, total);
+                }
+                let line_cuts: Vec<Cut> = cuts[first_cut[l]..first_cut[l + 1]]
+                    .iter()
+                    .map(|c| c.1)
+                    .collect();
+                pieces(&occluders, scene, eye, picture, &lines[l], &line_cuts)
+            })
+            .collect();
+        let mut counters = Counters::default();
+        let mut all = Vec::new();
+        for (p, c) in decided {
+            counters = counters.merged(&c);
+            all.extend(p);
+        }
+        let done = format!(
             "{} pieces decided by VISP: {} by CBOX, {} by INBOX, {} by faces",
             counters.total(),
             counters.cbox,
             counters.inbox,
             counters.faces
-        ),
-        skipped: None,
-        seconds: clock.elapsed().as_secs_f64(),
-    });
-
-    // 5. Chains.
-    let clock = Instant::now();
-    if !options.hidden {
-        all_pieces.retain(|p| p.visible);
+        );
+        self.stage("visibility", clock, done, None);
+        all
     }
-    let polylines = chain(&all_pieces);
-    stages.push(StageReport {
-        name: "chains",
-        done: format!(
-            "{} polylines from {} runs",
-            polylines.len(),
-            all_pieces.len()
-        ),
-        skipped: (!options.hidden).then(|| "hidden pieces (not asked for)".to_string()),
-        seconds: clock.elapsed().as_secs_f64(),
-    });
-    Ok(Drawing { polylines, stages })
 }
 
 /// The cuts on `l` where its picture meets the picture of the contour `c`: a crossing (one
