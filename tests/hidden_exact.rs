@@ -1543,3 +1543,39 @@ fn the_checks_reject_wrong_drawings() {
     fewer.polylines.remove(crease);
     assert!(!accepts(&fewer));
 }
+
+/// Boxes touching: one resting on another, one beside it sharing a face. Faces that only
+/// touch make no intersection line, and every edge matches the exact reference (an edge lying
+/// on another box's face is on it, not behind it), from three views including the axis-aligned
+/// ones where whole faces are seen edge-on.
+#[test]
+fn touching_boxes_make_no_intersection_lines() {
+    let meshes = [
+        cuboid_at([4.0, 4.0, 1.0], [0.0, 0.0, 0.5]),
+        cuboid_at([2.0, 2.0, 1.0], [0.0, 0.0, 1.5]),
+        cuboid_at([1.0, 4.0, 1.0], [2.5, 0.0, 0.5]),
+    ];
+    let views = [
+        View::orthographic(Vector3::new(-1.0, -2.0, -3.0), Vector3::z()).unwrap(),
+        View::orthographic(Vector3::new(0.3, -1.0, -0.7), Vector3::z()).unwrap(),
+        View::perspective(
+            Point3::new(7.0, -9.0, 6.0),
+            Point3::origin(),
+            Vector3::z(),
+            40.0,
+        )
+        .unwrap(),
+    ];
+    for (k, view) in views.iter().enumerate() {
+        let (d, _, worst) = check_convex(&format!("touching boxes, view {k}"), &meshes, view);
+        assert!(worst <= MAX_ULPS, "view {k}: {worst} ulps");
+        assert!(
+            d.polylines
+                .iter()
+                .all(|p| p.class != EdgeClass::Intersection),
+            "view {k}: touching faces drew an intersection line"
+        );
+        // The top box's bottom edges lie on the base's top face: the near ones are visible.
+        assert!(d.length(EdgeClass::Crease, true) > 0.0);
+    }
+}

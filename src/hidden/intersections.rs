@@ -2,9 +2,10 @@
 //!
 //! Candidate triangle pairs are those whose boxes meet, found with a uniform 3-D grid over the
 //! region where the two meshes' boxes overlap; objects whose CBOXes do not overlap are not
-//! compared at all. Which vertices lie on which side of the
-//! other triangle's plane is decided exactly, so touching faces (a box resting on another,
-//! neighbours sharing an edge or a vertex) make no intersection line and coplanar faces none
+//! compared at all. Which vertices lie on which side of the other triangle's plane is
+//! decided exactly, and two triangles pierce each other only when each has vertices strictly
+//! on both sides of the other's plane: touching faces (a box resting on another, neighbours
+//! sharing an edge or a vertex) make no intersection line, and coplanar faces none
 //! either. The part of the line inside both triangles runs between two of the points where a
 //! triangle's edge crosses the other's plane; those are ordered along the line in floating
 //! point (only ends within a few units in the last place of each other can be misordered),
@@ -268,11 +269,11 @@ fn segment(
     eye: &Eye,
 ) -> Option<[End; 2]> {
     let s0 = t0.map(|p| orient3d(&t1[0], &t1[1], &t1[2], &p));
-    if one_side(&s0) {
+    if !straddles(&s0) {
         return None;
     }
     let s1 = t1.map(|p| orient3d(&t0[0], &t0[1], &t0[2], &p));
-    if one_side(&s1) {
+    if !straddles(&s1) {
         return None;
     }
     let e0 = plane_section(t0, v0, &s0, t1, 0)?;
@@ -295,9 +296,11 @@ fn segment(
     (along(&start) < along(&end)).then_some([start, end])
 }
 
-/// Whether all three signs are equal and not zero (no contact), or all zero (coplanar).
-fn one_side(s: &[Ordering; 3]) -> bool {
-    s[0] == s[1] && s[1] == s[2]
+/// Whether the triangle has vertices strictly on both sides of the other's plane. Without,
+/// the triangles are apart, coplanar, or only touch (a face resting on another meets it along
+/// an edge that is drawn already): no intersection line.
+fn straddles(s: &[Ordering; 3]) -> bool {
+    s.contains(&Ordering::Greater) && s.contains(&Ordering::Less)
 }
 
 /// The two ends of the section of triangle `t` by the plane of `other`, given the exact sides
