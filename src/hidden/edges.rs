@@ -156,7 +156,7 @@ fn class_of(
     crease_cos: f64,
 ) -> Option<EdgeClass> {
     let (s1, s2) = (eye.orient3d(a, b, c1), eye.orient3d(a, b, c2));
-    if s1 == Ordering::Equal || s1 == s2 {
+    if s1 == Ordering::Equal || s2 == Ordering::Equal || s1 == s2 {
         return Some(EdgeClass::Silhouette);
     }
     if orient3d(a, b, c1, c2) == Ordering::Equal {

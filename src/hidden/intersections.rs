@@ -75,6 +75,8 @@ pub(crate) struct Segment {
     pub points: [Point3; 2],
     /// The faces whose triangles meet, in meshes 0 and 1.
     pub faces: [usize; 2],
+    /// The triangles that meet, in meshes 0 and 1.
+    pub triangles: [usize; 2],
 }
 
 /// The intersection segments of the triangles of `m0` with those of `m1` (`same` when they are
@@ -89,6 +91,7 @@ pub(crate) fn between(m0: &Mesh, m1: &Mesh, same: bool, eye: &Eye) -> Vec<Segmen
                 points: ends.map(|e| e.approximate(eye)),
                 ends,
                 faces: [m0.face_of(i), m1.face_of(j)],
+                triangles: [i, j],
             })
         })
         .collect()
@@ -330,4 +333,28 @@ fn plane_section(
         [a, b] => Some([a, b]),
         _ => None,
     }
+}
+
+/// Where the segment `ab` passes through the closed triangle `tri` crossing its plane (its
+/// ends strictly on either side of it), the parameter of the crossing along `ab`.
+pub(crate) fn pierces(eye: &Eye, a: &Point3, b: &Point3, tri: &[Point3; 3]) -> Option<f64> {
+    let (sa, sb) = (
+        orient3d(&tri[0], &tri[1], &tri[2], a),
+        orient3d(&tri[0], &tri[1], &tri[2], b),
+    );
+    if sa == Ordering::Equal || sb == Ordering::Equal || sa == sb {
+        return None;
+    }
+    let (mut above, mut below) = (false, false);
+    for i in 0..3 {
+        match orient3d(a, b, &tri[i], &tri[(i + 1) % 3]) {
+            Ordering::Greater => above = true,
+            Ordering::Less => below = true,
+            Ordering::Equal => {}
+        }
+    }
+    if above && below {
+        return None;
+    }
+    Form::Plane(*tri).zero_along(eye, a, b)
 }

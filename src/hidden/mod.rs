@@ -378,6 +378,9 @@ impl<'a> Pass<'a> {
             .collect();
         let mut segments = 0usize;
         let mut self_intersecting = Vec::new();
+        // Each triangle's partners in intersections, and each intersection line's triangles.
+        let mut partners: HashMap<(ObjectId, usize), Vec<(ObjectId, usize)>> = HashMap::new();
+        let mut crossings = Vec::new();
         for (&(i, j), found) in pairs.iter().zip(found) {
             let (id0, id1) = (ids[i], ids[j]);
             for s in found {
@@ -407,6 +410,11 @@ impl<'a> Pass<'a> {
                         }
                     }
                 }
+                let triangles = [(id0, s.triangles[0]), (id1, s.triangles[1])];
+                for (x, y) in [(triangles[0], triangles[1]), (triangles[1], triangles[0])] {
+                    partners.entry(x).or_default().push(y);
+                }
+                crossings.push((self.lines.len(), triangles));
                 self.lines.push(Line {
                     a: s.points[0],
                     b: s.points[1],
@@ -420,6 +428,31 @@ impl<'a> Pass<'a> {
                 }
             }
         }
+        // An intersection line may pass through a third face (a triple point), where it goes
+        // behind it: the third face pierces one of the line's two faces, so it is among their
+        // partners. Cut there (built from the line's rounded ends).
+        let mut triple = 0usize;
+        for (l, triangles) in crossings {
+            let (a, b) = (self.lines[l].a, self.lines[l].b);
+            let mut third: Vec<(ObjectId, usize)> = triangles
+                .iter()
+                .flat_map(|t| partners.get(t).into_iter().flatten().copied())
+                .filter(|t| !triangles.contains(t))
+                .collect();
+            third.sort_unstable();
+            third.dedup();
+            for (object, t) in third {
+                let Some(mesh) = self.scene[object].mesh() else {
+                    continue;
+                };
+                let tri = mesh.triangle(t);
+                if let Some(t) = intersections::pierces(&eye, &a, &b, &tri) {
+                    triple += 1;
+                    let at = CutAt::Form(Form::Plane(tri));
+                    self.cuts.push((l, Cut { t, at }));
+                }
+            }
+        }
         // A mesh that pierces itself is not a proper solid: its back faces decide nothing.
         for i in self_intersecting {
             let range = self.leaves[i].lines.clone();
@@ -427,7 +460,7 @@ impl<'a> Pass<'a> {
         }
         let done = format!(
             "{segments} segments from {} object pairs with overlapping CBOXes (each object with \
-             itself included)",
+             itself included), {triple} triple points",
             pairs.len()
         );
         let skipped =
