@@ -11,7 +11,9 @@
 //!    of a contour edge (silhouette or boundary, including the edges of faces seen edge-on) or
 //!    where the edge pierces a face. Franklin's uniform grid ([`crate::grid`]) finds the
 //!    candidate crossings among the pictures; each is decided exactly in 3-D with the eye's
-//!    predicates. Piercings come from step 2.
+//!    predicates, and a contour behind the line at the crossing changes nothing and cuts
+//!    nothing. Piercings come from step 2: where an edge passes through a face, and where an
+//!    intersection line passes through a third face (a triple point).
 //! 4. **Visibility.** Each piece between cuts is decided by one VISP query at a point inside
 //!    it, through the object hierarchy (CBOX rejects, INBOX accepts, then the faces near the
 //!    line of sight, from an R-tree). The point is never rounded: every face test is evaluated
