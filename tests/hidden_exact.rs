@@ -739,10 +739,8 @@ fn sight_meets_cube_edge(x: &V, towards: impl Fn(&V) -> V) -> bool {
     sight_meets_box_edge(x, towards, [-1.0; 3], [1.0; 3])
 }
 
-/// Checks that the reference's cuts (piece ends that are no input vertex) are exactly
-/// `hand`, and that each is drawn: some vertex of the drawing within [`MAX_ULPS`] of its
-/// exact picture.
-fn assert_cuts(d: &Drawing, want: &[RefSeg], meshes: &[&Mesh], view: &View, hand: &[V]) {
+/// The reference's cuts: the ends of its pieces that are no input vertex, sorted, each once.
+fn reference_cuts(meshes: &[&Mesh], want: &[RefSeg]) -> Vec<V> {
     let inputs: Vec<V> = meshes
         .iter()
         .flat_map(|m| m.vertices().iter().map(qp))
@@ -754,6 +752,14 @@ fn assert_cuts(d: &Drawing, want: &[RefSeg], meshes: &[&Mesh], view: &View, hand
         .collect();
     cuts.sort();
     cuts.dedup();
+    cuts
+}
+
+/// Checks that the reference's cuts (piece ends that are no input vertex) are exactly
+/// `hand`, and that each is drawn: some vertex of the drawing within [`MAX_ULPS`] of its
+/// exact picture.
+fn assert_cuts(d: &Drawing, want: &[RefSeg], meshes: &[&Mesh], view: &View, hand: &[V]) {
+    let cuts = reference_cuts(meshes, want);
     let mut hand = hand.to_vec();
     hand.sort();
     assert_eq!(cuts, hand, "the reference's cuts are the hand-checked ones");
@@ -992,17 +998,7 @@ fn box_piercing_another() {
         qlerp(&a, &qadd(&a, &d_rod), &t)
     })
     .collect();
-    let inputs: Vec<V> = meshes
-        .iter()
-        .flat_map(|m| m.vertices().iter().map(qp))
-        .collect();
-    let mut cuts: Vec<V> = edge_pieces
-        .iter()
-        .flat_map(|s| s.ends.iter().cloned())
-        .filter(|x| !inputs.contains(x))
-        .collect();
-    cuts.sort();
-    cuts.dedup();
+    let cuts = reference_cuts(&meshes.iter().collect::<Vec<_>>(), &edge_pieces);
     // Those three, two where the cube's edge passes behind the rod's outline, three where
     // the rod's edges pass behind the cube's.
     assert_eq!(cuts.len(), 8);

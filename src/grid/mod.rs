@@ -321,17 +321,7 @@ impl SegmentGrid {
     /// assert_eq!(SegmentGrid::new(&s).pairs(), vec![(0, 1), (0, 2), (1, 2)]);
     /// ```
     pub fn pairs(&self) -> Vec<(usize, usize)> {
-        // A pair listed together in several cells is found in each: sorted, then deduplicated.
-        let mut pairs: Vec<u64> = (0..self.cells.count())
-            .into_par_iter()
-            .flat_map_iter(|c| self.pairs_in(c))
-            .collect();
-        pairs.par_sort_unstable();
-        pairs.dedup();
-        pairs
-            .into_iter()
-            .map(|p| ((p >> 32) as usize, (p & 0xffff_ffff) as usize))
-            .collect()
+        self.gather(|c| self.pairs_in(c))
     }
 
     /// Every pair `(i, j)`, `i < j`, listed together in some cell whose bounding boxes, grown
@@ -357,19 +347,29 @@ impl SegmentGrid {
         F: Fn(usize, usize) -> bool + Sync,
     {
         let m = self.margin;
-        let mut pairs: Vec<u64> = (0..self.cells.count())
-            .into_par_iter()
-            .flat_map_iter(|c| {
-                let here = &self.items[self.start[c] as usize..self.start[c + 1] as usize];
-                let keep = &keep;
-                here.iter().enumerate().flat_map(move |(n, a)| {
-                    here[n + 1..].iter().filter_map(move |b| {
-                        let (i, j) = (a.segment.min(b.segment), a.segment.max(b.segment));
-                        (i != j && a.boxes_meet_within(b, m) && keep(i as usize, j as usize))
-                            .then_some((u64::from(i) << 32) | u64::from(j))
-                    })
+        let keep = &keep;
+        self.gather(|c| {
+            let here = &self.items[self.start[c] as usize..self.start[c + 1] as usize];
+            here.iter().enumerate().flat_map(move |(n, a)| {
+                here[n + 1..].iter().filter_map(move |b| {
+                    let (i, j) = (a.segment.min(b.segment), a.segment.max(b.segment));
+                    (i != j && a.boxes_meet_within(b, m) && keep(i as usize, j as usize))
+                        .then_some((u64::from(i) << 32) | u64::from(j))
                 })
             })
+        })
+    }
+
+    /// The pairs every cell yields (each `(i, j)` as the integer `i·2³² + j`), gathered in
+    /// parallel; a pair listed together in several cells is found in each, so they are sorted
+    /// and deduplicated.
+    fn gather<'a, I>(&'a self, in_cell: impl Fn(usize) -> I + Sync + Send) -> Vec<(usize, usize)>
+    where
+        I: Iterator<Item = u64> + 'a,
+    {
+        let mut pairs: Vec<u64> = (0..self.cells.count())
+            .into_par_iter()
+            .flat_map_iter(in_cell)
             .collect();
         pairs.par_sort_unstable();
         pairs.dedup();
