@@ -183,7 +183,8 @@ pub struct SegmentGrid {
 }
 
 /// A segment as a cell lists it: the cell, the segment's index and its endpoints (copied, so
-/// that a cell's pairs are tested without reaching back into the input).
+/// that a cell's pairs are tested without reaching back into the input), `a` the one of
+/// smaller `x`. A cell lists its items by increasing `a.x`.
 #[derive(Debug, Clone, Copy)]
 struct Item {
     cell: u32,
@@ -251,26 +252,38 @@ impl SegmentGrid {
         };
         // Every (cell, segment) of the walks, gathered per thread in one pass over the input,
         // then sorted by cell: the cells' lists.
-        let mut items: Vec<Item> = segments
+        // Sorting (cell, segment) as integers is cheaper than moving whole items; the items,
+        // with their coordinates, are then gathered in cell order.
+        let mut keys: Vec<u64> = segments
             .par_iter()
             .enumerate()
             .fold(Vec::new, |mut out, (i, s)| {
-                let (a, b) = (xy(s.start), xy(s.end));
-                grid.walk(s, |cell| {
-                    out.push(Item {
-                        cell,
-                        segment: i as u32,
-                        a,
-                        b,
-                    })
-                });
+                grid.walk(s, |cell| out.push((u64::from(cell) << 32) | i as u64));
                 out
             })
             .reduce(Vec::new, |mut x, mut y| {
                 x.append(&mut y);
                 x
             });
-        items.par_sort_unstable_by_key(|item| item.cell);
+        keys.par_sort_unstable();
+        let mut items: Vec<Item> = keys
+            .par_iter()
+            .map(|&k| {
+                let s = &segments[(k & 0xffff_ffff) as usize];
+                let (a, b) = (xy(s.start), xy(s.end));
+                let (a, b) = if a[0] <= b[0] { (a, b) } else { (b, a) };
+                Item {
+                    cell: (k >> 32) as u32,
+                    segment: k as u32,
+                    a,
+                    b,
+                }
+            })
+            .collect();
+        // Within a cell, by the left end's x: a cell's pairs are then found by a sweep.
+        items
+            .par_chunk_by_mut(|x, y| x.cell == y.cell)
+            .for_each(|cell| cell.sort_unstable_by(|x, y| x.a[0].total_cmp(&y.a[0])));
         let mut start = vec![0u32; grid.cells.count() + 1];
         for item in &items {
             start[item.cell as usize + 1] += 1;
@@ -351,11 +364,15 @@ impl SegmentGrid {
         self.gather(|c| {
             let here = &self.items[self.start[c] as usize..self.start[c + 1] as usize];
             here.iter().enumerate().flat_map(move |(n, a)| {
-                here[n + 1..].iter().filter_map(move |b| {
-                    let (i, j) = (a.segment.min(b.segment), a.segment.max(b.segment));
-                    (i != j && a.boxes_meet_within(b, m) && keep(i as usize, j as usize))
-                        .then_some((u64::from(i) << 32) | u64::from(j))
-                })
+                let right = a.b[0] + m;
+                here[n + 1..]
+                    .iter()
+                    .take_while(move |b| b.a[0] - m <= right)
+                    .filter_map(move |b| {
+                        let (i, j) = (a.segment.min(b.segment), a.segment.max(b.segment));
+                        (i != j && a.boxes_meet_within(b, m) && keep(i as usize, j as usize))
+                            .then_some((u64::from(i) << 32) | u64::from(j))
+                    })
             })
         })
     }
@@ -384,16 +401,21 @@ impl SegmentGrid {
     fn pairs_in<'a>(&'a self, c: usize) -> impl Iterator<Item = u64> + 'a {
         let here = &self.items[self.start[c] as usize..self.start[c + 1] as usize];
         here.iter().enumerate().flat_map(move |(n, a)| {
-            here[n + 1..].iter().filter_map(move |b| {
-                if !a.boxes_meet(b) {
-                    return None;
-                }
-                if apart(a.a, a.b, b.a, b.b) || apart(b.a, b.b, a.a, a.b) {
-                    return None;
-                }
-                let (i, j) = (a.segment.min(b.segment), a.segment.max(b.segment));
-                segments_meet(a.a, a.b, b.a, b.b).then_some((u64::from(i) << 32) | u64::from(j))
-            })
+            // The items after `a` whose x-ranges can meet its own: a sweep along x.
+            let right = a.b[0];
+            here[n + 1..]
+                .iter()
+                .take_while(move |b| b.a[0] <= right)
+                .filter_map(move |b| {
+                    if !a.boxes_meet(b) {
+                        return None;
+                    }
+                    if apart(a.a, a.b, b.a, b.b) || apart(b.a, b.b, a.a, a.b) {
+                        return None;
+                    }
+                    let (i, j) = (a.segment.min(b.segment), a.segment.max(b.segment));
+                    segments_meet(a.a, a.b, b.a, b.b).then_some((u64::from(i) << 32) | u64::from(j))
+                })
         })
     }
 
