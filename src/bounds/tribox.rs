@@ -11,9 +11,9 @@
 //! (largest at most) the exact extreme projection, so no input point is ever cut off.
 //! [`TriboxBounds::contains_point`] decides every inequality exactly. The boundary
 //! ([`TriboxBounds::boundary`]) is the paper's corner classification with every sign decided
-//! exactly ([`sum_sign`](crate::geometry::exact::sum_sign)) and every vertex coordinate the
+//! exactly ([`crate::geometry::exact::sum_sign`]) and every vertex coordinate the
 //! correctly rounded value of an exact sum of at most a few bounds
-//! ([`accurate_sum`](crate::geometry::exact::accurate_sum)). It is exactly the intersection of
+//! ([`crate::geometry::exact::accurate_sum`]). It is exactly the intersection of
 //! the 18 half-spaces when every bounding plane touches that intersection, as exact bounds of
 //! points do; a diagonal bound rounded outward can miss it by less than an ulp and leave an
 //! ulp-thin sliver face. [`Tribox::cleaned`] tightens such bounds symbolically first and is

@@ -1,4 +1,4 @@
-//! Exact orientation predicates on [`Point3`](super::Point3), thin wrappers over `robust`.
+//! Exact orientation predicates on [`super::Point3`], thin wrappers over `robust`.
 //!
 //! Each returns the exact sign of its determinant as an [`Ordering`]: the `robust` crate's
 //! adaptive-precision arithmetic makes the sign exact for finite inputs without overflow or

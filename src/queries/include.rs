@@ -12,7 +12,7 @@
 //! means every edge is shared by an even number of faces, so solids that touch along an edge
 //! (voxel models: four faces on the edge) are accepted; parity needs nothing more.
 //!
-//! [`include`] answers one point with no preprocessing (a leaf tests all its triangles, time
+//! [`include()`] answers one point with no preprocessing (a leaf tests all its triangles, time
 //! linear in the faces, as in the paper); [`IncludeIndex`] builds each mesh's
 //! [`ProjectionGrid`] once and answers batches in parallel.
 //!
