@@ -9,6 +9,7 @@
 //! Modules, with dependencies pointing one way (each uses only those above it):
 //! - [`geometry`]: points, exact predicates and exact sums, polygons.
 //! - [`grid`]: Franklin's uniform grid: every intersecting pair of segments in the plane.
+//! - [`clip`]: boolean operations on polygons (intersection, difference, union), to an ulp.
 //! - [`mesh`]: validated polygon meshes (faces, planes, texture coordinate systems, topology).
 //! - [`io`]: mesh files (OBJ, STL, OFF).
 //! - [`solids`]: built-in closed solids (box, Platonic, Archimedean, prism, sphere, torus, cylinder).
@@ -26,6 +27,7 @@
 //! ```
 
 pub mod bounds;
+pub mod clip;
 pub mod error;
 pub mod geometry;
 pub mod grid;

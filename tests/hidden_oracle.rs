@@ -1303,3 +1303,71 @@ fn edges_of_faces_seen_edge_on_are_contours() {
     assert!((lengths[1] - 1.0).abs() < 1e-12 && (lengths[0] - 5.0).abs() < 1e-12);
     assert_eq!(report.errors, 0);
 }
+
+/// Degenerate scenes: axis-aligned boxes on an integer lattice (touching, stacked, sharing
+/// coplanar faces, overlapping), seen along axes and lattice diagonals, and in perspective from
+/// lattice points, so that faces are seen edge-on and edges' pictures coincide. The drawings agree with the z-buffer away from those
+/// coincidences (the oracle skips samples near any edge's picture).
+#[test]
+fn lattice_scenes_agree_with_a_z_buffer() {
+    let orthographic =
+        |d: [f64; 3], u: [f64; 3]| View::orthographic(Vector3::from(d), Vector3::from(u)).unwrap();
+    let perspective = |e: [f64; 3]| {
+        View::perspective(Point3::from(e), Point3::origin(), Vector3::z(), 50.0).unwrap()
+    };
+    let views = [
+        orthographic([-1.0, -2.0, -3.0], [0.0, 0.0, 1.0]),
+        orthographic([-1.0, -1.0, -1.0], [0.0, 0.0, 1.0]),
+        orthographic([0.0, -1.0, -2.0], [0.0, 0.0, 1.0]),
+        orthographic([-2.0, 1.0, -1.0], [0.0, 0.0, 1.0]),
+        orthographic([0.0, 0.0, -1.0], [0.0, 1.0, 0.0]),
+        orthographic([-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
+        perspective([8.0, -10.0, 7.0]),
+        perspective([-9.0, -9.0, 9.0]),
+    ];
+    let mut total = Report::default();
+    for k in 0..cases() {
+        let mut rng = Rng(0x1a77_1ce0 + k);
+        let mut scene = Scene::new();
+        for i in 0..3 + rng.below(4) {
+            let size = [0, 1, 2].map(|_| (1 + rng.below(3)) as f64);
+            let at = [0, 1, 2].map(|k| (rng.below(5) as f64 - 2.0) + size[k] / 2.0);
+            let mesh = solids::cuboid(Vector3::from(size))
+                .unwrap()
+                .transformed(&Matrix4::new_translation(&Vector3::from(at)))
+                .unwrap();
+            scene.add_mesh(None, format!("box{i}"), mesh).unwrap();
+        }
+        let view = views[(k % views.len() as u64) as usize].clone();
+        let oracle = Oracle::new(&scene, &view, Options::default().crease_angle);
+        for edges in [EdgeSelection::All, EdgeSelection::Feature] {
+            let o = options(edges);
+            let drawing = draw(&scene, &view, &o).unwrap();
+            let name = format!("lattice case {k} ({edges:?}; {})", describe(&view));
+            total.merge(check(&oracle, &drawing, &o, &name));
+        }
+    }
+    for m in &total.messages {
+        eprintln!("{m}");
+    }
+    eprintln!(
+        "lattice: samples checked (visible, hidden, intersection, completeness) {:?}; skipped {:?}",
+        (
+            total.visible,
+            total.hidden,
+            total.intersection,
+            total.complete
+        ),
+        total.skipped
+    );
+    assert_eq!(
+        total.errors, 0,
+        "disagreements with the z-buffer: see above"
+    );
+    assert_eq!(
+        total.skipped.get(&Skip::Inconsistent),
+        None,
+        "the oracle contradicts itself"
+    );
+    assert!(total.visible > 5_000 && total.hidden > 2_000 && total.complete > 5_000);
+}

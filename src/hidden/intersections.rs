@@ -24,13 +24,9 @@ use std::cmp::Ordering;
 pub(crate) enum End {
     /// A vertex of one triangle, lying on the other's plane.
     Vertex(Point3),
-    /// Where the edge `(a, b)` (vertex indices of mesh `mesh`) crosses the plane of `plane`.
+    /// Where a triangle's edge crosses the plane of the other triangle.
     Crossing {
-        /// Which of the two meshes (0 or 1) the edge belongs to.
-        mesh: usize,
-        /// The edge's vertices in its mesh.
-        edge: [u32; 2],
-        /// Its corners.
+        /// The edge's ends.
         points: [Point3; 2],
         /// The other triangle.
         plane: [Point3; 3],
@@ -86,8 +82,7 @@ pub(crate) fn between(m0: &Mesh, m1: &Mesh, same: bool, eye: &Eye) -> Vec<Segmen
         .par_iter()
         .filter_map(|&(i, j)| {
             let (i, j) = (i as usize, j as usize);
-            let (vi, vj) = (m0.triangles()[i], m1.triangles()[j]);
-            segment(&m0.triangle(i), &vi, &m1.triangle(j), &vj, eye).map(|ends| Segment {
+            segment(&m0.triangle(i), &m1.triangle(j), eye).map(|ends| Segment {
                 points: ends.map(|e| e.approximate(eye)),
                 ends,
                 faces: [m0.face_of(i), m1.face_of(j)],
@@ -262,15 +257,9 @@ fn shares_vertex(a: &[u32; 3], b: &[u32; 3]) -> bool {
     a.iter().any(|v| b.contains(v))
 }
 
-/// The segment where the triangles `t0` (vertex indices `v0`, mesh 0) and `t1` (mesh 1) pierce
-/// each other, if they do along a segment of positive length.
-fn segment(
-    t0: &[Point3; 3],
-    v0: &[u32; 3],
-    t1: &[Point3; 3],
-    v1: &[u32; 3],
-    eye: &Eye,
-) -> Option<[End; 2]> {
+/// The segment where the triangles `t0` and `t1` pierce each other, if they do along a segment
+/// of positive length.
+fn segment(t0: &[Point3; 3], t1: &[Point3; 3], eye: &Eye) -> Option<[End; 2]> {
     let s0 = t0.map(|p| orient3d(&t1[0], &t1[1], &t1[2], &p));
     if !straddles(&s0) {
         return None;
@@ -279,8 +268,8 @@ fn segment(
     if !straddles(&s1) {
         return None;
     }
-    let e0 = plane_section(t0, v0, &s0, t1, 0)?;
-    let e1 = plane_section(t1, v1, &s1, t0, 1)?;
+    let e0 = plane_section(t0, &s0, t1)?;
+    let e1 = plane_section(t1, &s1, t0)?;
     // Order the four ends along the line (the direction of the normals' cross product).
     let n0 = (t0[1] - t0[0]).cross(&(t0[2] - t0[0]));
     let n1 = (t1[1] - t1[0]).cross(&(t1[2] - t1[0]));
@@ -308,13 +297,7 @@ fn straddles(s: &[Ordering; 3]) -> bool {
 
 /// The two ends of the section of triangle `t` by the plane of `other`, given the exact sides
 /// `s` of its vertices, or `None` when the plane only touches it at one point.
-fn plane_section(
-    t: &[Point3; 3],
-    v: &[u32; 3],
-    s: &[Ordering; 3],
-    other: &[Point3; 3],
-    mesh: usize,
-) -> Option<[End; 2]> {
+fn plane_section(t: &[Point3; 3], s: &[Ordering; 3], other: &[Point3; 3]) -> Option<[End; 2]> {
     let mut ends = Vec::with_capacity(3);
     for i in 0..3 {
         let j = (i + 1) % 3;
@@ -322,8 +305,6 @@ fn plane_section(
             ends.push(End::Vertex(t[i]));
         } else if s[j] != Ordering::Equal && s[i] != s[j] {
             ends.push(End::Crossing {
-                mesh,
-                edge: [v[i], v[j]],
                 points: [t[i], t[j]],
                 plane: *other,
             });

@@ -138,6 +138,8 @@ struct Line {
     /// Whether the line is an edge between two faces turned away from the eye on a solid that
     /// the eye is outside of: then the solid itself hides all of it.
     back: bool,
+    /// For an edge: the triangles on its sides (in its mesh).
+    triangles: Option<[u32; 2]>,
 }
 
 impl Line {
@@ -197,8 +199,8 @@ pub fn draw_with_progress(
     progress: &(dyn Fn(u64, u64) + Sync),
 ) -> Result<Drawing> {
     let mut pass = Pass::new(scene, view)?;
-    let index_of = pass.edges(options);
-    pass.intersections(&index_of);
+    pass.edges(options);
+    pass.intersections();
     pass.contour_cuts();
     let mut pieces = pass.visibility(progress);
     let clock = Instant::now();
@@ -290,8 +292,7 @@ impl<'a> Pass<'a> {
     }
 
     /// Stage 1: every mesh's edges, classified, and its vertices' pictures; the lines to draw.
-    /// Returns each edge line's index by object and vertex pair.
-    fn edges(&mut self, options: &Options) -> HashMap<(ObjectId, [u32; 2]), usize> {
+    fn edges(&mut self, options: &Options) {
         let clock = Instant::now();
         let (eye, picture) = (&self.eye, &self.picture);
         let crease_cos = -options.crease_angle.to_radians().cos();
@@ -308,7 +309,6 @@ impl<'a> Pass<'a> {
                 (edges::classify(leaf.mesh, eye, crease_cos), pictures)
             })
             .collect();
-        let mut index_of = HashMap::new();
         let (mut flat, mut end_on, mut smooth_left_out) = (0, 0, 0);
         let mut by_class = [0usize; 5];
         for (leaf, ((edges, counts), pictures)) in self.leaves.iter_mut().zip(classified) {
@@ -323,7 +323,6 @@ impl<'a> Pass<'a> {
                     smooth_left_out += 1;
                     continue;
                 }
-                index_of.insert((leaf.id, [e.a.min(e.b), e.a.max(e.b)]), self.lines.len());
                 let (a, b) = (e.a as usize, e.b as usize);
                 let back = e.class != EdgeClass::Boundary
                     && away.is_some_and(|away| {
@@ -339,6 +338,7 @@ impl<'a> Pass<'a> {
                     class: e.class,
                     on_faces: None,
                     back,
+                    triangles: Some(e.triangles),
                 });
             }
             leaf.pictures = pictures;
@@ -362,12 +362,11 @@ impl<'a> Pass<'a> {
             "{flat} edges between coplanar faces (no edge), {end_on} seen end-on (a point){smooth}"
         );
         self.stage("edges", clock, done, Some(skipped));
-        index_of
     }
 
     /// Stage 2: intersection lines between objects whose CBOXes overlap and within each
     /// object, and the cuts where edges pierce faces.
-    fn intersections(&mut self, index_of: &HashMap<(ObjectId, [u32; 2]), usize>) {
+    fn intersections(&mut self) {
         let clock = Instant::now();
         let eye = self.eye;
         let ids: Vec<ObjectId> = self.leaves.iter().map(|l| l.id).collect();
@@ -387,31 +386,6 @@ impl<'a> Pass<'a> {
             let (id0, id1) = (ids[i], ids[j]);
             for s in found {
                 segments += 1;
-                for end in &s.ends {
-                    if let intersections::End::Crossing {
-                        mesh,
-                        edge,
-                        points: [a, b],
-                        plane,
-                    } = end
-                    {
-                        let owner = if *mesh == 0 { id0 } else { id1 };
-                        let key = (owner, [edge[0].min(edge[1]), edge[0].max(edge[1])]);
-                        if let Some(&l) = index_of.get(&key) {
-                            // The parameter along the line as stored (its a may be the edge's b).
-                            let (p, q) = if self.lines[l].a == *a {
-                                (a, b)
-                            } else {
-                                (b, a)
-                            };
-                            let form = Form::Plane(*plane);
-                            if let Some(t) = form.zero_along(&eye, p, q) {
-                                let at = CutAt::Form(form);
-                                self.cuts.push((l, Cut { t, at }));
-                            }
-                        }
-                    }
-                }
                 let triangles = [(id0, s.triangles[0]), (id1, s.triangles[1])];
                 for (x, y) in [(triangles[0], triangles[1]), (triangles[1], triangles[0])] {
                     partners.entry(x).or_default().push(y);
@@ -424,16 +398,25 @@ impl<'a> Pass<'a> {
                     class: EdgeClass::Intersection,
                     on_faces: Some([(id0, s.faces[0]), (id1, s.faces[1])]),
                     back: false,
+                    triangles: None,
                 });
                 if i == j {
                     self_intersecting.push(i);
                 }
             }
         }
-        // An intersection line may pass through a third face (a triple point), where it goes
-        // behind it: the third face pierces one of the line's two faces, so it is among their
-        // partners. Cut there (built from the line's rounded ends).
-        let mut triple = 0usize;
+        // An edge may pass through a face, and an intersection line through a third face (a
+        // triple point), where it may go behind it; that face pierces a face the line lies on,
+        // so it is among that face's partners. Cut there (for an intersection line, built from
+        // its rounded ends).
+        for leaf in &self.leaves {
+            for l in leaf.lines.clone() {
+                if let Some(triangles) = self.lines[l].triangles {
+                    crossings.push((l, triangles.map(|t| (leaf.id, t as usize))));
+                }
+            }
+        }
+        let (mut triple, mut pierced) = (0usize, 0usize);
         for (l, triangles) in crossings {
             let (a, b) = (self.lines[l].a, self.lines[l].b);
             let mut third: Vec<(ObjectId, usize)> = triangles
@@ -449,7 +432,11 @@ impl<'a> Pass<'a> {
                 };
                 let tri = mesh.triangle(t);
                 if let Some(t) = intersections::pierces(&eye, &a, &b, &tri) {
-                    triple += 1;
+                    if self.lines[l].class == EdgeClass::Intersection {
+                        triple += 1;
+                    } else {
+                        pierced += 1;
+                    }
                     let at = CutAt::Form(Form::Plane(tri));
                     self.cuts.push((l, Cut { t, at }));
                 }
@@ -462,7 +449,7 @@ impl<'a> Pass<'a> {
         }
         let done = format!(
             "{segments} segments from {} object pairs with overlapping CBOXes (each object with \
-             itself included), {triple} triple points",
+             itself included); {pierced} cuts where edges pierce faces, {triple} triple points",
             pairs.len()
         );
         let skipped =
