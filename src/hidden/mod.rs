@@ -409,7 +409,7 @@ impl<'a> Pass<'a> {
         // triple point), where it may go behind it; that face pierces a face the line lies on,
         // so it is among that face's partners. Cut there (for an intersection line, built from
         // its rounded ends).
-        for leaf in &self.leaves {
+        for leaf in self.leaves.iter().filter(|_| !partners.is_empty()) {
             for l in leaf.lines.clone() {
                 if let Some(triangles) = self.lines[l].triangles {
                     crossings.push((l, triangles.map(|t| (leaf.id, t as usize))));
