@@ -61,6 +61,7 @@
 //! # Ok::<(), clip::ClipError>(())
 //! ```
 
+use crate::geometry::exact::{product_terms, sum_sign};
 use geo::{Coord, LineString, MultiPolygon, Polygon};
 use i_overlay::core::fill_rule::FillRule;
 use i_overlay::core::overlay::ShapeType;
@@ -68,6 +69,7 @@ use i_overlay::core::overlay_rule::OverlayRule;
 use i_overlay::float::overlay::FloatOverlay;
 use i_overlay::i_float::adapter::FloatPointAdapter;
 use i_overlay::i_float::float::rect::FloatRect;
+use std::cmp::Ordering;
 
 /// Coordinates the engine cannot take; nothing is computed.
 ///
@@ -152,6 +154,58 @@ pub fn union(a: &MultiPolygon<f64>, b: &MultiPolygon<f64>) -> Result<MultiPolygo
     overlay(a, b, OverlayRule::Union)
 }
 
+/// The points in `a` but in none of `pieces`, in one operation: `a` (one simple ring or a
+/// valid polygon) minus the union of the pieces, where each piece is a simple ring (no holes)
+/// in either orientation and pieces may overlap. One operation means one rounding: where
+/// pieces share edges with each other or with `a` (equal coordinates), nothing of them is
+/// left between them, however many there are. Pieces of zero area are ignored.
+///
+/// ```
+/// use geo::{MultiPolygon, polygon};
+/// use kepler::clip;
+/// let square: MultiPolygon<f64> =
+///     polygon![(x: 0.0, y: 0.0), (x: 3.0, y: 0.0), (x: 3.0, y: 3.0), (x: 0.0, y: 3.0)].into();
+/// // Three strips, one clockwise, covering the square between them: nothing is left.
+/// let strip = |x0: f64, x1: f64| -> MultiPolygon<f64> {
+///     polygon![(x: x0, y: -1.0), (x: x1, y: -1.0), (x: x1, y: 4.0), (x: x0, y: 4.0)].into()
+/// };
+/// let cw: MultiPolygon<f64> =
+///     polygon![(x: 2.0, y: -1.0), (x: 2.0, y: 4.0), (x: 4.0, y: 4.0), (x: 4.0, y: -1.0)].into();
+/// let pieces = [strip(-1.0, 1.0), strip(1.0, 2.0), cw];
+/// assert!(clip::difference_of_union(&square, &pieces)?.0.is_empty());
+/// assert_eq!(clip::difference_of_union(&square, &pieces[..2])?.0.len(), 1);
+/// # Ok::<(), clip::ClipError>(())
+/// ```
+pub fn difference_of_union(
+    a: &MultiPolygon<f64>,
+    pieces: &[MultiPolygon<f64>],
+) -> Result<MultiPolygon<f64>, ClipError> {
+    let subject = rings(a);
+    // Every piece counter-clockwise, so that the non-zero rule fills their union.
+    let clip: Vec<Vec<[f64; 2]>> = pieces
+        .iter()
+        .flat_map(rings)
+        .filter_map(|mut ring| {
+            // The exact sign of twice the signed area (the shoelace sum, as exact products).
+            let mut terms = Vec::with_capacity(4 * ring.len());
+            for i in 0..ring.len() {
+                let (p, q) = (ring[i], ring[(i + 1) % ring.len()]);
+                product_terms(&[p[0]], &[q[1]], &mut terms);
+                product_terms(&[-q[0]], &[p[1]], &mut terms);
+            }
+            match sum_sign(&terms) {
+                Ordering::Equal => None,
+                Ordering::Less => {
+                    ring.reverse();
+                    Some(ring)
+                }
+                Ordering::Greater => Some(ring),
+            }
+        })
+        .collect();
+    run(subject, clip, OverlayRule::Difference, FillRule::NonZero)
+}
+
 /// Runs one operation on the `i64` engine, on a grid centred on the origin whose scale fits
 /// the largest coordinate magnitude.
 fn overlay(
@@ -159,8 +213,16 @@ fn overlay(
     b: &MultiPolygon<f64>,
     rule: OverlayRule,
 ) -> Result<MultiPolygon<f64>, ClipError> {
-    let subject = rings(a);
-    let clip = rings(b);
+    run(rings(a), rings(b), rule, FillRule::EvenOdd)
+}
+
+/// [`overlay`] on rings, with a fill rule.
+fn run(
+    subject: Vec<Vec<[f64; 2]>>,
+    clip: Vec<Vec<[f64; 2]>>,
+    rule: OverlayRule,
+    fill: FillRule,
+) -> Result<MultiPolygon<f64>, ClipError> {
     let mut max = 0.0_f64;
     for p in subject.iter().chain(&clip).flatten() {
         if !(p[0].is_finite() && p[1].is_finite()) {
@@ -178,7 +240,7 @@ fn overlay(
     let shapes = FloatOverlay::with_adapter(adapter, capacity)
         .unsafe_add_source(&subject, ShapeType::Subject)
         .unsafe_add_source(&clip, ShapeType::Clip)
-        .overlay(rule, FillRule::EvenOdd);
+        .overlay(rule, fill);
     Ok(shapes
         .into_iter()
         .filter_map(|shape| {

@@ -18,6 +18,7 @@
 //! - [`views`]: orthographic and perspective views, and exact predicates with the eye.
 //! - [`queries`]: INCLUDE and VISP through the hierarchy, batch INCLUDE, ray shooting.
 //! - [`hidden`]: exact hidden-line drawings (edge classes, intersection lines, visibility).
+//! - [`surfaces`]: visible surfaces, Franklin's VISFAC: the visible part of a face as polygons.
 //!
 //! ```
 //! use kepler::solids;
@@ -38,6 +39,7 @@ pub mod output;
 pub mod queries;
 pub mod scene;
 pub mod solids;
+pub mod surfaces;
 pub mod views;
 
 pub use error::{Error, Result};

@@ -77,6 +77,19 @@ use std::collections::HashMap;
 use std::sync::atomic::{AtomicU64, Ordering as Atomic};
 use std::time::Instant;
 
+/// The picture of the point where the segment `ab` crosses the plane of the triangle `plane`
+/// (its ends strictly on either side), built once from the input coordinates: within 1.5 units
+/// in the last place (see the module documentation).
+pub(crate) fn cut_point_on_plane(
+    picture: &Picture,
+    eye: &Eye,
+    plane: &[Point3; 3],
+    a: &Point3,
+    b: &Point3,
+) -> [f64; 2] {
+    cut_point(picture, eye, &Form::Plane(*plane), a, b)
+}
+
 /// Which edges a drawing shows.
 ///
 /// ```

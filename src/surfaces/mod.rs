@@ -1,0 +1,365 @@
+//! Visible surfaces: Franklin's VISFAC and VISFAC2 (1981, algorithms D and E): which part of a
+//! face an object leaves visible, as exact polygons in the picture.
+//!
+//! VISFAC(A, F) starts the visibility texture polygon VTP(F) as the whole of F and takes away,
+//! for every face G of A, the part of F that G hides: the points of F behind G's plane whose
+//! picture lies in G's picture. (The line where the two planes meet is where "behind" changes,
+//! so cutting F by G's plane is the paper's "cut by the projection of the line where the two
+//! planes meet".) The answer is VISIBLE, HIDDEN or MIXED as VTP(F) is F, empty, or neither.
+//!
+//! VISFAC2 walks A's hierarchy with the paper's early exits: a subobject whose CBOX lies wholly
+//! behind F's plane, or whose picture misses F's, is skipped; one whose INBOX hides every vertex
+//! of F (seen from outside the subobject's CBOX) empties VTP(F) at once (the points whose line
+//! of sight meets a box form a convex set, so the vertices decide for the whole face); and the
+//! walk stops as soon as VTP(F) is empty.
+//!
+//! The polygons are kept in picture coordinates (see [`Picture`]). Cutting F by G's plane
+//! keeps F's vertices and adds the points where F's edges cross G's plane, each built once from
+//! the input coordinates (exact expansions, rounded once); the differences are taken by
+//! [`crate::clip`], whose new vertices are within half an ulp of the largest picture
+//! coordinate of the exact crossings of those rounded pictures.
+//!
+//! ```
+//! use kepler::{geometry::Vector3, scene::Scene, views::View};
+//! use kepler::surfaces::{Status, visfac};
+//! let mut scene = Scene::new();
+//! let cube = scene.add_mesh(None, "cube", kepler::solids::cube(2.0).unwrap()).unwrap();
+//! let view = View::orthographic(Vector3::new(-1.0, -2.0, -3.0), Vector3::z()).unwrap();
+//! // The cube hides its own far faces and leaves its near ones whole.
+//! let faces = kepler::solids::cube(2.0).unwrap().faces().len();
+//! let statuses: Vec<Status> =
+//!     (0..faces).map(|f| visfac(&scene, cube, &view, cube, f).unwrap().status).collect();
+//! assert_eq!(statuses.iter().filter(|&&s| s == Status::Visible).count(), 3);
+//! assert_eq!(statuses.iter().filter(|&&s| s == Status::Hidden).count(), 3);
+//! ```
+
+use crate::clip;
+use crate::geometry::predicates::orient3d;
+use crate::geometry::{Aabb, Point3};
+use crate::hidden::cut_point_on_plane;
+use crate::mesh::Mesh;
+use crate::queries::sight::Sight;
+use crate::scene::{Content, ObjectId, Scene};
+use crate::views::{Eye, Picture, View};
+use crate::{Error, Result};
+use geo::{Coord, LineString, MultiPolygon, Polygon};
+use std::cmp::Ordering;
+
+/// How much of a face an object leaves visible.
+///
+/// ```
+/// assert_eq!(format!("{:?}", kepler::surfaces::Status::Mixed), "Mixed");
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Status {
+    /// Nothing of the face is hidden.
+    Visible,
+    /// All of the face is hidden.
+    Hidden,
+    /// Part of the face is hidden.
+    Mixed,
+}
+
+/// The answer of [`visfac`]: the status, the visible polygons of the face in picture
+/// coordinates, and how the hierarchy decided.
+///
+/// ```
+/// use kepler::{scene::Scene, views::View, surfaces::{Status, visfac}};
+/// let mesh = kepler::solids::cube(2.0).unwrap();
+/// let top = mesh.faces().iter().position(|f| f.plane().normal.z > 0.5).unwrap();
+/// let mut scene = Scene::new();
+/// let cube = scene.add_mesh(None, "cube", mesh).unwrap();
+/// let seen = visfac(&scene, cube, &View::standard(), cube, top).unwrap();
+/// assert_eq!((seen.status, seen.polygons.0.len()), (Status::Visible, 1));
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct VisibleFace {
+    /// VISIBLE, HIDDEN or MIXED.
+    pub status: Status,
+    /// VTP(F) in picture coordinates: the visible part of the face.
+    pub polygons: MultiPolygon<f64>,
+    /// What decided it.
+    pub exits: Exits,
+}
+
+/// How often each of VISFAC2's tests decided something.
+///
+/// ```
+/// let e = kepler::surfaces::Exits::default();
+/// assert_eq!(e.cbox_skipped + e.inbox_hid + e.faces_in_front, 0);
+/// ```
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
+pub struct Exits {
+    /// Subobjects skipped because their CBOX cannot hide the face.
+    pub cbox_skipped: u64,
+    /// Subobjects whose INBOX hid the whole face (VTP emptied at once).
+    pub inbox_hid: u64,
+    /// Faces with a part in front of the face's plane (each adds a piece to what may hide it).
+    pub faces_in_front: u64,
+    /// Faces tested.
+    pub faces_tested: u64,
+}
+
+/// VISFAC(A, F): how much of face `face` of the mesh object `owner` the object `a` (with its
+/// subobjects) leaves visible from `view`. `a` may be `owner` itself (a face never hides
+/// itself). A face seen edge-on shows no area: HIDDEN, with no polygons. An error if `owner`
+/// is not a mesh object or has no such face.
+///
+/// ```
+/// use kepler::{geometry::Vector3, scene::Scene, views::View, surfaces::{Status, visfac}};
+/// use nalgebra::{Matrix4, Vector3 as V};
+/// let mut scene = Scene::new();
+/// let near = kepler::solids::cube(2.0).unwrap().transformed(&Matrix4::new_translation(&V::new(0.0, 0.0, 3.0))).unwrap();
+/// let far = kepler::solids::cube(2.0).unwrap();
+/// let top = far.faces().iter().position(|f| f.plane().normal.z > 0.5).unwrap();
+/// let a = scene.add_mesh(None, "near", near).unwrap();
+/// let b = scene.add_mesh(None, "far", far).unwrap();
+/// // From above, the near cube hides the far cube's top face entirely.
+/// assert_eq!(visfac(&scene, a, &View::standard(), b, top).unwrap().status, Status::Hidden);
+/// ```
+pub fn visfac(
+    scene: &Scene,
+    a: ObjectId,
+    view: &View,
+    owner: ObjectId,
+    face: usize,
+) -> Result<VisibleFace> {
+    visfac_among(scene, &[a], view, owner, face)
+}
+
+/// VISFAC against the whole scene (every root object, the face's own included): the visible
+/// part of face `face` of the mesh object `owner`.
+///
+/// ```
+/// use kepler::{scene::Scene, views::View, surfaces::{Status, visfac_scene}};
+/// let mut scene = Scene::new();
+/// let cube = scene.add_mesh(None, "cube", kepler::solids::cube(2.0).unwrap()).unwrap();
+/// let mesh = scene[cube].mesh().unwrap();
+/// let bottom = mesh.faces().iter().position(|f| f.plane().normal.z < -0.5).unwrap();
+/// assert_eq!(visfac_scene(&scene, &View::standard(), cube, bottom).unwrap().status, Status::Hidden);
+/// ```
+pub fn visfac_scene(
+    scene: &Scene,
+    view: &View,
+    owner: ObjectId,
+    face: usize,
+) -> Result<VisibleFace> {
+    visfac_among(scene, scene.roots(), view, owner, face)
+}
+
+/// VISFAC of one face against the union of `objects`: one difference of the face's picture
+/// and all the pieces in front of it, so that pieces sharing edges leave nothing between them.
+fn visfac_among(
+    scene: &Scene,
+    objects: &[ObjectId],
+    view: &View,
+    owner: ObjectId,
+    face: usize,
+) -> Result<VisibleFace> {
+    let mesh = scene[owner].mesh().ok_or_else(|| Error::Object {
+        object: scene.path(owner),
+        message: "VISFAC needs a face of a mesh object".into(),
+    })?;
+    if face >= mesh.faces().len() {
+        return Err(Error::Object {
+            object: scene.path(owner),
+            message: format!("no face {face} (it has {})", mesh.faces().len()),
+        });
+    }
+    let target = Target::new(mesh, face, view);
+    if target.eye_side == Ordering::Equal {
+        // Seen edge-on: no area of it can be seen.
+        return Ok(VisibleFace {
+            status: Status::Hidden,
+            polygons: MultiPolygon::new(Vec::new()),
+            exits: Exits::default(),
+        });
+    }
+    let whole = target.polygon();
+    let mut exits = Exits::default();
+    let mut pieces = Vec::new();
+    let mut all_hidden = false;
+    for &a in objects {
+        if visfac2(scene, a, &target, (owner, face), &mut pieces, &mut exits)? {
+            all_hidden = true;
+            break;
+        }
+    }
+    let vtp = if all_hidden {
+        MultiPolygon::new(Vec::new())
+    } else {
+        clip::difference_of_union(&whole, &pieces).map_err(clip_error)?
+    };
+    let status = if vtp.0.is_empty() {
+        Status::Hidden
+    } else if touches_nothing(&whole, &pieces)? {
+        Status::Visible
+    } else {
+        Status::Mixed
+    };
+    Ok(VisibleFace {
+        status,
+        polygons: if status == Status::Visible {
+            whole
+        } else {
+            vtp
+        },
+        exits,
+    })
+}
+
+/// The face being tested: its vertices, plane and picture.
+struct Target {
+    vertices: Vec<Point3>,
+    /// A triangle of the face (its plane).
+    plane: [Point3; 3],
+    eye: Eye,
+    picture: Picture,
+    /// The side of the face's plane the eye is on.
+    eye_side: Ordering,
+}
+
+impl Target {
+    fn new(mesh: &Mesh, face: usize, view: &View) -> Target {
+        let vertices: Vec<Point3> = mesh.face_points(face).collect();
+        let plane = mesh.triangle(mesh.faces()[face].triangle_range().start);
+        let eye = *view.eye();
+        Target {
+            eye_side: eye.orient3d(&plane[0], &plane[1], &plane[2]),
+            vertices,
+            plane,
+            eye,
+            picture: Picture::of(view),
+        }
+    }
+
+    /// The whole face in the picture.
+    fn polygon(&self) -> MultiPolygon<f64> {
+        ring(
+            self.vertices
+                .iter()
+                .map(|v| self.picture.point(v))
+                .collect(),
+        )
+    }
+
+    /// Whether no point of the closed box lies strictly on the eye's side of the face's plane
+    /// (decided exactly at its corners): then nothing in it hides the face.
+    fn cannot_be_hidden_by(&self, b: &Aabb) -> bool {
+        let [p, q, r] = &self.plane;
+        b.corners()
+            .iter()
+            .all(|c| orient3d(p, q, r, c) != self.eye_side)
+    }
+
+    /// The picture of the part of the polygon `corners` (a face of an occluder) strictly on
+    /// the eye's side of this face's plane, or `None` when no part is. Its vertices are the
+    /// pictures of the corners on that side or on the plane, and of the points where its edges
+    /// cross the plane, each built once from the input coordinates.
+    fn in_front(&self, corners: &[Point3]) -> Option<MultiPolygon<f64>> {
+        let [p, q, r] = &self.plane;
+        let sides: Vec<Ordering> = corners.iter().map(|c| orient3d(p, q, r, c)).collect();
+        if !sides.contains(&self.eye_side) {
+            return None;
+        }
+        let n = corners.len();
+        let mut out = Vec::with_capacity(n + 2);
+        for i in 0..n {
+            let j = (i + 1) % n;
+            // The closed half-space on the eye's side: corners on the plane stay.
+            if sides[i] != self.eye_side.reverse() {
+                out.push(self.picture.point(&corners[i]));
+            }
+            if sides[i] != Ordering::Equal && sides[j] != Ordering::Equal && sides[i] != sides[j] {
+                out.push(cut_point_on_plane(
+                    &self.picture,
+                    &self.eye,
+                    &self.plane,
+                    &corners[i],
+                    &corners[j],
+                ));
+            }
+        }
+        (out.len() >= 3).then(|| ring(out))
+    }
+}
+
+/// Whether no piece overlaps the face's picture (in area).
+fn touches_nothing(whole: &MultiPolygon<f64>, pieces: &[MultiPolygon<f64>]) -> Result<bool> {
+    for piece in pieces {
+        if !clip::intersection(whole, piece)
+            .map_err(clip_error)?
+            .0
+            .is_empty()
+        {
+            return Ok(false);
+        }
+    }
+    Ok(true)
+}
+
+/// A closed ring of picture points as a multipolygon.
+fn ring(points: Vec<[f64; 2]>) -> MultiPolygon<f64> {
+    let coords: Vec<Coord<f64>> = points.into_iter().map(|[x, y]| Coord { x, y }).collect();
+    MultiPolygon::new(vec![Polygon::new(LineString::new(coords), Vec::new())])
+}
+
+/// VISFAC2(A, F): gathers in `pieces` the pictures of the parts of `a`'s faces in front of
+/// F's plane (their union is what `a` hides of F), with the hierarchy's early exits; `true`
+/// when an INBOX hides all of F.
+fn visfac2(
+    scene: &Scene,
+    a: ObjectId,
+    target: &Target,
+    own: (ObjectId, usize),
+    pieces: &mut Vec<MultiPolygon<f64>>,
+    exits: &mut Exits,
+) -> Result<bool> {
+    let cbox = scene.cbox(a);
+    if target.cannot_be_hidden_by(&cbox) {
+        exits.cbox_skipped += 1;
+        return Ok(false);
+    }
+    if let Some(inbox) = scene.inbox(a) {
+        let hides_all = target.vertices.iter().all(|v| {
+            let sight = Sight::to_eye(v, &target.eye);
+            sight.eye_outside(&cbox) && sight.surely_meets_open(&inbox.aabb)
+        });
+        if hides_all {
+            exits.inbox_hid += 1;
+            return Ok(true);
+        }
+    }
+    match scene[a].content() {
+        Content::Mesh(mesh) => {
+            for g in 0..mesh.faces().len() {
+                if (a, g) == own {
+                    continue;
+                }
+                exits.faces_tested += 1;
+                let corners: Vec<Point3> = mesh.face_points(g).collect();
+                if let Some(piece) = target.in_front(&corners) {
+                    exits.faces_in_front += 1;
+                    pieces.push(piece);
+                }
+            }
+        }
+        Content::Subobjects(children) => {
+            for &c in children {
+                if visfac2(scene, c, target, own, pieces, exits)? {
+                    return Ok(true);
+                }
+            }
+        }
+    }
+    Ok(false)
+}
+
+/// A clipping error as kepler's error (only non-finite or huge pictures cause one).
+fn clip_error(e: clip::ClipError) -> Error {
+    Error::Object {
+        object: "picture".into(),
+        message: e.to_string(),
+    }
+}

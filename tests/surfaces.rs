@@ -1,0 +1,287 @@
+//! VISFAC (Franklin 1981, algorithm D) on hand-made scenes with exact answers: squares in
+//! front of, beside and half over another, two faces crossing in depth, an INBOX that hides a
+//! face at once, and a cube's own faces from orthographic and perspective views.
+
+use geo::{Area, BoundingRect, MultiPolygon};
+use kepler::geometry::{Point3, Vector3};
+use kepler::mesh::Mesh;
+use kepler::scene::{ObjectId, Scene};
+use kepler::solids;
+use kepler::surfaces::{Status, visfac};
+use kepler::views::View;
+use nalgebra::Matrix4;
+
+/// A single square face (an open mesh) with corners `(x0, y0)`, `(x1, y1)` at height `z`,
+/// counter-clockwise from above.
+fn square(x: [f64; 2], y: [f64; 2], z: f64) -> Mesh {
+    let v = vec![
+        Point3::new(x[0], y[0], z),
+        Point3::new(x[1], y[0], z),
+        Point3::new(x[1], y[1], z),
+        Point3::new(x[0], y[1], z),
+    ];
+    Mesh::from_polygons(v, vec![vec![0, 1, 2, 3]]).unwrap()
+}
+
+/// The scene of a back square `[0, 2]²` at z = 0 and a front mesh; their ids.
+fn over(front: Mesh) -> (Scene, ObjectId, ObjectId) {
+    let mut scene = Scene::new();
+    let back = scene
+        .add_mesh(None, "back", square([0.0, 2.0], [0.0, 2.0], 0.0))
+        .unwrap();
+    let front = scene.add_mesh(None, "front", front).unwrap();
+    (scene, back, front)
+}
+
+/// The bounding box of a drawing's polygons: `[x0, y0, x1, y1]`.
+fn bounds(p: &MultiPolygon<f64>) -> [f64; 4] {
+    let r = p.bounding_rect().expect("not empty");
+    [r.min().x, r.min().y, r.max().x, r.max().y]
+}
+
+#[test]
+fn a_square_in_front_beside_and_half_over_another() {
+    let view = View::standard();
+    // Fully in front: HIDDEN, nothing left.
+    let (scene, back, front) = over(square([-1.0, 3.0], [-1.0, 3.0], 1.0));
+    let f = visfac(&scene, front, &view, back, 0).unwrap();
+    assert_eq!(f.status, Status::Hidden);
+    assert!(f.polygons.0.is_empty());
+    // Beside: VISIBLE, the whole square.
+    let (scene, back, front) = over(square([3.0, 5.0], [0.0, 2.0], 1.0));
+    let f = visfac(&scene, front, &view, back, 0).unwrap();
+    assert_eq!(f.status, Status::Visible);
+    assert_eq!(f.polygons.unsigned_area(), 4.0);
+    // Half over: MIXED, exactly [0, 1] × [0, 2] left.
+    let (scene, back, front) = over(square([1.0, 3.0], [-1.0, 3.0], 1.0));
+    let f = visfac(&scene, front, &view, back, 0).unwrap();
+    assert_eq!(f.status, Status::Mixed);
+    assert_eq!(f.polygons.0.len(), 1);
+    assert_eq!(f.polygons.unsigned_area(), 2.0);
+    assert_eq!(bounds(&f.polygons), [0.0, 0.0, 1.0, 2.0]);
+    // Behind instead of in front: it hides nothing.
+    let (scene, back, front) = over(square([-1.0, 3.0], [-1.0, 3.0], -1.0));
+    assert_eq!(
+        visfac(&scene, front, &view, back, 0).unwrap().status,
+        Status::Visible
+    );
+}
+
+#[test]
+fn two_faces_crossing_in_depth_are_cut_along_their_intersection_line() {
+    // A square tilted from z = -1 at x = 0 to z = 1 at x = 2 crosses the flat square z = 0
+    // along x = 1. Seen from above, each hides the other's half beyond that line.
+    let tilted = Mesh::from_polygons(
+        vec![
+            Point3::new(0.0, 0.0, -1.0),
+            Point3::new(2.0, 0.0, 1.0),
+            Point3::new(2.0, 2.0, 1.0),
+            Point3::new(0.0, 2.0, -1.0),
+        ],
+        vec![vec![0, 1, 2, 3]],
+    )
+    .unwrap();
+    let (scene, back, front) = over(tilted);
+    let view = View::standard();
+    let flat = visfac(&scene, front, &view, back, 0).unwrap();
+    assert_eq!(flat.status, Status::Mixed);
+    assert_eq!(bounds(&flat.polygons), [0.0, 0.0, 1.0, 2.0]);
+    assert_eq!(flat.polygons.unsigned_area(), 2.0);
+    let slope = visfac(&scene, back, &view, front, 0).unwrap();
+    assert_eq!(slope.status, Status::Mixed);
+    assert_eq!(bounds(&slope.polygons), [1.0, 0.0, 2.0, 2.0]);
+    // From below, the other halves.
+    let below = View::orthographic(Vector3::z(), Vector3::y()).unwrap();
+    let flat = visfac(&scene, front, &below, back, 0).unwrap();
+    assert_eq!(flat.status, Status::Mixed);
+    assert_eq!(flat.polygons.unsigned_area(), 2.0);
+}
+
+#[test]
+fn an_inbox_hides_a_face_at_once() {
+    let mut scene = Scene::new();
+    let back = scene
+        .add_mesh(None, "back", square([0.0, 1.0], [0.0, 1.0], 0.0))
+        .unwrap();
+    let group = scene.add_group(None, "block").unwrap();
+    let cube = solids::cube(4.0)
+        .unwrap()
+        .transformed(&Matrix4::new_translation(&nalgebra::Vector3::new(
+            0.5, 0.5, 3.0,
+        )))
+        .unwrap();
+    scene.add_mesh(Some(group), "cube", cube).unwrap();
+    let f = visfac(&scene, group, &View::standard(), back, 0).unwrap();
+    assert_eq!(f.status, Status::Hidden);
+    assert_eq!(f.exits.inbox_hid, 1);
+    assert_eq!(f.exits.faces_tested, 0, "no face was needed");
+    // Beside the block: its INBOX decides nothing, and nothing hides the square.
+    let side = scene
+        .add_mesh(None, "side", square([10.0, 11.0], [0.0, 1.0], 0.0))
+        .unwrap();
+    let s = visfac(&scene, group, &View::standard(), side, 0).unwrap();
+    assert_eq!(s.status, Status::Visible);
+    assert_eq!(s.exits.inbox_hid, 0);
+}
+
+#[test]
+fn a_cube_hides_its_own_far_faces() {
+    let mut scene = Scene::new();
+    let cube = scene
+        .add_mesh(None, "cube", solids::cube(2.0).unwrap())
+        .unwrap();
+    let views = [
+        View::orthographic(Vector3::new(-1.0, -2.0, -3.0), Vector3::z()).unwrap(),
+        View::orthographic(Vector3::new(2.0, -1.0, -0.5), Vector3::z()).unwrap(),
+        View::perspective(
+            Point3::new(4.0, -5.0, 3.0),
+            Point3::origin(),
+            Vector3::z(),
+            40.0,
+        )
+        .unwrap(),
+    ];
+    for view in &views {
+        let statuses: Vec<Status> = (0..6)
+            .map(|f| visfac(&scene, cube, view, cube, f).unwrap().status)
+            .collect();
+        let count = |s: Status| statuses.iter().filter(|&&x| x == s).count();
+        assert_eq!(
+            (count(Status::Visible), count(Status::Hidden)),
+            (3, 3),
+            "{view:?}"
+        );
+    }
+    // Straight down: the top is visible, the bottom hidden, the sides seen edge-on.
+    let down: Vec<Status> = (0..6)
+        .map(|f| {
+            visfac(&scene, cube, &View::standard(), cube, f)
+                .unwrap()
+                .status
+        })
+        .collect();
+    assert_eq!(down.iter().filter(|&&s| s == Status::Visible).count(), 1);
+    assert_eq!(down.iter().filter(|&&s| s == Status::Hidden).count(), 5);
+}
+
+#[test]
+fn bad_faces_are_errors() {
+    let mut scene = Scene::new();
+    let cube = scene
+        .add_mesh(None, "cube", solids::cube(2.0).unwrap())
+        .unwrap();
+    let group = scene.add_group(None, "g").unwrap();
+    assert!(visfac(&scene, cube, &View::standard(), cube, 6).is_err());
+    assert!(visfac(&scene, cube, &View::standard(), group, 0).is_err());
+}
+
+/// Whether the point `p` lies inside the polygons, and its distance to their boundaries.
+fn locate(polygons: &MultiPolygon<f64>, p: [f64; 2]) -> (bool, f64) {
+    use geo::{Contains, Distance, Euclidean};
+    let point = geo::Point::new(p[0], p[1]);
+    let inside = polygons.contains(&point);
+    let distance = polygons
+        .iter()
+        .flat_map(|poly| std::iter::once(poly.exterior()).chain(poly.interiors()))
+        .flat_map(|ring| ring.lines())
+        .map(|line| Euclidean.distance(&line, &point))
+        .fold(f64::INFINITY, f64::min);
+    (inside, distance)
+}
+
+/// On random scenes of boxes, the visible polygons of every face agree with VISP: points of a
+/// face's picture well inside its visible polygons are visible, and points well outside them
+/// (but inside the face) are hidden. The 3-D point is found on the face's plane along the line
+/// of sight and moved a hair towards the eye, so that its own face cannot hide it.
+#[test]
+fn visible_polygons_agree_with_visp() {
+    use kepler::queries::visp::{Visibility, VisibilityIndex};
+    use kepler::views::Picture;
+    let mut state = 0x5eed_u64;
+    let mut unit = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let (mut checked, mut hidden) = (0usize, 0usize);
+    for case in 0..12 {
+        let mut scene = Scene::new();
+        for i in 0..3 {
+            let size = Vector3::new(0.5 + 2.0 * unit(), 0.5 + 2.0 * unit(), 0.5 + 2.0 * unit());
+            let axis = nalgebra::Unit::new_normalize(Vector3::new(
+                unit() - 0.5,
+                unit() - 0.5,
+                unit() - 0.5,
+            ));
+            let rotation = nalgebra::Rotation3::from_axis_angle(&axis, 6.0 * unit());
+            let shift =
+                nalgebra::Vector3::new(2.0 * unit() - 1.0, 2.0 * unit() - 1.0, 2.0 * unit() - 1.0);
+            let m = Matrix4::new_translation(&shift) * rotation.to_homogeneous();
+            let mesh = solids::cuboid(size).unwrap().transformed(&m).unwrap();
+            scene.add_mesh(None, format!("box{i}"), mesh).unwrap();
+        }
+        let dir = Vector3::new(unit() - 0.5, unit() - 0.5, -1.0 - unit());
+        let view = View::orthographic(dir, Vector3::y()).unwrap();
+        let picture = Picture::of(&view);
+        let (right, up) = view.right_up();
+        let toward_eye = -view.forward();
+        let index = VisibilityIndex::whole_scene(&scene, view.clone());
+        let objects: Vec<ObjectId> = scene.roots().to_vec();
+        for &id in &objects {
+            let mesh = scene[id].mesh().unwrap().clone();
+            for f in 0..mesh.faces().len() {
+                let seen = kepler::surfaces::visfac_scene(&scene, &view, id, f).unwrap();
+                let corners: Vec<Point3> = mesh.face_points(f).collect();
+                let whole: Vec<[f64; 2]> = corners.iter().map(|c| picture.point(c)).collect();
+                let plane = mesh.faces()[f].plane();
+                for _ in 0..60 {
+                    // A random point of the face: a random convex combination of its corners.
+                    let w: Vec<f64> = corners.iter().map(|_| unit()).collect();
+                    let total: f64 = w.iter().sum();
+                    let x = corners
+                        .iter()
+                        .zip(&w)
+                        .fold(Vector3::zeros(), |acc, (c, wi)| {
+                            acc + c.coords * (wi / total)
+                        });
+                    let on_face = Point3::from(x);
+                    let p = [right.dot(&on_face.coords), up.dot(&on_face.coords)];
+                    let (in_visible, to_visible) = locate(&seen.polygons, p);
+                    let (_, to_face) = locate(&kepler_face(&whole), p);
+                    if to_visible < 1e-6 || to_face < 1e-6 {
+                        continue;
+                    }
+                    // Off the face's plane by a hair, on the eye's side.
+                    let lift = if plane.normal.dot(&toward_eye) > 0.0 {
+                        1e-9
+                    } else {
+                        -1e-9
+                    };
+                    let probe = on_face + plane.normal * lift;
+                    let visible = index.visp(&probe).0 == Visibility::Visible;
+                    assert_eq!(
+                        visible, in_visible,
+                        "case {case}, object {id:?} face {f} ({:?}): point {p:?}",
+                        seen.status
+                    );
+                    checked += 1;
+                    hidden += usize::from(!visible);
+                }
+            }
+        }
+    }
+    assert!(
+        checked > 2_000 && hidden > 500 && checked - hidden > 500,
+        "{checked} {hidden}"
+    );
+}
+
+/// A face's picture as polygons (for distances to its outline).
+fn kepler_face(points: &[[f64; 2]]) -> MultiPolygon<f64> {
+    let ring: Vec<geo::Coord<f64>> = points.iter().map(|&[x, y]| geo::Coord { x, y }).collect();
+    MultiPolygon::new(vec![geo::Polygon::new(
+        geo::LineString::new(ring),
+        Vec::new(),
+    )])
+}
