@@ -285,3 +285,95 @@ fn kepler_face(points: &[[f64; 2]]) -> MultiPolygon<f64> {
         Vec::new(),
     )])
 }
+
+/// Random scenes of three rotated boxes (seeded).
+fn random_boxes(seed: u64) -> Scene {
+    let mut state = seed;
+    let mut unit = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut scene = Scene::new();
+    for i in 0..3 {
+        let size = Vector3::new(0.5 + 2.0 * unit(), 0.5 + 2.0 * unit(), 0.5 + 2.0 * unit());
+        let axis =
+            nalgebra::Unit::new_normalize(Vector3::new(unit() - 0.5, unit() - 0.5, unit() - 0.5));
+        let rotation = nalgebra::Rotation3::from_axis_angle(&axis, 6.0 * unit());
+        let shift =
+            nalgebra::Vector3::new(2.0 * unit() - 1.0, 2.0 * unit() - 1.0, 2.0 * unit() - 1.0);
+        let m = Matrix4::new_translation(&shift) * rotation.to_homogeneous();
+        let mesh = solids::cuboid(size).unwrap().transformed(&m).unwrap();
+        scene.add_mesh(None, format!("box{i}"), mesh).unwrap();
+    }
+    scene
+}
+
+/// Area conservation: the visible polygons of all faces sum to the area of the union of all
+/// faces' pictures (computed independently, by uniting the pictures), and no two visible
+/// polygons overlap.
+#[test]
+fn visible_areas_sum_to_the_area_of_the_picture() {
+    use kepler::surfaces::visible_surfaces;
+    use kepler::views::Picture;
+    for seed in 1..=10u64 {
+        let scene = random_boxes(0x9e37_79b9 * seed);
+        let view = View::orthographic(
+            Vector3::new(-1.0, -2.0, -3.0 + 0.1 * seed as f64),
+            Vector3::z(),
+        )
+        .unwrap();
+        let picture = Picture::of(&view);
+        let faces = visible_surfaces(&scene, &view).unwrap();
+        let visible: f64 = faces
+            .iter()
+            .map(|f| f.visible.polygons.unsigned_area())
+            .sum();
+        let mut union = MultiPolygon::new(Vec::new());
+        for &id in scene.roots() {
+            let mesh = scene[id].mesh().unwrap();
+            for f in 0..mesh.faces().len() {
+                let ring: Vec<[f64; 2]> = mesh.face_points(f).map(|v| picture.point(&v)).collect();
+                union = kepler::clip::union(&union, &kepler_face(&ring)).unwrap();
+            }
+        }
+        let total = union.unsigned_area();
+        assert!(
+            (visible - total).abs() <= 1e-9 * total,
+            "seed {seed}: visible {visible} against the picture's {total}"
+        );
+        let pieces: Vec<&MultiPolygon<f64>> = faces
+            .iter()
+            .map(|f| &f.visible.polygons)
+            .filter(|p| !p.0.is_empty())
+            .collect();
+        for i in 0..pieces.len() {
+            for j in i + 1..pieces.len() {
+                let overlap = kepler::clip::intersection(pieces[i], pieces[j])
+                    .unwrap()
+                    .unsigned_area();
+                assert!(
+                    overlap <= 1e-12 * total,
+                    "seed {seed}: pieces {i} and {j} overlap by {overlap}"
+                );
+            }
+        }
+        // The texture polygons are the visible polygons on the face's plane: in an orthographic
+        // view, picture areas are texture areas foreshortened by |normal · forward|.
+        for f in &faces {
+            let face = &scene[f.object].mesh().unwrap().faces()[f.face];
+            let cos = face.plane().normal.dot(&view.forward()).abs();
+            let (texture, seen) = (
+                f.texture.unsigned_area(),
+                f.visible.polygons.unsigned_area(),
+            );
+            assert!(
+                (texture * cos - seen).abs() <= 1e-9 * face.area(),
+                "seed {seed}: face {} texture area {texture} × {cos} against {seen}",
+                f.face
+            );
+            assert!(texture <= face.area() * (1.0 + 1e-9));
+        }
+    }
+}

@@ -36,6 +36,7 @@
 use crate::clip;
 use crate::geometry::predicates::orient3d;
 use crate::geometry::{Aabb, Point3};
+use crate::grid::Cells;
 use crate::hidden::cut_point_on_plane;
 use crate::mesh::Mesh;
 use crate::queries::sight::Sight;
@@ -43,6 +44,8 @@ use crate::scene::{Content, ObjectId, Scene};
 use crate::views::{Eye, Picture, View};
 use crate::{Error, Result};
 use geo::{Coord, LineString, MultiPolygon, Polygon};
+use rayon::prelude::*;
+use slotmap::SecondaryMap;
 use std::cmp::Ordering;
 
 /// How much of a face an object leaves visible.
@@ -125,7 +128,7 @@ pub fn visfac(
     owner: ObjectId,
     face: usize,
 ) -> Result<VisibleFace> {
-    visfac_among(scene, &[a], view, owner, face)
+    visfac_among(scene, &[a], view, owner, face, None)
 }
 
 /// VISFAC against the whole scene (every root object, the face's own included): the visible
@@ -145,7 +148,112 @@ pub fn visfac_scene(
     owner: ObjectId,
     face: usize,
 ) -> Result<VisibleFace> {
-    visfac_among(scene, scene.roots(), view, owner, face)
+    visfac_among(scene, scene.roots(), view, owner, face, None)
+}
+
+/// One face's visible part in the whole scene: VISFAC's answer, and its polygons in the face's
+/// texture coordinate system (Franklin's texture coordinates; see [`crate::mesh::TextureFrame`]).
+///
+/// ```
+/// let r = kepler::surfaces::FaceReport {
+///     object: Default::default(),
+///     face: 0,
+///     visible: kepler::surfaces::VisibleFace {
+///         status: kepler::surfaces::Status::Hidden,
+///         polygons: geo::MultiPolygon::new(vec![]),
+///         exits: Default::default(),
+///     },
+///     texture: geo::MultiPolygon::new(vec![]),
+/// };
+/// assert_eq!(r.face, 0);
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct FaceReport {
+    /// The mesh object.
+    pub object: ObjectId,
+    /// The face's index in its mesh.
+    pub face: usize,
+    /// Status and visible polygons in picture coordinates.
+    pub visible: VisibleFace,
+    /// The visible polygons in the face's texture coordinates (mapped back from the picture in
+    /// floating point).
+    pub texture: MultiPolygon<f64>,
+}
+
+/// The whole-scene pass: every face of every mesh object, with its visible polygons against
+/// all objects (its own included), in parallel. Each face is tested only against the faces of
+/// each mesh whose pictures may overlap its own (a uniform grid over the picture per mesh),
+/// after the hierarchy's CBOX and INBOX exits. A perspective view needs every vertex in front
+/// of the eye (an error names the object otherwise).
+///
+/// ```
+/// use kepler::{geometry::Vector3, scene::Scene, views::View, surfaces::{Status, visible_surfaces}};
+/// let mut scene = Scene::new();
+/// scene.add_mesh(None, "cube", kepler::solids::cube(2.0).unwrap()).unwrap();
+/// let view = View::orthographic(Vector3::new(-1.0, -2.0, -3.0), Vector3::z()).unwrap();
+/// let faces = visible_surfaces(&scene, &view).unwrap();
+/// assert_eq!(faces.iter().filter(|f| f.visible.status == Status::Visible).count(), 3);
+/// ```
+pub fn visible_surfaces(scene: &Scene, view: &View) -> Result<Vec<FaceReport>> {
+    let picture = Picture::of(view);
+    let mut meshes = Vec::new();
+    for (id, _) in scene.walk() {
+        if let Some(mesh) = scene[id].mesh() {
+            if let Some(i) = mesh.vertices().iter().position(|p| !picture.in_front(p)) {
+                return Err(Error::Object {
+                    object: scene.path(id),
+                    message: format!("vertex {i} is not in front of the eye"),
+                });
+            }
+            meshes.push((id, mesh));
+        }
+    }
+    let built: Vec<(ObjectId, FaceGrid)> = meshes
+        .par_iter()
+        .map(|&(id, mesh)| (id, FaceGrid::new(mesh, &picture)))
+        .collect();
+    let mut grids = SecondaryMap::new();
+    grids.extend(built);
+    let faces: Vec<(ObjectId, &Mesh, usize)> = meshes
+        .iter()
+        .flat_map(|&(id, mesh)| (0..mesh.faces().len()).map(move |f| (id, mesh, f)))
+        .collect();
+    faces
+        .par_iter()
+        .map(|&(id, mesh, f)| {
+            let visible = visfac_among(scene, scene.roots(), view, id, f, Some(&grids))?;
+            let plane = mesh.faces()[f].plane();
+            let frame = mesh.faces()[f].texture();
+            let texture = map_points(&visible.polygons, |p| {
+                picture
+                    .unproject(p, &plane.normal, plane.d)
+                    .map(|x| frame.to_texture(&x))
+                    .map_or(p, |t| [t.x, t.y])
+            });
+            Ok(FaceReport {
+                object: id,
+                face: f,
+                visible,
+                texture,
+            })
+        })
+        .collect()
+}
+
+/// The polygons with every point mapped by `f`.
+fn map_points(polygons: &MultiPolygon<f64>, f: impl Fn([f64; 2]) -> [f64; 2]) -> MultiPolygon<f64> {
+    let ring = |r: &LineString<f64>| -> LineString<f64> {
+        r.coords()
+            .map(|c| {
+                let [x, y] = f([c.x, c.y]);
+                Coord { x, y }
+            })
+            .collect()
+    };
+    polygons
+        .iter()
+        .map(|p| Polygon::new(ring(p.exterior()), p.interiors().iter().map(ring).collect()))
+        .collect()
 }
 
 /// VISFAC of one face against the union of `objects`: one difference of the face's picture
@@ -156,6 +264,7 @@ fn visfac_among(
     view: &View,
     owner: ObjectId,
     face: usize,
+    grids: Option<&SecondaryMap<ObjectId, FaceGrid>>,
 ) -> Result<VisibleFace> {
     let mesh = scene[owner].mesh().ok_or_else(|| Error::Object {
         object: scene.path(owner),
@@ -181,7 +290,15 @@ fn visfac_among(
     let mut pieces = Vec::new();
     let mut all_hidden = false;
     for &a in objects {
-        if visfac2(scene, a, &target, (owner, face), &mut pieces, &mut exits)? {
+        if visfac2(
+            scene,
+            a,
+            &target,
+            (owner, face),
+            grids,
+            &mut pieces,
+            &mut exits,
+        )? {
             all_hidden = true;
             break;
         }
@@ -218,6 +335,9 @@ struct Target {
     picture: Picture,
     /// The side of the face's plane the eye is on.
     eye_side: Ordering,
+    /// The bounding box of its picture.
+    low: [f64; 2],
+    high: [f64; 2],
 }
 
 impl Target {
@@ -225,12 +345,16 @@ impl Target {
         let vertices: Vec<Point3> = mesh.face_points(face).collect();
         let plane = mesh.triangle(mesh.faces()[face].triangle_range().start);
         let eye = *view.eye();
+        let picture = Picture::of(view);
+        let (low, high) = picture_box(vertices.iter().map(|v| picture.point(v)));
         Target {
             eye_side: eye.orient3d(&plane[0], &plane[1], &plane[2]),
             vertices,
             plane,
             eye,
-            picture: Picture::of(view),
+            picture,
+            low,
+            high,
         }
     }
 
@@ -299,6 +423,103 @@ fn touches_nothing(whole: &MultiPolygon<f64>, pieces: &[MultiPolygon<f64>]) -> R
     Ok(true)
 }
 
+/// The bounding box of picture points.
+fn picture_box(points: impl Iterator<Item = [f64; 2]>) -> ([f64; 2], [f64; 2]) {
+    points.fold(
+        ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
+        |(lo, hi), p| {
+            (
+                [lo[0].min(p[0]), lo[1].min(p[1])],
+                [hi[0].max(p[0]), hi[1].max(p[1])],
+            )
+        },
+    )
+}
+
+/// The faces of one mesh listed by the cells of the picture their pictures' bounding boxes
+/// (grown by a margin of 2⁻⁴⁰ of the largest coordinate, far above rounding) cover, so that
+/// a face is tested only against the faces whose pictures may overlap its own.
+#[derive(Debug)]
+struct FaceGrid {
+    cells: Cells,
+    margin: f64,
+    /// Cell `c` lists `faces[start[c]..start[c + 1]]`.
+    start: Vec<u32>,
+    faces: Vec<u32>,
+}
+
+impl FaceGrid {
+    /// The grid of `mesh`'s faces, about one cell per face.
+    fn new(mesh: &Mesh, picture: &Picture) -> FaceGrid {
+        let boxes: Vec<([f64; 2], [f64; 2])> = (0..mesh.faces().len())
+            .map(|f| picture_box(mesh.face_points(f).map(|v| picture.point(&v))))
+            .collect();
+        let (lo, hi) = boxes.iter().fold(
+            ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
+            |(lo, hi), b| {
+                (
+                    [lo[0].min(b.0[0]), lo[1].min(b.0[1])],
+                    [hi[0].max(b.1[0]), hi[1].max(b.1[1])],
+                )
+            },
+        );
+        let n = boxes.len().max(1);
+        let side = (n as f64).sqrt().ceil() as usize;
+        let extent = [0, 1].map(|k| (hi[k] - lo[k]).max(0.0));
+        let cells = Cells::new(lo, extent, [side, side]);
+        let margin = GRID_MARGIN * lo.iter().chain(&hi).fold(0.0f64, |m, v| m.max(v.abs()));
+        let mut items: Vec<(u32, u32)> = Vec::new();
+        for (f, (low, high)) in boxes.iter().enumerate() {
+            for c in cells_of(&cells, margin, *low, *high) {
+                items.push((c as u32, f as u32));
+            }
+        }
+        items.sort_unstable();
+        let mut start = vec![0u32; cells.count() + 1];
+        for &(c, _) in &items {
+            start[c as usize + 1] += 1;
+        }
+        for c in 1..start.len() {
+            start[c] += start[c - 1];
+        }
+        FaceGrid {
+            cells,
+            margin,
+            start,
+            faces: items.into_iter().map(|(_, f)| f).collect(),
+        }
+    }
+
+    /// The faces listed in the cells the box `[low, high]` covers, each once, in order.
+    fn near(&self, low: [f64; 2], high: [f64; 2]) -> Vec<usize> {
+        let mut out: Vec<usize> = cells_of(&self.cells, self.margin, low, high)
+            .flat_map(|c| {
+                self.faces[self.start[c] as usize..self.start[c + 1] as usize]
+                    .iter()
+                    .map(|&f| f as usize)
+            })
+            .collect();
+        out.sort_unstable();
+        out.dedup();
+        out
+    }
+}
+
+/// The relative margin of the face grid: 2⁻⁴⁰.
+const GRID_MARGIN: f64 = 1.0 / (1u64 << 40) as f64;
+
+/// The cells the box `[low, high]`, grown by `margin`, covers.
+fn cells_of(
+    cells: &Cells,
+    margin: f64,
+    low: [f64; 2],
+    high: [f64; 2],
+) -> impl Iterator<Item = usize> + '_ {
+    let range = move |k: usize| cells.index(k, low[k] - margin)..=cells.index(k, high[k] + margin);
+    let width = cells.shape()[0];
+    range(1).flat_map(move |row| range(0).map(move |col| row * width + col))
+}
+
 /// A closed ring of picture points as a multipolygon.
 fn ring(points: Vec<[f64; 2]>) -> MultiPolygon<f64> {
     let coords: Vec<Coord<f64>> = points.into_iter().map(|[x, y]| Coord { x, y }).collect();
@@ -313,6 +534,7 @@ fn visfac2(
     a: ObjectId,
     target: &Target,
     own: (ObjectId, usize),
+    grids: Option<&SecondaryMap<ObjectId, FaceGrid>>,
     pieces: &mut Vec<MultiPolygon<f64>>,
     exits: &mut Exits,
 ) -> Result<bool> {
@@ -333,7 +555,11 @@ fn visfac2(
     }
     match scene[a].content() {
         Content::Mesh(mesh) => {
-            for g in 0..mesh.faces().len() {
+            let near = match grids.and_then(|g| g.get(a)) {
+                Some(grid) => grid.near(target.low, target.high),
+                None => (0..mesh.faces().len()).collect(),
+            };
+            for g in near {
                 if (a, g) == own {
                     continue;
                 }
@@ -347,7 +573,7 @@ fn visfac2(
         }
         Content::Subobjects(children) => {
             for &c in children {
-                if visfac2(scene, c, target, own, pieces, exits)? {
+                if visfac2(scene, c, target, own, grids, pieces, exits)? {
                     return Ok(true);
                 }
             }

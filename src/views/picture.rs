@@ -144,6 +144,33 @@ impl Picture {
         }
     }
 
+    /// The point of the plane `normal·x + d = 0` whose picture is `p`, in floating point (for
+    /// texture coordinates, not for decisions), or `None` when the plane contains the lines of
+    /// sight (seen edge-on) or the point is not in front of a perspective eye.
+    ///
+    /// ```
+    /// use kepler::{geometry::{Point3, Vector3}, views::{Picture, View}};
+    /// let pic = Picture::of(&View::standard());
+    /// let q = pic.unproject([0.5, 0.25], &Vector3::z(), -2.0).unwrap();
+    /// assert_eq!(q, Point3::new(0.5, 0.25, 2.0));
+    /// assert!(pic.unproject([0.5, 0.25], &Vector3::x(), 0.0).is_none());
+    /// ```
+    pub fn unproject(&self, p: [f64; 2], normal: &Vector3, d: f64) -> Option<Point3> {
+        let [r, u, w] = &self.rows;
+        if self.perspective {
+            // x - eye = λ·D with rows·D = (p.x, p.y, 1).
+            let m = nalgebra::Matrix3::from_rows(&[r.transpose(), u.transpose(), w.transpose()]);
+            let dir = m.lu().solve(&Vector3::new(p[0], p[1], 1.0))?;
+            let denominator = normal.dot(&dir);
+            let lambda = -(normal.dot(&self.origin.coords) + d) / denominator;
+            (lambda.is_finite() && lambda > 0.0).then(|| self.origin + dir * lambda)
+        } else {
+            let m = nalgebra::Matrix3::from_rows(&[r.transpose(), u.transpose(), normal.transpose()]);
+            let x = m.lu().solve(&Vector3::new(p[0], p[1], -d))?;
+            x.iter().all(|c| c.is_finite()).then(|| Point3::from(x))
+        }
+    }
+
     /// Whether `p` lies strictly in front of a perspective eye (always true for an
     /// orthographic view), decided exactly.
     ///
