@@ -165,7 +165,8 @@ impl Picture {
             let lambda = -(normal.dot(&self.origin.coords) + d) / denominator;
             (lambda.is_finite() && lambda > 0.0).then(|| self.origin + dir * lambda)
         } else {
-            let m = nalgebra::Matrix3::from_rows(&[r.transpose(), u.transpose(), normal.transpose()]);
+            let m =
+                nalgebra::Matrix3::from_rows(&[r.transpose(), u.transpose(), normal.transpose()]);
             let x = m.lu().solve(&Vector3::new(p[0], p[1], -d))?;
             x.iter().all(|c| c.is_finite()).then(|| Point3::from(x))
         }
