@@ -8,11 +8,14 @@ use kepler::geometry::{Point3, Vector3};
 use kepler::grid::{intersecting_pairs, random_segments};
 use kepler::hidden::{self, Drawing, EdgeClass, EdgeSelection};
 use kepler::io::points::{read_points, read_segments};
-use kepler::output::{SvgOptions, write_json, write_svg};
+use kepler::output::{
+    Shading, SvgOptions, write_json, write_surfaces_json, write_surfaces_svg, write_svg,
+};
 use kepler::queries::Counters;
 use kepler::queries::include::{IncludeIndex, Inclusion};
 use kepler::queries::visp::{Visibility, VisibilityIndex};
 use kepler::scene::{Scene, file, report::BoundsReport};
+use kepler::surfaces::{visible_surfaces, visobj};
 use kepler::views::{View, ViewOptions};
 use std::fmt::Write as _;
 use std::io::IsTerminal;
@@ -102,6 +105,44 @@ enum Command {
         /// length of each edge class (to stderr).
         #[arg(long)]
         stats: bool,
+        #[command(flatten)]
+        view: ViewArgs,
+    },
+    /// Visible surfaces: every face's visible polygons (Franklin's VISFAC), as a shaded SVG
+    /// (and JSON).
+    Surfaces {
+        /// A scene file (.toml) or a mesh file (.obj, .stl, .off).
+        scene: PathBuf,
+        /// The SVG file to write (`-` writes standard output).
+        #[arg(short = 'o', long = "output", value_name = "FILE")]
+        output: PathBuf,
+        /// Also write each face's status and polygons as JSON to this file.
+        #[arg(long, value_name = "FILE")]
+        json: Option<PathBuf>,
+        /// The direction towards the light (default: over the viewer's left shoulder).
+        #[arg(long, value_name = "X,Y,Z", value_parser = parse_triple, allow_hyphen_values = true)]
+        light: Option<[f64; 3]>,
+        /// Outline the visible polygons.
+        #[arg(long)]
+        outlines: bool,
+        /// Page size in millimetres, `WIDTHxHEIGHT` (default A4 landscape).
+        #[arg(long, value_name = "WxH", value_parser = parse_page, default_value = "297x210")]
+        page: [f64; 2],
+        /// Page margin in millimetres.
+        #[arg(long, value_name = "MM", default_value_t = 10.0)]
+        margin: f64,
+        #[command(flatten)]
+        view: ViewArgs,
+    },
+    /// VISOBJ: print VISIBLE, HIDDEN or MIXED as object A hides nothing, all or part of
+    /// object B (objects named by their paths, like `block/tower-west`).
+    Visobj {
+        /// A scene file (.toml).
+        scene: PathBuf,
+        /// The object that may hide.
+        a: String,
+        /// The object that may be hidden.
+        b: String,
         #[command(flatten)]
         view: ViewArgs,
     },
@@ -347,6 +388,61 @@ fn run(cli: Cli) -> Result<()> {
             if stats {
                 eprint!("{}", stats_report(&drawing, loaded, written));
             }
+        }
+        Command::Surfaces {
+            scene: path,
+            output,
+            json,
+            light,
+            outlines,
+            page,
+            margin,
+            view,
+        } => {
+            let scene = file::load(&path)?;
+            if scene
+                .walk()
+                .iter()
+                .all(|&(id, _)| scene[id].mesh().is_none())
+            {
+                anyhow::bail!("{}: the scene has no objects to draw", path.display());
+            }
+            let view = view.view(&scene)?;
+            let faces = visible_surfaces(&scene, &view)?;
+            let options = SvgOptions {
+                page,
+                margin,
+                ..SvgOptions::default()
+            };
+            let shading = Shading {
+                light: light.map(Vector3::from),
+                outlines,
+            };
+            write_file(&output, |mut out| {
+                write_surfaces_svg(&faces, &scene, &view, &options, &shading, &mut out)
+            })?;
+            if let Some(json) = &json {
+                write_file(json, |mut out| {
+                    write_surfaces_json(&faces, &scene, &mut out)
+                })?;
+            }
+        }
+        Command::Visobj {
+            scene: path,
+            a,
+            b,
+            view,
+        } => {
+            let scene = file::load(&path)?;
+            let find = |name: &str| {
+                scene
+                    .find(name)
+                    .ok_or_else(|| anyhow::anyhow!("{}: no object named '{name}'", path.display()))
+            };
+            let (a, b) = (find(&a)?, find(&b)?);
+            let view = view.view(&scene)?;
+            let answer = visobj(&scene, a, b, &view)?;
+            emit(&format!("{}\n", format!("{answer:?}").to_uppercase()))?;
         }
         Command::Visp {
             scene,

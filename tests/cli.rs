@@ -919,3 +919,70 @@ fn render_rejects_bad_scenes_views_and_options() {
         );
     }
 }
+
+#[test]
+fn surfaces_writes_shaded_polygons_and_json() {
+    let (svg, json) = (temp_path("surfaces.svg"), temp_path("surfaces.json"));
+    let args = [
+        "surfaces",
+        "scenes/cube.toml",
+        "-o",
+        &svg,
+        "--json",
+        &json,
+        "--view-dir",
+        "-1,-2,-3",
+        "--up",
+        "0,0,1",
+        "--outlines",
+    ];
+    assert_eq!(ok(&args), "");
+    let text = std::fs::read_to_string(&svg).expect("the SVG");
+    let doc = roxmltree::Document::parse(&text).expect("the SVG parses");
+    let paths: Vec<_> = doc
+        .descendants()
+        .filter(|n| n.has_tag_name("path"))
+        .collect();
+    let value: Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).expect("the JSON")).expect("JSON");
+    let faces = value["faces"].as_array().expect("faces");
+    assert_eq!(faces.len(), 6);
+    let status = |s: &str| faces.iter().filter(|f| f["status"] == s).count();
+    assert_eq!(
+        (status("visible"), status("hidden"), status("mixed")),
+        (3, 3, 0)
+    );
+    // One path per face with visible polygons, each with its object and face.
+    assert_eq!(paths.len(), 3);
+    for p in &paths {
+        assert_eq!(p.attribute("data-object"), Some("cube"));
+        assert!(p.attribute("fill").is_some_and(|f| f.starts_with("rgb(")));
+    }
+    for f in faces.iter().filter(|f| f["status"] == "visible") {
+        let polygons = f["polygons"].as_array().expect("polygons");
+        assert_eq!(polygons.len(), 1);
+        assert_eq!(polygons[0]["outer"].as_array().expect("outer").len(), 4);
+        assert_eq!(f["texture_polygons"].as_array().expect("texture").len(), 1);
+    }
+}
+
+#[test]
+fn visobj_answers_for_named_objects() {
+    assert_eq!(
+        ok(&["visobj", "scenes/city.toml", "block", "ground"]),
+        "MIXED\n"
+    );
+    assert_eq!(
+        ok(&[
+            "visobj",
+            "scenes/city.toml",
+            "ground",
+            "block",
+            "--view-dir",
+            "0,0,-1"
+        ]),
+        "VISIBLE\n"
+    );
+    let missing = fails(&["visobj", "scenes/city.toml", "block", "nowhere"]);
+    assert!(missing.contains("no object named 'nowhere'"), "{missing}");
+}

@@ -152,16 +152,15 @@ fn a_cube_hides_its_own_far_faces() {
             "{view:?}"
         );
     }
-    // Straight down: the top is visible, the bottom hidden, the sides seen edge-on.
-    let down: Vec<Status> = (0..6)
-        .map(|f| {
-            visfac(&scene, cube, &View::standard(), cube, f)
-                .unwrap()
-                .status
-        })
+    // Straight down: the top is visible, the bottom hidden, the sides seen edge-on (VISIBLE:
+    // nothing to hide; no polygons).
+    let down: Vec<_> = (0..6)
+        .map(|f| visfac(&scene, cube, &View::standard(), cube, f).unwrap())
         .collect();
-    assert_eq!(down.iter().filter(|&&s| s == Status::Visible).count(), 1);
-    assert_eq!(down.iter().filter(|&&s| s == Status::Hidden).count(), 5);
+    let count = |s: Status| down.iter().filter(|v| v.status == s).count();
+    assert_eq!((count(Status::Visible), count(Status::Hidden)), (5, 1));
+    assert_eq!(down.iter().filter(|v| v.edge_on).count(), 4);
+    assert_eq!(down.iter().filter(|v| !v.polygons.0.is_empty()).count(), 1);
 }
 
 #[test]

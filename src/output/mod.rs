@@ -61,9 +61,11 @@
 //! ```
 
 mod json;
+mod surfaces;
 mod svg;
 
 pub use json::write_json;
+pub use surfaces::{Shading, write_surfaces_json, write_surfaces_svg};
 pub use svg::{PageTransform, StrokeWidths, SvgOptions, page_transform, write_svg};
 
 /// An [`std::io::ErrorKind::InvalidData`] error if a point of `drawing` is not finite.

@@ -99,7 +99,7 @@ impl Default for SvgOptions {
 
 impl SvgOptions {
     /// An error if the options are out of range (see [`SvgOptions`]).
-    fn check(&self) -> io::Result<()> {
+    pub(crate) fn check(&self) -> io::Result<()> {
         let [width, height] = self.page;
         let bad = |what: String| Err(io::Error::new(io::ErrorKind::InvalidInput, what));
         if !(width.is_finite() && width > 0.0 && height.is_finite() && height > 0.0) {
@@ -184,8 +184,27 @@ impl PageTransform {
 /// assert_eq!(t.to_page([1.0, 0.0]), [287.0, 35.75]);
 /// ```
 pub fn page_transform(drawing: &Drawing, options: &SvgOptions) -> PageTransform {
+    PageTransform::fit(drawing.bounds(), options)
+}
+
+impl PageTransform {
+    /// The transform that fits the box `(min, max)` (or nothing) to the page, as
+    /// [`page_transform`] does for a drawing's bounds.
+    ///
+    /// ```
+    /// use kepler::output::{PageTransform, SvgOptions};
+    /// let t = PageTransform::fit(Some(([-1.0, -1.0], [1.0, 0.0])), &SvgOptions::default());
+    /// assert_eq!(t.scale, 138.5);
+    /// ```
+    pub fn fit(bounds: Option<([f64; 2], [f64; 2])>, options: &SvgOptions) -> PageTransform {
+        fit(bounds, options)
+    }
+}
+
+/// [`PageTransform::fit`].
+fn fit(bounds: Option<([f64; 2], [f64; 2])>, options: &SvgOptions) -> PageTransform {
     let [width, height] = options.page;
-    let (centre, scale) = match drawing.bounds() {
+    let (centre, scale) = match bounds {
         None => ([0.0, 0.0], 1.0),
         Some((lo, hi)) => {
             // Halves, so that neither the extent nor the centre can overflow.

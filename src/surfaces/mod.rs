@@ -84,6 +84,8 @@ pub struct VisibleFace {
     pub polygons: MultiPolygon<f64>,
     /// What decided it.
     pub exits: Exits,
+    /// Whether the face is seen edge-on (no area: VISIBLE, no polygons).
+    pub edge_on: bool,
 }
 
 /// How often each of VISFAC2's tests decided something.
@@ -106,8 +108,9 @@ pub struct Exits {
 
 /// VISFAC(A, F): how much of face `face` of the mesh object `owner` the object `a` (with its
 /// subobjects) leaves visible from `view`. `a` may be `owner` itself (a face never hides
-/// itself). A face seen edge-on shows no area: HIDDEN, with no polygons. An error if `owner`
-/// is not a mesh object or has no such face.
+/// itself). A face seen edge-on has no area for anything to hide: VISIBLE, as the paper's
+/// VTP(F) stays F, but with no polygons. An error if `owner` is not a mesh object or has no
+/// such face.
 ///
 /// ```
 /// use kepler::{geometry::Vector3, scene::Scene, views::View, surfaces::{Status, visfac}};
@@ -151,6 +154,42 @@ pub fn visfac_scene(
     visfac_among(scene, scene.roots(), view, owner, face, None)
 }
 
+/// VISOBJ(A, B) (Franklin 1981, algorithm C): VISIBLE if `a` hides nothing of `b`, HIDDEN if it
+/// hides all of it, else MIXED; through `b`'s subobjects down to its faces (VISFAC), leaving
+/// out faces seen edge-on.
+///
+/// ```
+/// use kepler::{scene::Scene, views::View, surfaces::{Status, visobj}};
+/// use nalgebra::{Matrix4, Vector3};
+/// let mut scene = Scene::new();
+/// let big = kepler::solids::cube(4.0).unwrap().transformed(&Matrix4::new_translation(&Vector3::new(0.0, 0.0, 5.0))).unwrap();
+/// let a = scene.add_mesh(None, "big", big).unwrap();
+/// let b = scene.add_mesh(None, "small", kepler::solids::cube(1.0).unwrap()).unwrap();
+/// assert_eq!(visobj(&scene, a, b, &View::standard()).unwrap(), Status::Hidden);
+/// assert_eq!(visobj(&scene, b, a, &View::standard()).unwrap(), Status::Visible);
+/// ```
+pub fn visobj(scene: &Scene, a: ObjectId, b: ObjectId, view: &View) -> Result<Status> {
+    let answers: Vec<Status> = match scene[b].content() {
+        Content::Subobjects(children) => children
+            .iter()
+            .map(|&c| visobj(scene, a, c, view))
+            .collect::<Result<_>>()?,
+        // Faces seen edge-on have no area to be hidden or seen: they do not count.
+        Content::Mesh(mesh) => (0..mesh.faces().len())
+            .map(|f| visfac(scene, a, view, b, f))
+            .filter(|v| !v.as_ref().is_ok_and(|v| v.edge_on))
+            .map(|v| v.map(|v| v.status))
+            .collect::<Result<_>>()?,
+    };
+    Ok(if answers.iter().all(|&s| s == Status::Visible) {
+        Status::Visible
+    } else if answers.iter().all(|&s| s == Status::Hidden) {
+        Status::Hidden
+    } else {
+        Status::Mixed
+    })
+}
+
 /// One face's visible part in the whole scene: VISFAC's answer, and its polygons in the face's
 /// texture coordinate system (Franklin's texture coordinates; see [`crate::mesh::TextureFrame`]).
 ///
@@ -162,6 +201,7 @@ pub fn visfac_scene(
 ///         status: kepler::surfaces::Status::Hidden,
 ///         polygons: geo::MultiPolygon::new(vec![]),
 ///         exits: Default::default(),
+///         edge_on: false,
 ///     },
 ///     texture: geo::MultiPolygon::new(vec![]),
 /// };
@@ -278,11 +318,12 @@ fn visfac_among(
     }
     let target = Target::new(mesh, face, view);
     if target.eye_side == Ordering::Equal {
-        // Seen edge-on: no area of it can be seen.
+        // Seen edge-on: no area to hide, so VTP(F) stays F (of zero area, no polygons).
         return Ok(VisibleFace {
-            status: Status::Hidden,
+            status: Status::Visible,
             polygons: MultiPolygon::new(Vec::new()),
             exits: Exits::default(),
+            edge_on: true,
         });
     }
     let whole = target.polygon();
@@ -323,6 +364,7 @@ fn visfac_among(
             vtp
         },
         exits,
+        edge_on: false,
     })
 }
 
@@ -368,13 +410,28 @@ impl Target {
         )
     }
 
-    /// Whether no point of the closed box lies strictly on the eye's side of the face's plane
-    /// (decided exactly at its corners): then nothing in it hides the face.
+    /// Whether nothing in the closed box can hide the face: no point of it lies strictly on the
+    /// eye's side of the face's plane (decided exactly at its corners), or its picture misses
+    /// the face's.
     fn cannot_be_hidden_by(&self, b: &Aabb) -> bool {
         let [p, q, r] = &self.plane;
-        b.corners()
+        let corners = b.corners();
+        if corners
             .iter()
             .all(|c| orient3d(p, q, r, c) != self.eye_side)
+        {
+            return true;
+        }
+        // The picture of the box holds the pictures of all it holds when every corner is in
+        // front of the eye; the two pictures must miss by more than a margin far above
+        // rounding.
+        if !corners.iter().all(|c| self.picture.in_front(c)) {
+            return false;
+        }
+        let (low, high) = picture_box(corners.iter().map(|c| self.picture.point(c)));
+        let scale = low.iter().chain(&high).chain(&self.low).chain(&self.high);
+        let margin = GRID_MARGIN * scale.fold(0.0f64, |m, v| m.max(v.abs()));
+        (0..2).any(|k| low[k] > self.high[k] + margin || high[k] < self.low[k] - margin)
     }
 
     /// The picture of the part of the polygon `corners` (a face of an occluder) strictly on
