@@ -43,7 +43,7 @@ use kepler::geometry::{Point3, Vector3};
 use kepler::hidden::{Drawing, EdgeClass, EdgeSelection, Options, Polyline, draw};
 use kepler::mesh::Mesh;
 use kepler::queries::visp::{Visibility, VisibilityIndex};
-use kepler::scene::Scene;
+use kepler::scene::{ObjectId, Scene};
 use kepler::solids;
 use kepler::views::{Eye, Picture, View};
 use nalgebra::{Matrix4, Rotation3, Unit};
@@ -1370,4 +1370,56 @@ fn lattice_scenes_agree_with_a_z_buffer() {
         "the oracle contradicts itself"
     );
     assert!(total.visible > 5_000 && total.hidden > 2_000 && total.complete > 5_000);
+}
+
+/// The z-buffer agrees with VISFAC's visible polygons (`kepler::surfaces::visible_surfaces`):
+/// at every sampled pixel whose 3×3 neighbourhood the same triangle owns, the pixel centre lies
+/// inside the visible polygons of that triangle's face and of no other face; and where no
+/// triangle covers the neighbourhood, inside none.
+#[test]
+fn visible_surfaces_agree_with_a_z_buffer() {
+    use geo::{Contains, Point};
+    use kepler::surfaces::visible_surfaces;
+    let (mut checked, mut empty) = (0usize, 0usize);
+    for k in 0..cases() {
+        let (scene, view) = case(k);
+        let oracle = Oracle::new(&scene, &view, Options::default().crease_angle);
+        let faces = visible_surfaces(&scene, &view).unwrap();
+        // The oracle's triangles, in its order: (object, face) of each.
+        let owners: Vec<(ObjectId, usize)> = scene
+            .walk()
+            .into_iter()
+            .filter_map(|(id, _)| scene[id].mesh().map(|m| (id, m)))
+            .flat_map(|(id, m)| (0..m.triangles().len()).map(move |t| (id, m.face_of(t))))
+            .collect();
+        for j in (1..SIZE - 1).step_by(3) {
+            for i in (1..SIZE - 1).step_by(3) {
+                let around: Vec<u32> = (0..9)
+                    .map(|n| oracle.owner[(j + n / 3 - 1) * SIZE + i + n % 3 - 1])
+                    .collect();
+                if around.iter().any(|&o| o != around[0]) {
+                    continue;
+                }
+                let q = oracle.centre(i, j);
+                let point = Point::new(q[0], q[1]);
+                let containing: Vec<(ObjectId, usize)> = faces
+                    .iter()
+                    .filter(|f| f.visible.polygons.contains(&point))
+                    .map(|f| (f.object, f.face))
+                    .collect();
+                if around[0] == NONE {
+                    assert!(
+                        containing.is_empty(),
+                        "case {k}: pixel {q:?} is empty: {containing:?}"
+                    );
+                    empty += 1;
+                } else {
+                    let owner = owners[around[0] as usize];
+                    assert_eq!(containing, vec![owner], "case {k}: pixel {q:?}");
+                    checked += 1;
+                }
+            }
+        }
+    }
+    assert!(checked > 50_000 && empty > 50_000, "{checked} {empty}");
 }

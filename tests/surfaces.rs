@@ -376,3 +376,73 @@ fn visible_areas_sum_to_the_area_of_the_picture() {
         }
     }
 }
+
+/// The hidden-line drawing and the visible polygons agree: every visible piece of a line lies
+/// on the boundary of some face's visible polygons, and no hidden piece does.
+#[test]
+fn hidden_lines_lie_on_visible_polygon_boundaries() {
+    use geo::{Distance, Euclidean};
+    use kepler::hidden::{EdgeSelection, Options, draw};
+    use kepler::surfaces::visible_surfaces;
+    let (mut on, mut off) = (0usize, 0usize);
+    for seed in 1..=8u64 {
+        let scene = random_boxes(0x51ed_270b * seed);
+        let view = View::orthographic(
+            Vector3::new(0.5, -1.0 - 0.1 * seed as f64, -2.0),
+            Vector3::z(),
+        )
+        .unwrap();
+        let drawing = draw(
+            &scene,
+            &view,
+            &Options {
+                edges: EdgeSelection::All,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        let faces = visible_surfaces(&scene, &view).unwrap();
+        let boundaries: Vec<geo::Line<f64>> = faces
+            .iter()
+            .flat_map(|f| f.visible.polygons.iter())
+            .flat_map(|p| std::iter::once(p.exterior()).chain(p.interiors()))
+            .flat_map(|r| r.lines())
+            .collect();
+        let (lo, hi) = drawing.bounds().expect("a drawing");
+        let tolerance = 1e-9 * (hi[0] - lo[0]).max(hi[1] - lo[1]);
+        for polyline in &drawing.polylines {
+            for w in polyline.points.windows(2) {
+                let length = (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]);
+                if length < 1e3 * tolerance {
+                    continue;
+                }
+                for u in [0.25, 0.5, 0.75] {
+                    let p = geo::Point::new(
+                        w[0][0] + u * (w[1][0] - w[0][0]),
+                        w[0][1] + u * (w[1][1] - w[0][1]),
+                    );
+                    let d = boundaries
+                        .iter()
+                        .map(|l| Euclidean.distance(l, &p))
+                        .fold(f64::INFINITY, f64::min);
+                    if polyline.visible {
+                        assert!(
+                            d <= tolerance,
+                            "seed {seed}: visible {:?} at {p:?} is {d} off",
+                            polyline.class
+                        );
+                        on += 1;
+                    } else {
+                        assert!(
+                            d > tolerance,
+                            "seed {seed}: hidden {:?} at {p:?} is on a boundary",
+                            polyline.class
+                        );
+                        off += 1;
+                    }
+                }
+            }
+        }
+    }
+    assert!(on > 500 && off > 200, "{on} {off}");
+}
