@@ -446,3 +446,43 @@ fn hidden_lines_lie_on_visible_polygon_boundaries() {
     }
     assert!(on > 500 && off > 200, "{on} {off}");
 }
+
+/// The city block (Franklin's motivating scene) from its camera: the ground hides nothing of
+/// the buildings standing on it (their walls only touch its plane), the buildings hide part of
+/// the ground, a tower hides all of its own back windows, and INBOXes hide faces at once.
+#[test]
+fn the_city_block() {
+    use kepler::surfaces::{visible_surfaces, visobj};
+    let scene = kepler::scene::file::load(std::path::Path::new("scenes/city.toml")).unwrap();
+    let view = View::from_camera(scene.camera().unwrap()).unwrap();
+    let id = |name: &str| scene.find(name).unwrap();
+    assert_eq!(
+        visobj(&scene, id("ground"), id("block"), &view).unwrap(),
+        Status::Visible
+    );
+    assert_eq!(
+        visobj(&scene, id("block"), id("ground"), &view).unwrap(),
+        Status::Mixed
+    );
+    let back = id("block/tower-west/back-windows");
+    assert_eq!(
+        visobj(&scene, id("block"), back, &view).unwrap(),
+        Status::Hidden
+    );
+    assert_eq!(
+        visobj(&scene, id("ground"), back, &view).unwrap(),
+        Status::Visible
+    );
+    let faces = visible_surfaces(&scene, &view).unwrap();
+    let inbox: u64 = faces.iter().map(|f| f.visible.exits.inbox_hid).sum();
+    assert!(inbox > 100, "INBOXes hid {inbox} faces at once");
+    // Every face of the tower's back windows is hidden in the whole-scene pass too.
+    assert!(
+        faces
+            .iter()
+            .filter(|f| scene
+                .path(f.object)
+                .starts_with("block/tower-west/back-windows"))
+            .all(|f| f.visible.status == Status::Hidden || f.visible.edge_on)
+    );
+}

@@ -434,14 +434,27 @@ impl Target {
         (0..2).any(|k| low[k] > self.high[k] + margin || high[k] < self.low[k] - margin)
     }
 
-    /// The picture of the part of the polygon `corners` (a face of an occluder) strictly on
-    /// the eye's side of this face's plane, or `None` when no part is. Its vertices are the
+    /// The picture of the part of the polygon `corners` (a face of an occluder, with a
+    /// triangle `g` of it) strictly on the eye's side of this face's plane, or `None` when no
+    /// part is or when no vertex of this face lies strictly behind `g`'s plane. Its vertices are the
     /// pictures of the corners on that side or on the plane, and of the points where its edges
     /// cross the plane, each built once from the input coordinates.
-    fn in_front(&self, corners: &[Point3]) -> Option<MultiPolygon<f64>> {
+    fn in_front(&self, corners: &[Point3], g: &[Point3; 3]) -> Option<MultiPolygon<f64>> {
         let [p, q, r] = &self.plane;
         let sides: Vec<Ordering> = corners.iter().map(|c| orient3d(p, q, r, c)).collect();
         if !sides.contains(&self.eye_side) {
+            return None;
+        }
+        // G hides only points of F strictly behind G's plane: with none (G seen edge-on, or F
+        // resting against G's plane from the front), it hides nothing, however its picture
+        // touches F's.
+        let g_side = self.eye.orient3d(&g[0], &g[1], &g[2]);
+        if g_side == Ordering::Equal
+            || !self
+                .vertices
+                .iter()
+                .any(|v| orient3d(&g[0], &g[1], &g[2], v) == g_side.reverse())
+        {
             return None;
         }
         let n = corners.len();
@@ -622,7 +635,8 @@ fn visfac2(
                 }
                 exits.faces_tested += 1;
                 let corners: Vec<Point3> = mesh.face_points(g).collect();
-                if let Some(piece) = target.in_front(&corners) {
+                let plane = mesh.triangle(mesh.faces()[g].triangle_range().start);
+                if let Some(piece) = target.in_front(&corners, &plane) {
                     exits.faces_in_front += 1;
                     pieces.push(piece);
                 }
