@@ -88,12 +88,8 @@ enum Command {
         /// Hidden lines: `dashed` (their own grey dashed layers) or `omit`.
         #[arg(long, value_enum, default_value_t = Hidden::Dashed)]
         hidden: Hidden,
-        /// Page size in millimetres, `WIDTHxHEIGHT` (default A4 landscape).
-        #[arg(long, value_name = "WxH", value_parser = parse_page, default_value = "297x210")]
-        page: [f64; 2],
-        /// Page margin in millimetres.
-        #[arg(long, value_name = "MM", default_value_t = 10.0)]
-        margin: f64,
+        #[command(flatten)]
+        page: PageArgs,
         /// A stroke width in millimetres for one class, `CLASS=MM` (classes: silhouette,
         /// boundary, crease, intersection, smooth); repeat for several.
         #[arg(long, value_name = "CLASS=MM", value_parser = parse_stroke)]
@@ -125,12 +121,8 @@ enum Command {
         /// Outline the visible polygons.
         #[arg(long)]
         outlines: bool,
-        /// Page size in millimetres, `WIDTHxHEIGHT` (default A4 landscape).
-        #[arg(long, value_name = "WxH", value_parser = parse_page, default_value = "297x210")]
-        page: [f64; 2],
-        /// Page margin in millimetres.
-        #[arg(long, value_name = "MM", default_value_t = 10.0)]
-        margin: f64,
+        #[command(flatten)]
+        page: PageArgs,
         #[command(flatten)]
         view: ViewArgs,
     },
@@ -192,6 +184,37 @@ impl ViewArgs {
         };
         Ok(options.resolve(scene.camera())?)
     }
+}
+
+/// The page options of the commands that write SVG.
+#[derive(Args)]
+struct PageArgs {
+    /// Page size in millimetres, `WIDTHxHEIGHT` (default A4 landscape).
+    #[arg(long, value_name = "WxH", value_parser = parse_page, default_value = "297x210")]
+    page: [f64; 2],
+    /// Page margin in millimetres.
+    #[arg(long, value_name = "MM", default_value_t = 10.0)]
+    margin: f64,
+}
+
+impl PageArgs {
+    /// The SVG options with this page and margin.
+    fn svg_options(&self) -> SvgOptions {
+        SvgOptions {
+            page: self.page,
+            margin: self.margin,
+            ..SvgOptions::default()
+        }
+    }
+}
+
+/// Loads a scene to draw: an error naming the file if it holds no mesh.
+fn load_drawable(path: &std::path::Path) -> Result<Scene> {
+    let scene = file::load(path)?;
+    if scene.mesh_objects(scene.roots()).is_empty() {
+        anyhow::bail!("{}: the scene has no objects to draw", path.display());
+    }
+    Ok(scene)
 }
 
 /// `--edges`.
@@ -323,7 +346,6 @@ fn run(cli: Cli) -> Result<()> {
             crease_angle,
             hidden,
             page,
-            margin,
             stroke,
             json,
             stats,
@@ -335,14 +357,7 @@ fn run(cli: Cli) -> Result<()> {
                 );
             }
             let started = Instant::now();
-            let scene = file::load(&path)?;
-            if scene
-                .walk()
-                .iter()
-                .all(|&(id, _)| scene[id].mesh().is_none())
-            {
-                anyhow::bail!("{}: the scene has no objects to draw", path.display());
-            }
+            let scene = load_drawable(&path)?;
             let view = view.view(&scene)?;
             let options = hidden::Options {
                 edges: match edges {
@@ -352,11 +367,7 @@ fn run(cli: Cli) -> Result<()> {
                 crease_angle,
                 hidden: hidden == Hidden::Dashed,
             };
-            let mut svg_options = SvgOptions {
-                page,
-                margin,
-                ..SvgOptions::default()
-            };
+            let mut svg_options = page.svg_options();
             for (class, width) in stroke {
                 match class {
                     EdgeClass::Silhouette => svg_options.stroke.silhouette = width,
@@ -396,24 +407,12 @@ fn run(cli: Cli) -> Result<()> {
             light,
             outlines,
             page,
-            margin,
             view,
         } => {
-            let scene = file::load(&path)?;
-            if scene
-                .walk()
-                .iter()
-                .all(|&(id, _)| scene[id].mesh().is_none())
-            {
-                anyhow::bail!("{}: the scene has no objects to draw", path.display());
-            }
+            let scene = load_drawable(&path)?;
             let view = view.view(&scene)?;
             let faces = visible_surfaces(&scene, &view)?;
-            let options = SvgOptions {
-                page,
-                margin,
-                ..SvgOptions::default()
-            };
+            let options = page.svg_options();
             let shading = Shading {
                 light: light.map(Vector3::from),
                 outlines,

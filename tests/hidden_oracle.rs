@@ -672,6 +672,20 @@ struct Report {
 }
 
 impl Report {
+    /// Prints the disagreements found and fails if there are any, or if the oracle
+    /// contradicted itself.
+    fn assert_agrees(&self) {
+        for m in &self.messages {
+            eprintln!("{m}");
+        }
+        assert_eq!(self.errors, 0, "disagreements with the z-buffer: see above");
+        assert_eq!(
+            self.skipped.get(&Skip::Inconsistent),
+            None,
+            "the oracle contradicts itself"
+        );
+    }
+
     fn error(&mut self, message: String) {
         self.errors += 1;
         if self.messages.len() < 12 {
@@ -1030,18 +1044,7 @@ fn drawings_agree_with_a_z_buffer() {
          completeness): orthographic {orthographic:?}, perspective {persp:?}; skipped {:?}; {} errors",
         total.skipped, total.errors
     );
-    for m in &total.messages {
-        eprintln!("{m}");
-    }
-    assert_eq!(
-        total.errors, 0,
-        "disagreements with the z-buffer: see above"
-    );
-    assert_eq!(
-        total.skipped.get(&Skip::Inconsistent),
-        None,
-        "the oracle contradicts itself"
-    );
+    total.assert_agrees();
     // The checks are not vacuous: many samples of every kind, from both kinds of view.
     for (what, n, min) in [
         ("visible orthographic", orthographic.0, 20_000),
@@ -1347,9 +1350,6 @@ fn lattice_scenes_agree_with_a_z_buffer() {
             total.merge(check(&oracle, &drawing, &o, &name));
         }
     }
-    for m in &total.messages {
-        eprintln!("{m}");
-    }
     eprintln!(
         "lattice: samples checked (visible, hidden, intersection, completeness) {:?}; skipped {:?}",
         (
@@ -1360,15 +1360,7 @@ fn lattice_scenes_agree_with_a_z_buffer() {
         ),
         total.skipped
     );
-    assert_eq!(
-        total.errors, 0,
-        "disagreements with the z-buffer: see above"
-    );
-    assert_eq!(
-        total.skipped.get(&Skip::Inconsistent),
-        None,
-        "the oracle contradicts itself"
-    );
+    total.assert_agrees();
     assert!(total.visible > 5_000 && total.hidden > 2_000 && total.complete > 5_000);
 }
 

@@ -220,3 +220,22 @@ fn ear_clip(p: &[[f64; 2]], want: Ordering) -> Result<Vec<[usize; 3]>, NotSimple
 pub fn triangle_normal(a: &Point3, b: &Point3, c: &Point3) -> Vector3 {
     (b - a).cross(&(c - a))
 }
+
+/// The smallest box `[min, max]` holding the plane points (infinite and inverted for none).
+///
+/// ```
+/// use kepler::geometry::polygon::bounding_box;
+/// assert_eq!(bounding_box([[1.0, 5.0], [-2.0, 3.0]]), [[-2.0, 3.0], [1.0, 5.0]]);
+/// assert!(bounding_box([]).iter().flatten().all(|c| c.is_infinite()));
+/// ```
+pub fn bounding_box(points: impl IntoIterator<Item = [f64; 2]>) -> [[f64; 2]; 2] {
+    points.into_iter().fold(
+        [[f64::INFINITY; 2], [f64::NEG_INFINITY; 2]],
+        |[lo, hi], p| {
+            [
+                [lo[0].min(p[0]), lo[1].min(p[1])],
+                [hi[0].max(p[0]), hi[1].max(p[1])],
+            ]
+        },
+    )
+}

@@ -108,4 +108,85 @@ impl Cells {
             self.origin[k]
         }
     }
+
+    /// The row-major indices of the cells the box `[low, high]`, grown by `margin` on every
+    /// side, covers (by the monotone [`Cells::index`], so a point in the box falls in one of
+    /// them however it rounds).
+    ///
+    /// ```
+    /// let cells = kepler::grid::Cells::new([0.0; 2], [4.0; 2], [4, 4]);
+    /// let covered: Vec<usize> = cells.covering([0.5, 0.5], [1.5, 0.5], 0.0).collect();
+    /// assert_eq!(covered, vec![0, 1]);
+    /// ```
+    pub fn covering(
+        &self,
+        low: [f64; 2],
+        high: [f64; 2],
+        margin: f64,
+    ) -> impl Iterator<Item = usize> + '_ {
+        let range =
+            move |k: usize| self.index(k, low[k] - margin)..=self.index(k, high[k] + margin);
+        let width = self.shape[0];
+        range(1).flat_map(move |row| range(0).map(move |col| row * width + col))
+    }
+}
+
+/// The lists of a grid's cells in one array: cell `c` lists `items[start[c]..start[c + 1]]`.
+///
+/// ```
+/// let lists = kepler::grid::CellLists::new(3, vec![(2, 7), (0, 5), (2, 1)]);
+/// assert_eq!(lists.get(0), &[5]);
+/// assert!(lists.get(1).is_empty());
+/// assert_eq!(lists.get(2), &[1, 7]);
+/// assert_eq!(lists.entries(), 3);
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct CellLists {
+    start: Vec<u32>,
+    items: Vec<u32>,
+}
+
+impl CellLists {
+    /// The lists of `cells` cells from `(cell, item)` pairs in any order; each cell lists its
+    /// items in increasing order.
+    ///
+    /// ```
+    /// let lists = kepler::grid::CellLists::new(1, Vec::new());
+    /// assert!(lists.get(0).is_empty());
+    /// ```
+    pub fn new(cells: usize, mut pairs: Vec<(u32, u32)>) -> CellLists {
+        use rayon::prelude::*;
+        pairs.par_sort_unstable();
+        let mut start = vec![0u32; cells + 1];
+        for &(c, _) in &pairs {
+            start[c as usize + 1] += 1;
+        }
+        for c in 1..start.len() {
+            start[c] += start[c - 1];
+        }
+        CellLists {
+            start,
+            items: pairs.into_iter().map(|(_, i)| i).collect(),
+        }
+    }
+
+    /// The items of cell `c`.
+    ///
+    /// ```
+    /// let lists = kepler::grid::CellLists::new(2, vec![(1, 4)]);
+    /// assert_eq!(lists.get(1), &[4]);
+    /// ```
+    #[inline]
+    pub fn get(&self, c: usize) -> &[u32] {
+        &self.items[self.start[c] as usize..self.start[c + 1] as usize]
+    }
+
+    /// The number of (cell, item) entries.
+    ///
+    /// ```
+    /// assert_eq!(kepler::grid::CellLists::new(4, vec![(0, 0), (3, 0)]).entries(), 2);
+    /// ```
+    pub fn entries(&self) -> usize {
+        self.items.len()
+    }
 }

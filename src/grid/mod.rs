@@ -29,7 +29,7 @@
 
 mod cells;
 
-pub use cells::Cells;
+pub use cells::{CellLists, Cells};
 
 use crate::geometry::exact::{accurate_sum, product_terms, two_sum};
 use crate::geometry::polygon::segments_meet;

@@ -10,7 +10,8 @@
 //! picture, and the exact test then decides.
 
 use crate::geometry::Point3;
-use crate::grid::Cells;
+use crate::geometry::polygon::bounding_box;
+use crate::grid::{CellLists, Cells};
 use crate::mesh::Mesh;
 use crate::queries::sight::Sight;
 use crate::queries::visp::{Visibility, any_hides, descend};
@@ -27,22 +28,14 @@ const MARGIN: f64 = 1.0 / (1u64 << 40) as f64;
 #[derive(Debug)]
 pub(crate) struct PictureGrid {
     cells: Cells,
-    /// Cell `c` lists `triangles[start[c]..start[c + 1]]`.
-    start: Vec<u32>,
-    triangles: Vec<u32>,
+    lists: CellLists,
 }
 
 impl PictureGrid {
     /// Lists the triangles of `mesh` whose vertices' pictures are `pictures`, in cells sized
     /// for about `queries` queries (see [`cell_factor`]).
     pub(crate) fn new(mesh: &Mesh, pictures: &[[f64; 2]], queries: usize) -> PictureGrid {
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for p in pictures {
-            for k in 0..2 {
-                lo[k] = lo[k].min(p[k]);
-                hi[k] = hi[k].max(p[k]);
-            }
-        }
+        let [lo, hi] = bounding_box(pictures.iter().copied());
         let n = mesh.triangles().len().max(1);
         let extent = [0, 1].map(|k| (hi[k] - lo[k]).max(0.0));
         // Cells about the size of a triangle's picture times the factor, no smaller than one
@@ -51,10 +44,8 @@ impl PictureGrid {
             .triangles()
             .iter()
             .map(|tri| {
-                let [a, b, c] = tri.map(|v| pictures[v as usize]);
-                (0..2)
-                    .map(|k| a[k].max(b[k]).max(c[k]) - a[k].min(b[k]).min(c[k]))
-                    .fold(0.0, f64::max)
+                let [low, high] = bounding_box(tri.map(|v| pictures[v as usize]));
+                (high[0] - low[0]).max(high[1] - low[1])
             })
             .sum::<f64>()
             / n as f64;
@@ -71,55 +62,38 @@ impl PictureGrid {
             shape = shape.map(|c| c.div_ceil(2));
         }
         let cells = Cells::new(lo, extent, shape);
-        let shape = cells.shape();
         let margin = MARGIN * lo.iter().chain(&hi).fold(0.0f64, |m, v| m.max(v.abs()));
-        let mut items: Vec<u64> = mesh
+        let pairs: Vec<(u32, u32)> = mesh
             .triangles()
             .par_iter()
             .enumerate()
             .fold(Vec::new, |mut out, (t, tri)| {
-                let [a, b, c] = tri.map(|v| pictures[v as usize]);
-                let range = |k: usize| {
-                    let low = a[k].min(b[k]).min(c[k]) - margin;
-                    let high = a[k].max(b[k]).max(c[k]) + margin;
-                    cells.index(k, low)..=cells.index(k, high)
-                };
-                for row in range(1) {
-                    for col in range(0) {
-                        let cell = (row * shape[0] + col) as u64;
-                        out.push((cell << 32) | t as u64);
-                    }
-                }
+                let [low, high] = bounding_box(tri.map(|v| pictures[v as usize]));
+                out.extend(
+                    cells
+                        .covering(low, high, margin)
+                        .map(|c| (c as u32, t as u32)),
+                );
                 out
             })
             .reduce(Vec::new, |mut x, mut y| {
                 x.append(&mut y);
                 x
             });
-        items.par_sort_unstable();
-        let mut start = vec![0u32; cells.count() + 1];
-        for item in &items {
-            start[(item >> 32) as usize + 1] += 1;
-        }
-        for c in 1..start.len() {
-            start[c] += start[c - 1];
-        }
         PictureGrid {
+            lists: CellLists::new(cells.count(), pairs),
             cells,
-            start,
-            triangles: items.into_iter().map(|i| i as u32).collect(),
         }
     }
 
     /// The triangles listed in the cell of the picture point `p`.
     pub(crate) fn at(&self, p: [f64; 2]) -> &[u32] {
-        let c = self.cells.cell_of(p[0], p[1]);
-        &self.triangles[self.start[c] as usize..self.start[c + 1] as usize]
+        self.lists.get(self.cells.cell_of(p[0], p[1]))
     }
 
     /// The number of (cell, triangle) entries.
     pub(crate) fn entries(&self) -> usize {
-        self.triangles.len()
+        self.lists.entries()
     }
 }
 

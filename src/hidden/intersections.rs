@@ -98,10 +98,6 @@ pub(crate) fn between(m0: &Mesh, m1: &Mesh, same: bool, eye: &Eye) -> Vec<Segmen
 /// the cell holding the low corner of the two boxes' overlap, so once. For one mesh (`same`),
 /// pairs sharing a vertex or a face are left out.
 fn candidate_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32)> {
-    let (n0, n1) = (m0.triangles().len(), m1.triangles().len());
-    if n0 * n1 <= FEW_PAIRS {
-        return few_pairs(m0, m1, same);
-    }
     let boxes = |m: &Mesh| -> Vec<Aabb> {
         (0..m.triangles().len())
             .into_par_iter()
@@ -110,6 +106,9 @@ fn candidate_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32)> {
     };
     let b0 = boxes(m0);
     let b1 = if same { Vec::new() } else { boxes(m1) };
+    if b0.len() * if same { b0.len() } else { b1.len() } <= FEW_PAIRS {
+        return few_pairs(m0, &b0, if same { &b0 } else { &b1 }, same);
+    }
     let second = if same { &b0 } else { &b1 };
     let whole = |b: &[Aabb]| b.iter().fold(Aabb::EMPTY, |u, x| u.union(x));
     let (w0, w1) = (whole(&b0), whole(second));
@@ -202,18 +201,12 @@ fn candidate_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32)> {
                 let others = if same { &seconds[n + 1..] } else { seconds };
                 for &y in others {
                     let (i, j) = (of(x), of(y));
-                    if same && shares_vertex(&m0.triangles()[i], &m0.triangles()[j]) {
-                        continue;
-                    }
                     let (bi, bj) = (&b0[i], &second[j]);
-                    if (0..3).any(|k| bi.min[k] > bj.max[k] || bj.min[k] > bi.max[k]) {
+                    if !bi.intersects(bj) {
                         continue;
                     }
                     let low = [0, 1, 2].map(|k| index(k, bi.min[k].max(bj.min[k])));
-                    if cell_of(low) != cell {
-                        continue;
-                    }
-                    if same && m0.face_of(i) == m0.face_of(j) {
+                    if cell_of(low) != cell || (same && neighbours(m0, i, j)) {
                         continue;
                     }
                     out.push((i as u32, j as u32));
@@ -227,29 +220,24 @@ fn candidate_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32)> {
 /// Up to this many triangle pairs, every pair is tested: no grid.
 const FEW_PAIRS: usize = 1 << 14;
 
-/// [`candidate_pairs`] by testing every pair's boxes.
-fn few_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32)> {
-    let boxes = |m: &Mesh| -> Vec<Aabb> {
-        (0..m.triangles().len())
-            .map(|t| Aabb::from_points(&m.triangle(t)))
-            .collect()
-    };
-    let (b0, b1) = (boxes(m0), boxes(m1));
+/// [`candidate_pairs`] by testing every pair of the triangles' boxes `b0` and `b1`.
+fn few_pairs(m0: &Mesh, b0: &[Aabb], b1: &[Aabb], same: bool) -> Vec<(u32, u32)> {
     let mut out = Vec::new();
     for (i, bi) in b0.iter().enumerate() {
         let start = if same { i + 1 } else { 0 };
         for (j, bj) in b1.iter().enumerate().skip(start) {
-            if !bi.intersects(bj)
-                || (same
-                    && (m0.face_of(i) == m0.face_of(j)
-                        || shares_vertex(&m0.triangles()[i], &m0.triangles()[j])))
-            {
-                continue;
+            if bi.intersects(bj) && !(same && neighbours(m0, i, j)) {
+                out.push((i as u32, j as u32));
             }
-            out.push((i as u32, j as u32));
         }
     }
     out
+}
+
+/// Whether triangles `i` and `j` of one mesh lie on one face or share a vertex: they are
+/// not compared for intersection.
+fn neighbours(m: &Mesh, i: usize, j: usize) -> bool {
+    shares_vertex(&m.triangles()[i], &m.triangles()[j]) || m.face_of(i) == m.face_of(j)
 }
 
 /// Whether two triangles share a vertex index.

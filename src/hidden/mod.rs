@@ -56,6 +56,7 @@ mod intersections;
 
 pub use drawing::{Drawing, EdgeClass, Polyline, StageReport};
 
+use crate::Result;
 use crate::geometry::Point3;
 use crate::geometry::predicates::orient3d;
 use crate::grid::SegmentGrid;
@@ -64,7 +65,6 @@ use crate::queries::Counters;
 use crate::queries::visp::Visibility;
 use crate::scene::{ObjectId, Scene};
 use crate::views::{Eye, Picture, View};
-use crate::{Error, Result};
 use along::{Form, cut_point, hides_along};
 use chain::{Piece, chain};
 use cover::Occluders;
@@ -260,29 +260,16 @@ impl<'a> Pass<'a> {
     /// first object with a vertex not strictly in front of the eye.
     fn new(scene: &'a Scene, view: &View) -> Result<Pass<'a>> {
         let picture = Picture::of(view);
-        let mut leaves = Vec::new();
-        for (id, _) in scene.walk() {
-            let Some(mesh) = scene[id].mesh() else {
-                continue;
-            };
-            if let Some(i) = mesh.vertices().iter().position(|p| !picture.in_front(p)) {
-                return Err(Error::Object {
-                    object: scene.path(id),
-                    message: format!(
-                        "vertex {} ({:?}) is not in front of the eye; a perspective drawing \
-                         needs the whole scene in front of it",
-                        i,
-                        mesh.vertices()[i]
-                    ),
-                });
-            }
-            leaves.push(Leaf {
+        let leaves = picture
+            .mesh_objects_in_front(scene)?
+            .into_iter()
+            .map(|(id, mesh)| Leaf {
                 id,
                 mesh,
                 pictures: Vec::new(),
                 lines: 0..0,
-            });
-        }
+            })
+            .collect();
         Ok(Pass {
             scene,
             eye: *view.eye(),

@@ -2,6 +2,7 @@
 
 use super::svg::{PageTransform, SvgOptions};
 use crate::geometry::Vector3;
+use crate::geometry::polygon::bounding_box;
 use crate::scene::Scene;
 use crate::surfaces::{FaceReport, Status};
 use crate::views::View;
@@ -65,15 +66,10 @@ pub fn write_surfaces_svg(
             "a visible polygon has a point that is not finite",
         ));
     }
-    let bounds = points
-        .iter()
-        .fold(None, |b: Option<([f64; 2], [f64; 2])>, c| {
-            let (lo, hi) = b.unwrap_or((*c, *c));
-            Some((
-                [lo[0].min(c[0]), lo[1].min(c[1])],
-                [hi[0].max(c[0]), hi[1].max(c[1])],
-            ))
-        });
+    let bounds = (!points.is_empty()).then(|| {
+        let [lo, hi] = bounding_box(points.iter().copied());
+        (lo, hi)
+    });
     let t = PageTransform::fit(bounds, options);
     let toward_eye = -view.forward();
     let (right, up) = view.right_up();

@@ -123,11 +123,7 @@ impl<'s> IncludeIndex<'s> {
             check_closed(scene, id)?;
         }
         scene.compute_bounds_of(objects);
-        let leaves: Vec<(ObjectId, &Mesh)> = objects
-            .iter()
-            .flat_map(|&id| scene.subtree(id))
-            .filter_map(|id| scene[id].mesh().map(|m| (id, m)))
-            .collect();
+        let leaves = scene.mesh_objects(objects);
         let built: Vec<(ObjectId, ProjectionGrid)> = leaves
             .par_iter()
             .map(|&(id, mesh)| (id, ProjectionGrid::new(mesh)))

@@ -222,11 +222,7 @@ impl<'s> VisibilityIndex<'s> {
     /// ```
     pub fn new(scene: &'s Scene, objects: &[ObjectId], view: View) -> VisibilityIndex<'s> {
         scene.compute_bounds_of(objects);
-        let leaves: Vec<(ObjectId, &Mesh)> = objects
-            .iter()
-            .flat_map(|&id| scene.subtree(id))
-            .filter_map(|id| scene[id].mesh().map(|m| (id, m)))
-            .collect();
+        let leaves = scene.mesh_objects(objects);
         let built: Vec<(ObjectId, TriangleTree)> = leaves
             .par_iter()
             .map(|&(id, mesh)| (id, TriangleTree::new(mesh)))

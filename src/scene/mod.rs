@@ -494,6 +494,23 @@ impl Scene {
             .collect()
     }
 
+    /// The mesh objects of the subtrees of `objects`, depth-first, with their meshes.
+    ///
+    /// ```
+    /// let mut s = kepler::scene::Scene::new();
+    /// let g = s.add_group(None, "g").unwrap();
+    /// let c = s.add_mesh(Some(g), "c", kepler::solids::cube(1.0).unwrap()).unwrap();
+    /// let found: Vec<_> = s.mesh_objects(&[g]).into_iter().map(|(id, _)| id).collect();
+    /// assert_eq!(found, vec![c]);
+    /// ```
+    pub fn mesh_objects(&self, objects: &[ObjectId]) -> Vec<(ObjectId, &Mesh)> {
+        objects
+            .iter()
+            .flat_map(|&id| self.subtree(id))
+            .filter_map(|id| self.objects[id].mesh().map(|m| (id, m)))
+            .collect()
+    }
+
     /// The path of names from the top level down to `id`, joined by `/`.
     ///
     /// ```

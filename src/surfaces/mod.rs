@@ -34,9 +34,10 @@
 //! ```
 
 use crate::clip;
+use crate::geometry::polygon::bounding_box;
 use crate::geometry::predicates::orient3d;
 use crate::geometry::{Aabb, Point3};
-use crate::grid::Cells;
+use crate::grid::{CellLists, Cells};
 use crate::hidden::cut_point_on_plane;
 use crate::mesh::Mesh;
 use crate::queries::sight::Sight;
@@ -236,18 +237,7 @@ pub struct FaceReport {
 /// ```
 pub fn visible_surfaces(scene: &Scene, view: &View) -> Result<Vec<FaceReport>> {
     let picture = Picture::of(view);
-    let mut meshes = Vec::new();
-    for (id, _) in scene.walk() {
-        if let Some(mesh) = scene[id].mesh() {
-            if let Some(i) = mesh.vertices().iter().position(|p| !picture.in_front(p)) {
-                return Err(Error::Object {
-                    object: scene.path(id),
-                    message: format!("vertex {i} is not in front of the eye"),
-                });
-            }
-            meshes.push((id, mesh));
-        }
-    }
+    let meshes = picture.mesh_objects_in_front(scene)?;
     let built: Vec<(ObjectId, FaceGrid)> = meshes
         .par_iter()
         .map(|&(id, mesh)| (id, FaceGrid::new(mesh, &picture)))
@@ -378,8 +368,7 @@ struct Target {
     /// The side of the face's plane the eye is on.
     eye_side: Ordering,
     /// The bounding box of its picture.
-    low: [f64; 2],
-    high: [f64; 2],
+    extent: [[f64; 2]; 2],
 }
 
 impl Target {
@@ -388,15 +377,14 @@ impl Target {
         let plane = mesh.triangle(mesh.faces()[face].triangle_range().start);
         let eye = *view.eye();
         let picture = Picture::of(view);
-        let (low, high) = picture_box(vertices.iter().map(|v| picture.point(v)));
+        let extent = bounding_box(vertices.iter().map(|v| picture.point(v)));
         Target {
             eye_side: eye.orient3d(&plane[0], &plane[1], &plane[2]),
             vertices,
             plane,
             eye,
             picture,
-            low,
-            high,
+            extent,
         }
     }
 
@@ -428,10 +416,11 @@ impl Target {
         if !corners.iter().all(|c| self.picture.in_front(c)) {
             return false;
         }
-        let (low, high) = picture_box(corners.iter().map(|c| self.picture.point(c)));
-        let scale = low.iter().chain(&high).chain(&self.low).chain(&self.high);
+        let [low, high] = bounding_box(corners.iter().map(|c| self.picture.point(c)));
+        let [f_low, f_high] = self.extent;
+        let scale = low.iter().chain(&high).chain(&f_low).chain(&f_high);
         let margin = GRID_MARGIN * scale.fold(0.0f64, |m, v| m.max(v.abs()));
-        (0..2).any(|k| low[k] > self.high[k] + margin || high[k] < self.low[k] - margin)
+        (0..2).any(|k| low[k] > f_high[k] + margin || high[k] < f_low[k] - margin)
     }
 
     /// The picture of the part of the polygon `corners` (a face of an occluder, with a
@@ -493,19 +482,6 @@ fn touches_nothing(whole: &MultiPolygon<f64>, pieces: &[MultiPolygon<f64>]) -> R
     Ok(true)
 }
 
-/// The bounding box of picture points.
-fn picture_box(points: impl Iterator<Item = [f64; 2]>) -> ([f64; 2], [f64; 2]) {
-    points.fold(
-        ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
-        |(lo, hi), p| {
-            (
-                [lo[0].min(p[0]), lo[1].min(p[1])],
-                [hi[0].max(p[0]), hi[1].max(p[1])],
-            )
-        },
-    )
-}
-
 /// The faces of one mesh listed by the cells of the picture their pictures' bounding boxes
 /// (grown by a margin of 2⁻⁴⁰ of the largest coordinate, far above rounding) cover, so that
 /// a face is tested only against the faces whose pictures may overlap its own.
@@ -513,61 +489,42 @@ fn picture_box(points: impl Iterator<Item = [f64; 2]>) -> ([f64; 2], [f64; 2]) {
 struct FaceGrid {
     cells: Cells,
     margin: f64,
-    /// Cell `c` lists `faces[start[c]..start[c + 1]]`.
-    start: Vec<u32>,
-    faces: Vec<u32>,
+    lists: CellLists,
 }
 
 impl FaceGrid {
     /// The grid of `mesh`'s faces, about one cell per face.
     fn new(mesh: &Mesh, picture: &Picture) -> FaceGrid {
-        let boxes: Vec<([f64; 2], [f64; 2])> = (0..mesh.faces().len())
-            .map(|f| picture_box(mesh.face_points(f).map(|v| picture.point(&v))))
+        let boxes: Vec<[[f64; 2]; 2]> = (0..mesh.faces().len())
+            .map(|f| bounding_box(mesh.face_points(f).map(|v| picture.point(&v))))
             .collect();
-        let (lo, hi) = boxes.iter().fold(
-            ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
-            |(lo, hi), b| {
-                (
-                    [lo[0].min(b.0[0]), lo[1].min(b.0[1])],
-                    [hi[0].max(b.1[0]), hi[1].max(b.1[1])],
-                )
-            },
-        );
-        let n = boxes.len().max(1);
-        let side = (n as f64).sqrt().ceil() as usize;
+        let [lo, hi] = bounding_box(boxes.iter().flatten().copied());
+        let side = (boxes.len().max(1) as f64).sqrt().ceil() as usize;
         let extent = [0, 1].map(|k| (hi[k] - lo[k]).max(0.0));
         let cells = Cells::new(lo, extent, [side, side]);
         let margin = GRID_MARGIN * lo.iter().chain(&hi).fold(0.0f64, |m, v| m.max(v.abs()));
-        let mut items: Vec<(u32, u32)> = Vec::new();
-        for (f, (low, high)) in boxes.iter().enumerate() {
-            for c in cells_of(&cells, margin, *low, *high) {
-                items.push((c as u32, f as u32));
-            }
-        }
-        items.sort_unstable();
-        let mut start = vec![0u32; cells.count() + 1];
-        for &(c, _) in &items {
-            start[c as usize + 1] += 1;
-        }
-        for c in 1..start.len() {
-            start[c] += start[c - 1];
-        }
+        let pairs = boxes
+            .iter()
+            .enumerate()
+            .flat_map(|(f, [low, high])| {
+                cells
+                    .covering(*low, *high, margin)
+                    .map(move |c| (c as u32, f as u32))
+            })
+            .collect();
         FaceGrid {
+            lists: CellLists::new(cells.count(), pairs),
             cells,
             margin,
-            start,
-            faces: items.into_iter().map(|(_, f)| f).collect(),
         }
     }
 
     /// The faces listed in the cells the box `[low, high]` covers, each once, in order.
-    fn near(&self, low: [f64; 2], high: [f64; 2]) -> Vec<usize> {
-        let mut out: Vec<usize> = cells_of(&self.cells, self.margin, low, high)
-            .flat_map(|c| {
-                self.faces[self.start[c] as usize..self.start[c + 1] as usize]
-                    .iter()
-                    .map(|&f| f as usize)
-            })
+    fn near(&self, [low, high]: [[f64; 2]; 2]) -> Vec<usize> {
+        let mut out: Vec<usize> = self
+            .cells
+            .covering(low, high, self.margin)
+            .flat_map(|c| self.lists.get(c).iter().map(|&f| f as usize))
             .collect();
         out.sort_unstable();
         out.dedup();
@@ -577,18 +534,6 @@ impl FaceGrid {
 
 /// The relative margin of the face grid: 2⁻⁴⁰.
 const GRID_MARGIN: f64 = 1.0 / (1u64 << 40) as f64;
-
-/// The cells the box `[low, high]`, grown by `margin`, covers.
-fn cells_of(
-    cells: &Cells,
-    margin: f64,
-    low: [f64; 2],
-    high: [f64; 2],
-) -> impl Iterator<Item = usize> + '_ {
-    let range = move |k: usize| cells.index(k, low[k] - margin)..=cells.index(k, high[k] + margin);
-    let width = cells.shape()[0];
-    range(1).flat_map(move |row| range(0).map(move |col| row * width + col))
-}
 
 /// A closed ring of picture points as a multipolygon.
 fn ring(points: Vec<[f64; 2]>) -> MultiPolygon<f64> {
@@ -626,7 +571,7 @@ fn visfac2(
     match scene[a].content() {
         Content::Mesh(mesh) => {
             let near = match grids.and_then(|g| g.get(a)) {
-                Some(grid) => grid.near(target.low, target.high),
+                Some(grid) => grid.near(target.extent),
                 None => (0..mesh.faces().len()).collect(),
             };
             for g in near {

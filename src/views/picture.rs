@@ -4,6 +4,9 @@
 use super::{Eye, View};
 use crate::geometry::exact::{accurate_sum, expansion, two_product, two_sum};
 use crate::geometry::{Point3, Vector3};
+use crate::mesh::Mesh;
+use crate::scene::{ObjectId, Scene};
+use crate::{Error, Result};
 
 /// The map from world points to picture coordinates (`x` right, `y` up), as three affine
 /// forms `row·(p - origin)`: for an orthographic view `x = right·p`, `y = up·p` (scene units);
@@ -170,6 +173,37 @@ impl Picture {
             let x = m.lu().solve(&Vector3::new(p[0], p[1], -d))?;
             x.iter().all(|c| c.is_finite()).then(|| Point3::from(x))
         }
+    }
+
+    /// Every mesh object of the scene, depth-first, with its mesh; for a perspective view, an
+    /// error naming the first object with a vertex not strictly in front of the eye (its
+    /// picture would be meaningless).
+    ///
+    /// ```
+    /// use kepler::{geometry::{Point3, Vector3}, scene::Scene, views::{Picture, View}};
+    /// let mut scene = Scene::new();
+    /// scene.add_mesh(None, "cube", kepler::solids::cube(2.0).unwrap()).unwrap();
+    /// assert_eq!(Picture::of(&View::standard()).mesh_objects_in_front(&scene).unwrap().len(), 1);
+    /// let inside = View::perspective(Point3::origin(), Point3::new(1.0, 0.0, 0.0), Vector3::z(), 40.0).unwrap();
+    /// let e = Picture::of(&inside).mesh_objects_in_front(&scene).unwrap_err();
+    /// assert!(e.to_string().starts_with("object 'cube': vertex"));
+    /// ```
+    pub fn mesh_objects_in_front<'s>(&self, scene: &'s Scene) -> Result<Vec<(ObjectId, &'s Mesh)>> {
+        let meshes = scene.mesh_objects(scene.roots());
+        for &(id, mesh) in &meshes {
+            if let Some(i) = mesh.vertices().iter().position(|p| !self.in_front(p)) {
+                return Err(Error::Object {
+                    object: scene.path(id),
+                    message: format!(
+                        "vertex {} ({:?}) is not in front of the eye; a perspective picture \
+                         needs the whole scene in front of it",
+                        i,
+                        mesh.vertices()[i]
+                    ),
+                });
+            }
+        }
+        Ok(meshes)
     }
 
     /// Whether `p` lies strictly in front of a perspective eye (always true for an
