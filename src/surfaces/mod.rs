@@ -423,12 +423,18 @@ impl Target {
         (0..2).any(|k| low[k] > f_high[k] + margin || high[k] < f_low[k] - margin)
     }
 
-    /// The picture of the part of the polygon `corners` (a face of an occluder, with a
+    /// The picture of the part of the polygon `corners` (with their `pictures`; a face of an
+    /// occluder, with a
     /// triangle `g` of it) strictly on the eye's side of this face's plane, or `None` when no
     /// part is or when no vertex of this face lies strictly behind `g`'s plane. Its vertices are the
     /// pictures of the corners on that side or on the plane, and of the points where its edges
     /// cross the plane, each built once from the input coordinates.
-    fn in_front(&self, corners: &[Point3], g: &[Point3; 3]) -> Option<MultiPolygon<f64>> {
+    fn in_front(
+        &self,
+        corners: &[Point3],
+        pictures: &[[f64; 2]],
+        g: &[Point3; 3],
+    ) -> Option<MultiPolygon<f64>> {
         let [p, q, r] = &self.plane;
         let sides: Vec<Ordering> = corners.iter().map(|c| orient3d(p, q, r, c)).collect();
         if !sides.contains(&self.eye_side) {
@@ -452,7 +458,7 @@ impl Target {
             let j = (i + 1) % n;
             // The closed half-space on the eye's side: corners on the plane stay.
             if sides[i] != self.eye_side.reverse() {
-                out.push(self.picture.point(&corners[i]));
+                out.push(pictures[i]);
             }
             if sides[i] != Ordering::Equal && sides[j] != Ordering::Equal && sides[i] != sides[j] {
                 out.push(cut_point_on_plane(
@@ -490,13 +496,18 @@ struct FaceGrid {
     cells: Cells,
     margin: f64,
     lists: CellLists,
+    /// The picture of every vertex of the mesh.
+    pictures: Vec<[f64; 2]>,
 }
 
 impl FaceGrid {
     /// The grid of `mesh`'s faces, about one cell per face.
     fn new(mesh: &Mesh, picture: &Picture) -> FaceGrid {
-        let boxes: Vec<[[f64; 2]; 2]> = (0..mesh.faces().len())
-            .map(|f| bounding_box(mesh.face_points(f).map(|v| picture.point(&v))))
+        let pictures: Vec<[f64; 2]> = mesh.vertices().iter().map(|v| picture.point(v)).collect();
+        let boxes: Vec<[[f64; 2]; 2]> = mesh
+            .faces()
+            .iter()
+            .map(|f| bounding_box(f.vertices().iter().map(|&v| pictures[v as usize])))
             .collect();
         let [lo, hi] = bounding_box(boxes.iter().flatten().copied());
         let side = (boxes.len().max(1) as f64).sqrt().ceil() as usize;
@@ -516,6 +527,7 @@ impl FaceGrid {
             lists: CellLists::new(cells.count(), pairs),
             cells,
             margin,
+            pictures,
         }
     }
 
@@ -580,8 +592,17 @@ fn visfac2(
                 }
                 exits.faces_tested += 1;
                 let corners: Vec<Point3> = mesh.face_points(g).collect();
+                // The corners' pictures, from the pass's per-mesh table when there is one.
+                let pictures: Vec<[f64; 2]> = match grids.and_then(|g| g.get(a)) {
+                    Some(grid) => mesh.faces()[g]
+                        .vertices()
+                        .iter()
+                        .map(|&v| grid.pictures[v as usize])
+                        .collect(),
+                    None => corners.iter().map(|c| target.picture.point(c)).collect(),
+                };
                 let plane = mesh.triangle(mesh.faces()[g].triangle_range().start);
-                if let Some(piece) = target.in_front(&corners, &plane) {
+                if let Some(piece) = target.in_front(&corners, &pictures, &plane) {
                     exits.faces_in_front += 1;
                     pieces.push(piece);
                 }
