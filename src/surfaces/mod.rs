@@ -10,14 +10,25 @@
 //! VISFAC2 walks A's hierarchy with the paper's early exits: a subobject whose CBOX lies wholly
 //! behind F's plane, or whose picture misses F's, is skipped; one whose INBOX hides every vertex
 //! of F (seen from outside the subobject's CBOX) empties VTP(F) at once (the points whose line
-//! of sight meets a box form a convex set, so the vertices decide for the whole face); and the
-//! walk stops as soon as VTP(F) is empty.
+//! of sight meets a box form a convex set, so the vertices decide for the whole face); so does
+//! a single face G that hides every vertex of F (behind G's plane and inside G's picture); and
+//! the walk stops as soon as VTP(F) is empty.
 //!
-//! The polygons are kept in picture coordinates (see [`Picture`]). Cutting F by G's plane
-//! keeps F's vertices and adds the points where F's edges cross G's plane, each built once from
-//! the input coordinates (exact expansions, rounded once); the differences are taken by
-//! [`crate::clip`], whose new vertices are within half an ulp of the largest picture
-//! coordinate of the exact crossings of those rounded pictures.
+//! The status is decided exactly: a face G counts only when it hides a region of positive
+//! area of F, decided from signs of `orient3d` of input points (and of exact degree-two
+//! combinations for the points where G crosses F's plane), never from the rounded pictures.
+//! So F is VISIBLE exactly when nothing hides any area of it, however the pictures touch. It
+//! is HIDDEN when an INBOX or one face hides it (exact), or when the clipped polygons leave
+//! nothing. A face covered only jointly by several faces whose pictures' edges run exactly
+//! along its own edges through different points can keep a sliver of a few ulps and come out
+//! MIXED; a visible region narrower than rounding can be lost.
+//!
+//! The polygons are kept in picture coordinates (see [`Picture`]). When F lies wholly behind
+//! G's plane (weakly), G's whole picture is taken away (input vertices only); when the two
+//! planes cross within F, G is cut by F's plane first, which adds the points where G's edges
+//! cross it, each built once from the input coordinates (exact expansions, rounded once). The
+//! differences are taken by [`crate::clip`], whose new vertices are within half an ulp of the
+//! largest picture coordinate of the exact crossings of those rounded pictures.
 //!
 //! ```
 //! use kepler::{geometry::Vector3, scene::Scene, views::View};
@@ -48,6 +59,8 @@ use geo::{Coord, LineString, MultiPolygon, Polygon};
 use rayon::prelude::*;
 use slotmap::SecondaryMap;
 use std::cmp::Ordering;
+
+mod overlap;
 
 /// How much of a face an object leaves visible.
 ///
@@ -101,8 +114,11 @@ pub struct Exits {
     pub cbox_skipped: u64,
     /// Subobjects whose INBOX hid the whole face (VTP emptied at once).
     pub inbox_hid: u64,
-    /// Faces with a part in front of the face's plane (each adds a piece to what may hide it).
+    /// Faces that hide some area of the face (decided exactly); each adds a piece to the
+    /// difference.
     pub faces_in_front: u64,
+    /// Faces that alone hid the whole face (VTP emptied at once, decided exactly).
+    pub face_hid: u64,
     /// Faces tested.
     pub faces_tested: u64,
 }
@@ -334,25 +350,23 @@ fn visfac_among(
             break;
         }
     }
-    let vtp = if all_hidden {
-        MultiPolygon::new(Vec::new())
+    // Every piece hides some area of F (decided exactly), so none means VISIBLE.
+    let (status, polygons) = if all_hidden {
+        (Status::Hidden, MultiPolygon::new(Vec::new()))
+    } else if pieces.is_empty() {
+        (Status::Visible, whole)
     } else {
-        clip::difference_of_union(&whole, &pieces).map_err(clip_error)?
-    };
-    let status = if vtp.0.is_empty() {
-        Status::Hidden
-    } else if touches_nothing(&whole, &pieces)? {
-        Status::Visible
-    } else {
-        Status::Mixed
+        let vtp = clip::difference_of_union(&whole, &pieces).map_err(clip_error)?;
+        let status = if vtp.0.is_empty() {
+            Status::Hidden
+        } else {
+            Status::Mixed
+        };
+        (status, vtp)
     };
     Ok(VisibleFace {
         status,
-        polygons: if status == Status::Visible {
-            whole
-        } else {
-            vtp
-        },
+        polygons,
         exits,
         edge_on: false,
     })
@@ -361,6 +375,8 @@ fn visfac_among(
 /// The face being tested: its vertices, plane and picture.
 struct Target {
     vertices: Vec<Point3>,
+    /// The face's triangles.
+    triangles: Vec<[Point3; 3]>,
     /// A triangle of the face (its plane).
     plane: [Point3; 3],
     eye: Eye,
@@ -374,13 +390,18 @@ struct Target {
 impl Target {
     fn new(mesh: &Mesh, face: usize, view: &View) -> Target {
         let vertices: Vec<Point3> = mesh.face_points(face).collect();
-        let plane = mesh.triangle(mesh.faces()[face].triangle_range().start);
+        let triangles: Vec<[Point3; 3]> = mesh.faces()[face]
+            .triangle_range()
+            .map(|t| mesh.triangle(t))
+            .collect();
+        let plane = triangles[0];
         let eye = *view.eye();
         let picture = Picture::of(view);
         let extent = bounding_box(vertices.iter().map(|v| picture.point(v)));
         Target {
             eye_side: eye.orient3d(&plane[0], &plane[1], &plane[2]),
             vertices,
+            triangles,
             plane,
             eye,
             picture,
@@ -424,11 +445,18 @@ impl Target {
     }
 
     /// The picture of the part of the polygon `corners` (with their `pictures`; a face of an
-    /// occluder, with a
-    /// triangle `g` of it) strictly on the eye's side of this face's plane, or `None` when no
-    /// part is or when no vertex of this face lies strictly behind `g`'s plane. Its vertices are the
-    /// pictures of the corners on that side or on the plane, and of the points where its edges
-    /// cross the plane, each built once from the input coordinates.
+    /// occluder, with a triangle `g` spanning its plane) that may hide points of this face:
+    /// within this face's picture, the points it hides are those seen through that picture.
+    /// `None` when it hides nothing: no vertex of this face lies strictly behind `g`'s plane
+    /// (or `g` is seen edge-on), or no part of the polygon is strictly on the eye's side of
+    /// this face's plane.
+    ///
+    /// When no vertex of this face lies strictly in front of `g`'s plane either, every point
+    /// of this face seen through the polygon is behind it, so the whole polygon serves, with
+    /// input vertices only. Otherwise the planes cross within the face and the polygon is cut
+    /// by this face's plane: its vertices are the pictures of its corners on the eye's side or
+    /// on the plane, and of the points where its edges cross the plane, each built once from
+    /// the input coordinates.
     fn in_front(
         &self,
         corners: &[Point3],
@@ -440,17 +468,20 @@ impl Target {
         if !sides.contains(&self.eye_side) {
             return None;
         }
-        // G hides only points of F strictly behind G's plane: with none (G seen edge-on, or F
-        // resting against G's plane from the front), it hides nothing, however its picture
-        // touches F's.
         let g_side = self.eye.orient3d(&g[0], &g[1], &g[2]);
-        if g_side == Ordering::Equal
-            || !self
-                .vertices
-                .iter()
-                .any(|v| orient3d(&g[0], &g[1], &g[2], v) == g_side.reverse())
-        {
+        if g_side == Ordering::Equal {
             return None;
+        }
+        let f_sides: Vec<Ordering> = self
+            .vertices
+            .iter()
+            .map(|v| orient3d(&g[0], &g[1], &g[2], v))
+            .collect();
+        if !f_sides.contains(&g_side.reverse()) {
+            return None;
+        }
+        if !f_sides.contains(&g_side) {
+            return Some(ring(pictures.to_vec()));
         }
         let n = corners.len();
         let mut out = Vec::with_capacity(n + 2);
@@ -472,20 +503,6 @@ impl Target {
         }
         (out.len() >= 3).then(|| ring(out))
     }
-}
-
-/// Whether no piece overlaps the face's picture (in area).
-fn touches_nothing(whole: &MultiPolygon<f64>, pieces: &[MultiPolygon<f64>]) -> Result<bool> {
-    for piece in pieces {
-        if !clip::intersection(whole, piece)
-            .map_err(clip_error)?
-            .0
-            .is_empty()
-        {
-            return Ok(false);
-        }
-    }
-    Ok(true)
 }
 
 /// The faces of one mesh listed by the cells of the picture their pictures' bounding boxes
@@ -602,10 +619,33 @@ fn visfac2(
                     None => corners.iter().map(|c| target.picture.point(c)).collect(),
                 };
                 let plane = mesh.triangle(mesh.faces()[g].triangle_range().start);
-                if let Some(piece) = target.in_front(&corners, &pictures, &plane) {
-                    exits.faces_in_front += 1;
-                    pieces.push(piece);
+                let Some(piece) = target.in_front(&corners, &pictures, &plane) else {
+                    continue;
+                };
+                // Only a face that hides some area of F counts (exactly): one touching F
+                // along a line would add nothing but rounding.
+                let hides_area = mesh.faces()[g].triangle_range().any(|s| {
+                    let s = mesh.triangle(s);
+                    target.triangles.iter().any(|t| {
+                        overlap::hides_area(
+                            &target.eye,
+                            &target.plane,
+                            target.eye_side,
+                            t,
+                            &s,
+                            &plane,
+                        )
+                    })
+                });
+                if !hides_area {
+                    continue;
                 }
+                exits.faces_in_front += 1;
+                if overlap::hides_all(&target.eye, &target.vertices, &corners, &plane) {
+                    exits.face_hid += 1;
+                    return Ok(true);
+                }
+                pieces.push(piece);
             }
         }
         Content::Subobjects(children) => {
