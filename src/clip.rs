@@ -62,6 +62,7 @@
 //! ```
 
 use crate::geometry::exact::{product_terms, sum_sign};
+use crate::geometry::predicates::orient2d;
 use geo::{Coord, LineString, MultiPolygon, Polygon};
 use i_overlay::core::fill_rule::FillRule;
 use i_overlay::core::overlay::ShapeType;
@@ -244,13 +245,38 @@ fn run(
     Ok(shapes
         .into_iter()
         .filter_map(|shape| {
-            let (exterior, holes) = shape.split_first()?;
+            let mut rings = shape.into_iter().map(without_collinear);
+            let exterior = rings.next().flatten()?;
             Some(Polygon::new(
-                line_string(exterior),
-                holes.iter().map(|hole| line_string(hole)).collect(),
+                line_string(&exterior),
+                rings.flatten().map(|hole| line_string(&hole)).collect(),
             ))
         })
         .collect())
+}
+
+/// The ring without the vertices that rounding to `f64` left exactly collinear with their
+/// neighbours (spikes along an edge, or points in the middle of one; exact `orient2d`, so only
+/// zero area goes), `None` when fewer than three remain (a ring of zero area).
+fn without_collinear(mut ring: Vec<[f64; 2]>) -> Option<Vec<[f64; 2]>> {
+    let mut i = 0;
+    let mut kept = 0;
+    // Walk round until a whole turn keeps every vertex, removing as we go.
+    while ring.len() >= 3 && kept < ring.len() {
+        let n = ring.len();
+        let (prev, next) = (ring[(i + n - 1) % n], ring[(i + 1) % n]);
+        if collinear(prev, ring[i], next) {
+            ring.remove(i);
+            kept = 0;
+            if i >= ring.len() {
+                i = 0;
+            }
+        } else {
+            kept += 1;
+            i = (i + 1) % n;
+        }
+    }
+    (ring.len() >= 3).then_some(ring)
 }
 
 /// Every ring of `polygons` as an open path (without the closing vertex), the engine's form.
@@ -266,6 +292,27 @@ fn rings(polygons: &MultiPolygon<f64>) -> Vec<Vec<[f64; 2]>> {
             path
         })
         .collect()
+}
+
+/// Whether three points are collinear, exactly. Coordinates below 1 are first scaled up by a
+/// power of two (exact, no overflow), so that the predicate's products cannot underflow.
+fn collinear(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> bool {
+    let m = [a, b, c]
+        .iter()
+        .flatten()
+        .fold(0.0f64, |m, v| m.max(v.abs()));
+    if m == 0.0 {
+        return true;
+    }
+    let [a, b, c] = if m < 1.0 {
+        // Two steps, so that even a subnormal maximum reaches [1, 2) without overflow.
+        let e = -(m.log2().floor() as i32);
+        let (s, t) = (2f64.powi(e / 2), 2f64.powi(e - e / 2));
+        [a, b, c].map(|p| p.map(|v| v * s * t))
+    } else {
+        [a, b, c]
+    };
+    orient2d(a, b, c) == Ordering::Equal
 }
 
 /// An engine path as a geo ring (closed by [`Polygon::new`]).

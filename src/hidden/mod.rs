@@ -749,6 +749,21 @@ fn cut_picture(picture: &Picture, eye: &Eye, l: &Line, at: Option<CutAt>) -> [f6
     }
 }
 
+/// [`turned_away`] for a mesh that, moreover, does not pierce itself (no two of its triangles
+/// without a common vertex cross; found as the hidden-line pass finds intersection lines): the
+/// sign of [`Eye::orient3d`] of a face the solid itself hides all of, or `None`.
+pub(crate) fn hidden_by_own_solid(
+    scene: &Scene,
+    id: ObjectId,
+    mesh: &Mesh,
+    eye: &Eye,
+) -> Option<Ordering> {
+    let side = turned_away(scene, id, mesh, eye)?;
+    intersections::between(mesh, mesh, true, eye)
+        .is_empty()
+        .then_some(side)
+}
+
 /// For a mesh that bounds a solid the eye is outside of (closed, consistently oriented, not
 /// flat; the eye outside its CBOX), the sign of [`Eye::orient3d`] of a face turned away from
 /// the eye; `None` otherwise. Every point of an edge between two faces turned away is then

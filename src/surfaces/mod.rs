@@ -12,16 +12,20 @@
 //! of F (seen from outside the subobject's CBOX) empties VTP(F) at once (the points whose line
 //! of sight meets a box form a convex set, so the vertices decide for the whole face); so does
 //! a single face G that hides every vertex of F (behind G's plane and inside G's picture); and
-//! the walk stops as soon as VTP(F) is empty.
+//! the walk stops as soon as VTP(F) is empty. Before any of it, a face turned away from the eye
+//! on a solid the eye is outside of (closed, consistently oriented, not piercing itself) is
+//! HIDDEN at once: its line of sight enters the solid, which it must leave through a face in
+//! front of it.
 //!
 //! The status is decided exactly: a face G counts only when it hides a region of positive
 //! area of F, decided from signs of `orient3d` of input points (and of exact degree-two
 //! combinations for the points where G crosses F's plane), never from the rounded pictures.
 //! So F is VISIBLE exactly when nothing hides any area of it, however the pictures touch. It
-//! is HIDDEN when an INBOX or one face hides it (exact), or when the clipped polygons leave
-//! nothing. A face covered only jointly by several faces whose pictures' edges run exactly
-//! along its own edges through different points can keep a sliver of a few ulps and come out
-//! MIXED; a visible region narrower than rounding can be lost.
+//! is HIDDEN when its own solid, an INBOX or one face hides it (exact), or when the clipped
+//! polygons leave nothing. A face covered only jointly by faces of other objects whose pictures'
+//! edges run exactly along its own edges (or each other's) through different points can keep
+//! a sliver of a few ulps and come out MIXED; a visible region narrower than rounding can be
+//! lost.
 //!
 //! The polygons are kept in picture coordinates (see [`Picture`]). When F lies wholly behind
 //! G's plane (weakly), G's whole picture is taken away (input vertices only); when the two
@@ -49,7 +53,7 @@ use crate::geometry::polygon::bounding_box;
 use crate::geometry::predicates::orient3d;
 use crate::geometry::{Aabb, Point3};
 use crate::grid::{CellLists, Cells};
-use crate::hidden::cut_point_on_plane;
+use crate::hidden::{cut_point_on_plane, hidden_by_own_solid};
 use crate::mesh::Mesh;
 use crate::queries::sight::Sight;
 use crate::scene::{Content, ObjectId, Scene};
@@ -119,6 +123,9 @@ pub struct Exits {
     pub faces_in_front: u64,
     /// Faces that alone hid the whole face (VTP emptied at once, decided exactly).
     pub face_hid: u64,
+    /// 1 when the face is turned away from the eye on a solid the eye is outside of (closed,
+    /// consistently oriented, not piercing itself): the solid itself hides all of it.
+    pub solid_hid: u64,
     /// Faces tested.
     pub faces_tested: u64,
 }
@@ -256,7 +263,7 @@ pub fn visible_surfaces(scene: &Scene, view: &View) -> Result<Vec<FaceReport>> {
     let meshes = picture.mesh_objects_in_front(scene)?;
     let built: Vec<(ObjectId, FaceGrid)> = meshes
         .par_iter()
-        .map(|&(id, mesh)| (id, FaceGrid::new(mesh, &picture)))
+        .map(|&(id, mesh)| (id, FaceGrid::new(scene, id, mesh, view, &picture)))
         .collect();
     let mut grids = SecondaryMap::new();
     grids.extend(built);
@@ -332,8 +339,24 @@ fn visfac_among(
             edge_on: true,
         });
     }
-    let whole = target.polygon();
     let mut exits = Exits::default();
+    let back_side = match grids.and_then(|g| g.get(owner)) {
+        Some(grid) => grid.back_side,
+        None if within(scene, owner, objects) => {
+            hidden_by_own_solid(scene, owner, mesh, view.eye())
+        }
+        None => None,
+    };
+    if back_side == Some(target.eye_side) {
+        exits.solid_hid = 1;
+        return Ok(VisibleFace {
+            status: Status::Hidden,
+            polygons: MultiPolygon::new(Vec::new()),
+            exits,
+            edge_on: false,
+        });
+    }
+    let whole = target.polygon();
     let mut pieces = Vec::new();
     let mut all_hidden = false;
     for &a in objects {
@@ -370,6 +393,11 @@ fn visfac_among(
         exits,
         edge_on: false,
     })
+}
+
+/// Whether `id` is one of `objects` or lies below one of them.
+fn within(scene: &Scene, id: ObjectId, objects: &[ObjectId]) -> bool {
+    std::iter::successors(Some(id), |&o| scene[o].parent()).any(|o| objects.contains(&o))
 }
 
 /// The face being tested: its vertices, plane and picture.
@@ -515,11 +543,13 @@ struct FaceGrid {
     lists: CellLists,
     /// The picture of every vertex of the mesh.
     pictures: Vec<[f64; 2]>,
+    /// The side of its faces that its own solid hides (see [`hidden_by_own_solid`]).
+    back_side: Option<Ordering>,
 }
 
 impl FaceGrid {
-    /// The grid of `mesh`'s faces, about one cell per face.
-    fn new(mesh: &Mesh, picture: &Picture) -> FaceGrid {
+    /// The grid of the faces of `mesh` (object `id`), about one cell per face.
+    fn new(scene: &Scene, id: ObjectId, mesh: &Mesh, view: &View, picture: &Picture) -> FaceGrid {
         let pictures: Vec<[f64; 2]> = mesh.vertices().iter().map(|v| picture.point(v)).collect();
         let boxes: Vec<[[f64; 2]; 2]> = mesh
             .faces()
@@ -545,6 +575,7 @@ impl FaceGrid {
             cells,
             margin,
             pictures,
+            back_side: hidden_by_own_solid(scene, id, mesh, view.eye()),
         }
     }
 

@@ -2,6 +2,8 @@
 //! rational arithmetic for references. Each test crate uses a subset of them.
 #![allow(dead_code)]
 
+pub mod exact;
+
 use kepler::geometry::Vector3;
 use num_rational::BigRational;
 use num_traits::Signed;
