@@ -18,8 +18,9 @@ use kepler::views::View;
 fn report(name: &str, scene: &Scene, view: &View) {
     let faces = visible_surfaces(scene, view).expect("visible surfaces");
     let count = |s: Status| faces.iter().filter(|f| f.visible.status == s).count();
-    let (mut cbox, mut inbox, mut face, mut front, mut tested) = (0, 0, 0, 0, 0);
+    let (mut solid, mut cbox, mut inbox, mut face, mut front, mut tested) = (0, 0, 0, 0, 0, 0);
     for f in &faces {
+        solid += f.visible.exits.solid_hid;
         cbox += f.visible.exits.cbox_skipped;
         inbox += f.visible.exits.inbox_hid;
         face += f.visible.exits.face_hid;
@@ -27,7 +28,7 @@ fn report(name: &str, scene: &Scene, view: &View) {
         tested += f.visible.exits.faces_tested;
     }
     eprintln!(
-        "{name}: {} faces: {} visible, {} hidden, {} mixed; CBOX skipped {cbox} objects, INBOX \
+        "{name}: {} faces: {} visible, {} hidden, {} mixed; {solid} hidden by their own solid, CBOX skipped {cbox} objects, INBOX \
          hid {inbox} faces at once, a single face hid {face}, {tested} occluder faces tried, {front} \
          hiding some area",
         faces.len(),
