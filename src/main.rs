@@ -409,6 +409,11 @@ fn run(cli: Cli) -> Result<()> {
             page,
             view,
         } => {
+            if light == Some([0.0; 3]) {
+                anyhow::bail!(
+                    "--light 0,0,0 has no direction: give a nonzero vector towards the light"
+                );
+            }
             let scene = load_drawable(&path)?;
             let view = view.view(&scene)?;
             let faces = visible_surfaces(&scene, &view)?;

@@ -967,6 +967,40 @@ fn surfaces_writes_shaded_polygons_and_json() {
 }
 
 #[test]
+fn surfaces_rejects_bad_options() {
+    let out = temp_path("bad-surfaces.svg");
+    let with = |extra: &[&'static str]| -> Vec<String> {
+        let mut all: Vec<String> = ["surfaces", "scenes/cube.toml", "-o", &out]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
+        all.extend(extra.iter().map(|s| s.to_string()));
+        all
+    };
+    // Rejected by the parser (usage errors, exit code 2).
+    for (extra, expect) in [
+        (["--light", "1,2"], "expected x,y,z"),
+        (["--light", "nan,1,1"], "not a finite number"),
+        (["--page", "0x10"], "not two positive sizes"),
+    ] {
+        let args = with(&extra);
+        let o = kepler(&args.iter().map(String::as_str).collect::<Vec<_>>());
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.starts_with("error: ") && err.contains(expect), "{err}");
+    }
+    // Rejected by the command.
+    let args = with(&["--light", "0,0,0"]);
+    let message = fails(&args.iter().map(String::as_str).collect::<Vec<_>>());
+    assert!(
+        message.contains("--light 0,0,0 has no direction"),
+        "{message}"
+    );
+    let missing = fails(&["surfaces", "scenes/nope.toml", "-o", &out]);
+    assert!(missing.contains("scenes/nope.toml"), "{missing}");
+}
+
+#[test]
 fn visobj_answers_for_named_objects() {
     assert_eq!(
         ok(&["visobj", "scenes/city.toml", "block", "ground"]),

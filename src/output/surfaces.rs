@@ -19,7 +19,8 @@ use std::io::{self, Write};
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Shading {
     /// The direction towards the light, in world coordinates; `None` for a light over the
-    /// viewer's left shoulder.
+    /// viewer's left shoulder (which a zero or non-finite vector also gives; the command line
+    /// rejects those).
     pub light: Option<Vector3>,
     /// Whether to stroke the visible polygons' outlines (0.1 mm, black).
     pub outlines: bool,
