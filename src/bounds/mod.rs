@@ -1,5 +1,6 @@
 //! The three bounds Franklin's objects keep: the circumscribing box (CBOX), the inscribing
-//! box (INBOX) and, after Crosnier and Rossignac (1999), the tribox.
+//! box (INBOX) and, after Crosnier and Rossignac (1999), the tribox; and oriented boxes
+//! ([`oriented`]) for bounding hierarchies.
 //!
 //! ```
 //! use kepler::bounds::{cbox, inbox};
@@ -9,6 +10,7 @@
 //! ```
 
 mod inbox;
+pub mod oriented;
 pub mod tribox;
 
 pub use crate::geometry::Aabb;
