@@ -29,6 +29,7 @@
 
 pub mod bounds;
 pub mod clip;
+pub mod culling;
 pub mod error;
 pub mod geometry;
 pub mod grid;

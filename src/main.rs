@@ -4,6 +4,7 @@ use anyhow::Result;
 use clap::{Args, Parser, Subcommand};
 use geo::Line;
 use indicatif::{ProgressBar, ProgressStyle};
+use kepler::culling::{CullReport, cull};
 use kepler::geometry::{Point3, Vector3};
 use kepler::grid::{intersecting_pairs, random_segments};
 use kepler::hidden::{self, Drawing, EdgeClass, EdgeSelection};
@@ -135,6 +136,18 @@ enum Command {
         a: String,
         /// The object that may be hidden.
         b: String,
+        #[command(flatten)]
+        view: ViewArgs,
+    },
+    /// Culling experiment: for one view, how many pairs of objects each bounding volume
+    /// (rstar on projected boxes, CBOX, TRIBOX, INBOX) proves not to interact, and the
+    /// triangle pairs that saves the hidden-line pass.
+    Cull {
+        /// A scene file (.toml) or a mesh file.
+        scene: PathBuf,
+        /// Also write the table as JSON to this file.
+        #[arg(long, value_name = "FILE")]
+        json: Option<PathBuf>,
         #[command(flatten)]
         view: ViewArgs,
     },
@@ -448,6 +461,18 @@ fn run(cli: Cli) -> Result<()> {
             let answer = visobj(&scene, a, b, &view)?;
             emit(&format!("{}\n", format!("{answer:?}").to_uppercase()))?;
         }
+        Command::Cull { scene, json, view } => {
+            let scene = load_drawable(&scene)?;
+            let view = view.view(&scene)?;
+            let report = cull(&scene, &view)?;
+            emit(&cull_table(&report))?;
+            if let Some(json) = &json {
+                write_file(json, |out| {
+                    serde_json::to_writer(&mut *out, &report).map_err(std::io::Error::other)?;
+                    writeln!(out)
+                })?;
+            }
+        }
         Command::Visp {
             scene,
             points,
@@ -546,6 +571,40 @@ fn progress_bar() -> Option<ProgressBar> {
 }
 
 /// Writes a file (or standard output for `-`) with `write`, naming the file in errors.
+/// The culling table: one row per filter, then the pairs left to the hidden-line pass.
+fn cull_table(r: &CullReport) -> String {
+    let share = |x: u64, of: u64| {
+        if of == 0 {
+            0.0
+        } else {
+            100.0 * x as f64 / of as f64
+        }
+    };
+    let mut out = format!(
+        "{} objects, {} pairs, {} triangle pairs\n{:<8} {:>12} {:>8} {:>22} {:>8}\n",
+        r.objects, r.pairs, r.triangle_pairs, "filter", "pairs", "%", "triangle pairs saved", "%"
+    );
+    for f in &r.filters {
+        out += &format!(
+            "{:<8} {:>12} {:>7.2}% {:>22} {:>7.2}%\n",
+            f.name,
+            f.decided,
+            share(f.decided, r.pairs),
+            f.triangle_pairs_saved,
+            share(f.triangle_pairs_saved, r.triangle_pairs)
+        );
+    }
+    out += &format!(
+        "{:<8} {:>12} {:>7.2}% {:>22} {:>7.2}%\n",
+        "left",
+        r.undecided,
+        share(r.undecided, r.pairs),
+        r.undecided_triangle_pairs,
+        share(r.undecided_triangle_pairs, r.triangle_pairs)
+    );
+    out
+}
+
 fn write_file(
     path: &std::path::Path,
     write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,

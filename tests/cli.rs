@@ -1020,3 +1020,28 @@ fn visobj_answers_for_named_objects() {
     let missing = fails(&["visobj", "scenes/city.toml", "block", "nowhere"]);
     assert!(missing.contains("no object named 'nowhere'"), "{missing}");
 }
+
+#[test]
+fn cull_prints_a_table_and_json() {
+    let json = temp_path("cull.json");
+    let table = ok(&["cull", "scenes/city.toml", "--json", &json]);
+    let lines: Vec<&str> = table.lines().collect();
+    assert!(lines[0].starts_with("328 objects, 53628 pairs"), "{table}");
+    let names: Vec<&str> = lines[2..]
+        .iter()
+        .map(|l| l.split_whitespace().next().unwrap_or(""))
+        .collect();
+    assert_eq!(names, ["rstar", "cbox", "tribox", "inbox", "left"]);
+    let value: Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).expect("the JSON")).expect("JSON");
+    assert_eq!(value["pairs"], 53628);
+    let filters = value["filters"].as_array().expect("filters");
+    assert_eq!(filters.len(), 4);
+    // The table's numbers are the JSON's.
+    for (row, f) in lines[2..6].iter().zip(filters) {
+        let decided: u64 = row.split_whitespace().nth(1).unwrap().parse().unwrap();
+        assert_eq!(f["decided"], decided);
+    }
+    let missing = fails(&["cull", "scenes/nope.toml"]);
+    assert!(missing.contains("scenes/nope.toml"), "{missing}");
+}
