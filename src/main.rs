@@ -4,20 +4,22 @@ use anyhow::Result;
 use clap::{Args, Parser, Subcommand};
 use geo::Line;
 use indicatif::{ProgressBar, ProgressStyle};
-use kepler::culling::{CullReport, cull};
+use kepler::culling::{CullReport, Ideograph, cull, ideographs};
+use kepler::geometry::polygon::bounding_box;
 use kepler::geometry::{Point3, Vector3};
 use kepler::grid::{intersecting_pairs, random_segments};
 use kepler::hidden::{self, Drawing, EdgeClass, EdgeSelection};
 use kepler::io::points::{read_points, read_segments};
 use kepler::output::{
-    Shading, SvgOptions, write_json, write_surfaces_json, write_surfaces_svg, write_svg,
+    PageTransform, Shading, SvgOptions, write_json, write_surfaces_json, write_surfaces_svg,
+    write_svg,
 };
 use kepler::queries::Counters;
 use kepler::queries::include::{IncludeIndex, Inclusion};
 use kepler::queries::visp::{Visibility, VisibilityIndex};
 use kepler::scene::{Scene, file, report::BoundsReport};
 use kepler::surfaces::{visible_surfaces, visobj};
-use kepler::views::{View, ViewOptions};
+use kepler::views::{Picture, View, ViewOptions};
 use std::fmt::Write as _;
 use std::io::IsTerminal;
 use std::io::Write;
@@ -102,6 +104,13 @@ enum Command {
         /// length of each edge class (to stderr).
         #[arg(long)]
         stats: bool,
+        /// Franklin's ideographs: an object whose CBOX's picture is smaller than this many
+        /// square millimetres on the page is drawn as its CBOX, or left out (`--ideograph`).
+        #[arg(long, value_name = "MM2", value_parser = parse_area)]
+        ideograph_below: Option<f64>,
+        /// What a small object becomes: `bound` (its CBOX) or `omit`.
+        #[arg(long, value_enum, default_value_t = IdeographMode::Bound)]
+        ideograph: IdeographMode,
         #[command(flatten)]
         view: ViewArgs,
     },
@@ -228,6 +237,21 @@ fn load_drawable(path: &std::path::Path) -> Result<Scene> {
         anyhow::bail!("{}: the scene has no objects to draw", path.display());
     }
     Ok(scene)
+}
+
+/// `--ideograph`.
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum IdeographMode {
+    Bound,
+    Omit,
+}
+
+/// A nonnegative finite area.
+fn parse_area(s: &str) -> std::result::Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(a) if a.is_finite() && a >= 0.0 => Ok(a),
+        _ => Err(format!("'{s}' is not a nonnegative area in mm²")),
+    }
 }
 
 /// `--edges`.
@@ -362,6 +386,8 @@ fn run(cli: Cli) -> Result<()> {
             stroke,
             json,
             stats,
+            ideograph_below,
+            ideograph,
             view,
         } => {
             if !(crease_angle.is_finite() && (0.0..=180.0).contains(&crease_angle)) {
@@ -390,6 +416,32 @@ fn run(cli: Cli) -> Result<()> {
                     EdgeClass::Smooth => svg_options.stroke.smooth = width,
                 }
             }
+            // The ideographs' threshold, at the page scale of the whole scene.
+            let culled = match ideograph_below {
+                Some(mm2) => {
+                    let picture = Picture::of(&view);
+                    let points = scene
+                        .mesh_objects(scene.roots())
+                        .into_iter()
+                        .flat_map(|(_, m)| m.vertices().iter().map(|v| picture.point(v)))
+                        .collect::<Vec<_>>();
+                    let [lo, hi] = bounding_box(points);
+                    let scale = PageTransform::fit(Some((lo, hi)), &svg_options).scale;
+                    let mode = match ideograph {
+                        IdeographMode::Bound => Ideograph::Bound,
+                        IdeographMode::Omit => Ideograph::Omit,
+                    };
+                    Some(ideographs(&scene, &view, mm2 / (scale * scale), mode)?)
+                }
+                None => None,
+            };
+            let (scene, culled) = match culled {
+                Some(c) => (
+                    c.scene,
+                    Some((c.culled, c.triangles_culled, c.triangles_added)),
+                ),
+                None => (scene, None),
+            };
             let loaded = started.elapsed();
             let bar = progress_bar();
             let drawing = hidden::draw_with_progress(&scene, &view, &options, &|done, total| {
@@ -410,6 +462,13 @@ fn run(cli: Cli) -> Result<()> {
             }
             let written = clock.elapsed();
             if stats {
+                if let Some((objects, removed, added)) = culled {
+                    eprintln!(
+                        "ideographs: {objects} objects below {} mm² culled ({removed} triangles; \
+                         {added} triangles of bounds drawn instead)",
+                        ideograph_below.unwrap_or(0.0)
+                    );
+                }
                 eprint!("{}", stats_report(&drawing, loaded, written));
             }
         }

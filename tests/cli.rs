@@ -1045,3 +1045,33 @@ fn cull_prints_a_table_and_json() {
     let missing = fails(&["cull", "scenes/nope.toml"]);
     assert!(missing.contains("scenes/nope.toml"), "{missing}");
 }
+
+#[test]
+fn render_draws_small_objects_as_ideographs() {
+    let svg = temp_path("ideographs.svg");
+    let o = kepler(&[
+        "render",
+        "scenes/city.toml",
+        "-o",
+        &svg,
+        "--ideograph-below",
+        "20",
+        "--stats",
+    ]);
+    assert_eq!(o.status.code(), Some(0));
+    let err = stderr(&o);
+    assert!(
+        err.starts_with("ideographs: 265 objects below 20 mm² culled (3180 triangles;"),
+        "{err}"
+    );
+    let o = kepler(&[
+        "render",
+        "scenes/city.toml",
+        "-o",
+        &svg,
+        "--ideograph-below",
+        "x",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("not a nonnegative area"));
+}

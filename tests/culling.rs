@@ -208,3 +208,66 @@ fn random_scenes_agree_with_independent_references() {
     // The random scenes exercise the INBOX filter too.
     assert!(decided_by_inbox > 0);
 }
+
+#[test]
+fn ideographs_replace_objects_by_their_exact_projected_area() {
+    use kepler::culling::{Ideograph, ideographs};
+    use kepler::hidden::{Options, draw};
+    // Cubes of side 1, 2 and 3 seen from above have pictures of area 1, 4 and 9 exactly.
+    let cubes: Vec<Mesh> = [1.0, 2.0, 3.0]
+        .iter()
+        .enumerate()
+        .map(|(i, &s)| moved(&solids::cube(s).unwrap(), [10.0 * i as f64, 0.0, 0.0]))
+        .collect();
+    let scene = scene_of(&cubes);
+    let down = View::standard();
+    let culled = |min: f64| {
+        ideographs(&scene, &down, min, Ideograph::Omit)
+            .unwrap()
+            .culled
+    };
+    assert_eq!(culled(1.0), 0);
+    assert_eq!(culled(4.0), 1);
+    assert_eq!(culled(4.0f64.next_up()), 2);
+    assert_eq!(culled(f64::INFINITY), 3);
+    let omitted = ideographs(&scene, &down, 4.0, Ideograph::Omit).unwrap();
+    assert_eq!(omitted.scene.roots().len(), 2);
+    assert_eq!((omitted.triangles_culled, omitted.triangles_added), (12, 0));
+    // An octahedron drawn as its bound draws exactly as its CBOX would.
+    let scene = scene_of(&[
+        octahedron(),
+        moved(&solids::cube(4.0).unwrap(), [9.0, 0.0, 0.0]),
+    ]);
+    let view = View::orthographic(Vector3::new(-1.0, -2.0, -3.0), Vector3::z()).unwrap();
+    let bound = ideographs(&scene, &view, 20.0, Ideograph::Bound).unwrap();
+    assert_eq!(
+        (bound.culled, bound.triangles_culled, bound.triangles_added),
+        (1, 8, 12)
+    );
+    let by_hand = scene_of(&[
+        solids::cube(2.0).unwrap(),
+        moved(&solids::cube(4.0).unwrap(), [9.0, 0.0, 0.0]),
+    ]);
+    let options = Options::default();
+    // The same segments (the two meshes number their vertices differently, so chains may
+    // start elsewhere or run the other way).
+    let segments = |scene: &Scene| {
+        let mut out: Vec<(String, bool, [[u64; 2]; 2])> = draw(scene, &view, &options)
+            .unwrap()
+            .polylines
+            .iter()
+            .flat_map(|p| {
+                p.points.windows(2).map(|w| {
+                    let mut ends = [w[0], w[1]].map(|[x, y]| [x.to_bits(), y.to_bits()]);
+                    ends.sort_unstable();
+                    (format!("{:?}", p.class), p.visible, ends)
+                })
+            })
+            .collect();
+        out.sort_unstable();
+        out
+    };
+    let got = segments(&bound.scene);
+    assert_eq!(got.len(), 24); // per cube: 6 silhouette, 3 visible and 3 hidden creases
+    assert_eq!(got, segments(&by_hand));
+}

@@ -11,6 +11,7 @@
 
 mod inbox;
 pub mod oriented;
+pub mod projected_area;
 pub mod tribox;
 
 pub use crate::geometry::Aabb;
