@@ -28,6 +28,7 @@
 //! ```
 
 pub mod bounds;
+pub mod boxtree;
 pub mod clip;
 pub mod culling;
 pub mod error;

@@ -4,6 +4,8 @@ use anyhow::Result;
 use clap::{Args, Parser, Subcommand};
 use geo::Line;
 use indicatif::{ProgressBar, ProgressStyle};
+use kepler::boxtree::spheres::{DEFAULT_GAP, PAPER_FACETS};
+use kepler::boxtree::{Merge, sphere_experiment};
 use kepler::culling::{CullReport, Ideograph, cull, ideographs};
 use kepler::geometry::polygon::bounding_box;
 use kepler::geometry::{Point3, Vector3};
@@ -160,6 +162,20 @@ enum Command {
         #[command(flatten)]
         view: ViewArgs,
     },
+    /// BOXTREE experiments (Barequet et al. 1996): `--experiment spheres` counts the
+    /// collision tests between pairs of concentric random spheres (556, 1,996 and 9,996
+    /// facets) for every node shape, beside the paper's Table 1.
+    Boxtree {
+        /// The experiment to run.
+        #[arg(long, value_enum)]
+        experiment: Experiment,
+        /// The merge rule: smallest parent `volume` (the paper's Table 1) or `area`.
+        #[arg(long, value_enum, default_value_t = MergeRule::Volume)]
+        merge: MergeRule,
+        /// Also write the rows as JSON to this file.
+        #[arg(long, value_name = "FILE")]
+        json: Option<PathBuf>,
+    },
     /// VISP: print VISIBLE or HIDDEN for each point, in order (a summary goes to stderr).
     Visp {
         /// A scene file (.toml) or a mesh file.
@@ -237,6 +253,20 @@ fn load_drawable(path: &std::path::Path) -> Result<Scene> {
         anyhow::bail!("{}: the scene has no objects to draw", path.display());
     }
     Ok(scene)
+}
+
+/// `--experiment`.
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum Experiment {
+    /// Concentric random spheres (the paper's Table 1 setting).
+    Spheres,
+}
+
+/// `--merge`.
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum MergeRule {
+    Volume,
+    Area,
 }
 
 /// `--ideograph`.
@@ -519,6 +549,38 @@ fn run(cli: Cli) -> Result<()> {
             let view = view.view(&scene)?;
             let answer = visobj(&scene, a, b, &view)?;
             emit(&format!("{}\n", format!("{answer:?}").to_uppercase()))?;
+        }
+        Command::Boxtree {
+            experiment: Experiment::Spheres,
+            merge,
+            json,
+        } => {
+            let merge = match merge {
+                MergeRule::Volume => Merge::Volume,
+                MergeRule::Area => Merge::Area,
+            };
+            let rows = sphere_experiment(&PAPER_FACETS, DEFAULT_GAP, 1, merge)?;
+            let mut table = format!(
+                "{:>7}  {:<8} {:>12} {:>12}\n",
+                "facets", "shape", "tests", "paper"
+            );
+            for r in &rows {
+                let paper = r.paper.map_or("-".to_string(), |p| p.to_string());
+                table += &format!(
+                    "{:>7}  {:<8} {:>12} {:>12}\n",
+                    r.facets,
+                    r.shape.to_string(),
+                    r.tests,
+                    paper
+                );
+            }
+            emit(&table)?;
+            if let Some(json) = &json {
+                write_file(json, |out| {
+                    serde_json::to_writer(&mut *out, &rows).map_err(std::io::Error::other)?;
+                    writeln!(out)
+                })?;
+            }
         }
         Command::Cull { scene, json, view } => {
             let scene = load_drawable(&scene)?;

@@ -1075,3 +1075,29 @@ fn render_draws_small_objects_as_ideographs() {
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("not a nonnegative area"));
 }
+
+#[test]
+fn boxtree_sphere_experiment_prints_ours_beside_the_papers() {
+    let json = temp_path("boxtree.json");
+    let table = ok(&["boxtree", "--experiment", "spheres", "--json", &json]);
+    let value: Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).expect("the JSON")).expect("JSON");
+    let rows = value.as_array().expect("rows");
+    assert_eq!(rows.len(), 15);
+    let shapes: Vec<&str> = rows[..5]
+        .iter()
+        .map(|r| r["shape"].as_str().unwrap())
+        .collect();
+    assert_eq!(shapes, ["aabb", "pca-all", "pca-max", "pca-min", "tribox"]);
+    let aabb_1996 = rows
+        .iter()
+        .find(|r| r["facets"] == 1996 && r["shape"] == "aabb")
+        .expect("the 1,996-facet AABB row");
+    assert_eq!(aabb_1996["paper"], 35749);
+    // One table line per row, with the same test counts.
+    assert_eq!(table.lines().count(), 16);
+    for (line, r) in table.lines().skip(1).zip(rows) {
+        let tests: u64 = line.split_whitespace().nth(2).unwrap().parse().unwrap();
+        assert_eq!(r["tests"], tests);
+    }
+}
