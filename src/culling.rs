@@ -364,41 +364,11 @@ pub fn ideographs(
         if mode == Ideograph::Bound {
             // A flat or degenerate box has no solid to draw: its picture is below the
             // threshold anyway, so it is left out.
-            if let Ok(b) = box_mesh(&cbox) {
+            if let Ok(b) = crate::solids::box_between(cbox.min, cbox.max) {
                 out.triangles_added += b.triangles().len() as u64;
                 out.scene.add_mesh(None, name, b)?;
             }
         }
     }
     Ok(out)
-}
-
-/// The closed box `b` as a mesh with its exact corners, faces turned outward (an error if it
-/// is flat: its faces have no area).
-fn box_mesh(b: &crate::geometry::Aabb) -> Result<crate::mesh::Mesh> {
-    // Corner k takes max along axis i when bit i of k is set, as `solids::cuboid` numbers them.
-    let corners = (0..8)
-        .map(|k| {
-            let c = |i: usize| {
-                if k & (1 << i) != 0 {
-                    b.max[i]
-                } else {
-                    b.min[i]
-                }
-            };
-            Point3::new(c(0), c(1), c(2))
-        })
-        .collect();
-    let faces = vec![
-        vec![0, 4, 6, 2],
-        vec![1, 3, 7, 5],
-        vec![0, 1, 5, 4],
-        vec![2, 6, 7, 3],
-        vec![0, 2, 3, 1],
-        vec![4, 5, 7, 6],
-    ];
-    crate::mesh::Mesh::from_polygons(corners, faces).map_err(|e| crate::Error::Object {
-        object: "ideograph".into(),
-        message: e.to_string(),
-    })
 }

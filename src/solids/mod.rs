@@ -160,11 +160,24 @@ pub fn cuboid(size: Vector3) -> Result<Mesh, SolidError> {
     let x = positive("cuboid", "size.x", size.x)? / 2.0;
     let y = positive("cuboid", "size.y", size.y)? / 2.0;
     let z = positive("cuboid", "size.z", size.z)? / 2.0;
-    // Vertex k has x = ±x by bit 0, y by bit 1, z by bit 2 (bit set: positive).
+    box_between([-x, -y, -z], [x, y, z])
+}
+
+/// The axis-aligned box with corners `min` and `max`, exactly (no arithmetic on the
+/// coordinates): 6 quads in the order −x, +x, −y, +y, −z, +z, turned outward. An error if it is
+/// flat (a face without area) or a coordinate is not finite.
+///
+/// ```
+/// let b = kepler::solids::box_between([0.0, 0.0, 0.0], [1.0, 2.0, 0.1]).unwrap();
+/// assert_eq!(kepler::bounds::cbox(&b).max, [1.0, 2.0, 0.1]);
+/// assert!(kepler::solids::box_between([0.0; 3], [1.0, 0.0, 1.0]).is_err());
+/// ```
+pub fn box_between(min: [f64; 3], max: [f64; 3]) -> Result<Mesh, SolidError> {
+    // Vertex k takes max along axis i when bit i of k is set.
     let vertices = (0..8)
         .map(|k| {
-            let s = |bit: u32, v: f64| if k & (1 << bit) != 0 { v } else { -v };
-            Point3::new(s(0, x), s(1, y), s(2, z))
+            let c = |i: usize| if k & (1 << i) != 0 { max[i] } else { min[i] };
+            Point3::new(c(0), c(1), c(2))
         })
         .collect();
     let faces = vec![
