@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::{Q, Rng, q, qcross, qdot, qsign, qsub, qv};
+use common::{Q, Rng, q, qcross, qdot, qsign, qsub, qv, unit_octahedron as octahedron};
 use kepler::bounds::tribox::TriboxBounds;
 use kepler::boxtree::pca::{PcaAll, PcaMax, PcaMin, Principal};
 use kepler::boxtree::ray::first_hit_brute_force;
@@ -48,30 +48,6 @@ fn soup(rng: &mut Rng, n: usize, grid: bool, scale: f64, offset: f64) -> Option<
         faces.push(vec![base, base + 1, base + 2]);
     }
     Mesh::from_polygons(vertices, faces).ok()
-}
-
-/// The octahedron with vertices (±1, 0, 0), (0, ±1, 0), (0, 0, ±1): integer vertices, so
-/// rays through vertices and edge midpoints are exact.
-fn octahedron() -> Mesh {
-    let v = vec![
-        Point3::new(1.0, 0.0, 0.0),
-        Point3::new(-1.0, 0.0, 0.0),
-        Point3::new(0.0, 1.0, 0.0),
-        Point3::new(0.0, -1.0, 0.0),
-        Point3::new(0.0, 0.0, 1.0),
-        Point3::new(0.0, 0.0, -1.0),
-    ];
-    let faces = vec![
-        vec![0, 2, 4],
-        vec![2, 1, 4],
-        vec![1, 3, 4],
-        vec![3, 0, 4],
-        vec![2, 0, 5],
-        vec![1, 2, 5],
-        vec![3, 1, 5],
-        vec![0, 3, 5],
-    ];
-    Mesh::from_polygons(v, faces).expect("valid octahedron")
 }
 
 /// The triangles below each node (leaves first, so children precede parents).

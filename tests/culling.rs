@@ -13,34 +13,11 @@ use kepler::views::{Picture, View};
 use nalgebra::Matrix4;
 
 mod common;
-use common::Rng;
+use common::{Rng, unit_octahedron as octahedron};
 
 fn moved(mesh: &Mesh, t: [f64; 3]) -> Mesh {
     mesh.transformed(&Matrix4::new_translation(&Vector3::new(t[0], t[1], t[2])))
         .unwrap()
-}
-
-/// The octahedron |x| + |y| + |z| ≤ 1.
-fn octahedron() -> Mesh {
-    let v = vec![
-        Point3::new(1.0, 0.0, 0.0),
-        Point3::new(-1.0, 0.0, 0.0),
-        Point3::new(0.0, 1.0, 0.0),
-        Point3::new(0.0, -1.0, 0.0),
-        Point3::new(0.0, 0.0, 1.0),
-        Point3::new(0.0, 0.0, -1.0),
-    ];
-    let f = vec![
-        vec![0, 2, 4],
-        vec![2, 1, 4],
-        vec![1, 3, 4],
-        vec![3, 0, 4],
-        vec![2, 0, 5],
-        vec![1, 2, 5],
-        vec![3, 1, 5],
-        vec![0, 3, 5],
-    ];
-    Mesh::from_polygons(v, f).unwrap()
 }
 
 fn scene_of(meshes: &[Mesh]) -> Scene {

@@ -38,7 +38,7 @@
 
 use super::tree::Link;
 use super::{BoxTree, NodeShape, RayProbe};
-use crate::geometry::exact::{accurate_sum, expansion, product_terms, sum_sign, two_sum};
+use crate::geometry::exact::accurate_sum;
 use crate::geometry::predicates::{orient3d, orient3d_at_infinity};
 use crate::geometry::{Point3, Vector3};
 use crate::queries::visp::Ray;
@@ -275,43 +275,7 @@ pub fn pierces(ray: &Ray, t: &[Point3; 3]) -> bool {
 /// assert_eq!(compare_hits(&ray, &at(0.1 + 0.2), &at(0.3)), Ordering::Less);
 /// ```
 pub fn compare_hits(ray: &Ray, a: &[Point3; 3], b: &[Point3; 3]) -> Ordering {
-    let (na, da) = parameter(ray, a);
-    let (nb, db) = parameter(ray, b);
-    // t_a - t_b = (na·db - nb·da) / (da·db).
-    let mut terms = Vec::new();
-    product_terms(&na, &db, &mut terms);
-    let negated: Vec<f64> = da.iter().map(|x| -x).collect();
-    product_terms(&nb, &negated, &mut terms);
-    let sign = sum_sign(&terms);
-    if (sum_sign(&da) as i8) * (sum_sign(&db) as i8) < 0 {
-        sign.reverse()
-    } else {
-        sign
-    }
-}
-
-/// The exact ray parameter `t = n·(a − o) / n·u` where the ray meets the plane of `t` (`n`
-/// its normal), as the expansions of numerator and denominator.
-fn parameter(ray: &Ray, t: &[Point3; 3]) -> (Vec<f64>, Vec<f64>) {
-    let diff = |p: &Point3, q: &Point3, k: usize| {
-        let (s, e) = two_sum(p[k], -q[k]);
-        [s, e]
-    };
-    let mut numerator = Vec::new();
-    let mut denominator = Vec::new();
-    for k in 0..3 {
-        let (i, j) = ((k + 1) % 3, (k + 2) % 3);
-        // n_k = (b - a)_i (c - a)_j - (b - a)_j (c - a)_i.
-        let mut n = Vec::with_capacity(16);
-        product_terms(&diff(&t[1], &t[0], i), &diff(&t[2], &t[0], j), &mut n);
-        let start = n.len();
-        product_terms(&diff(&t[1], &t[0], j), &diff(&t[2], &t[0], i), &mut n);
-        n[start..].iter_mut().for_each(|x| *x = -*x);
-        let n = expansion(&n);
-        product_terms(&n, &diff(&t[0], &ray.origin, k), &mut numerator);
-        product_terms(&n, &[ray.direction[k]], &mut denominator);
-    }
-    (expansion(&numerator), expansion(&denominator))
+    crate::queries::visp::compare_hits(ray, a, b)
 }
 
 /// An enclosure `[lo, hi]` of the exact parameter `t = n·(a − o) / n·u` at which the ray
@@ -348,14 +312,14 @@ fn parameter_bounds(ray: &Ray, t: &[Point3; 3]) -> Option<[f64; 2]> {
 /// An upper bound of the (positive) exact parameter of a pierced triangle: the quotient of the
 /// correctly rounded numerator and denominator is within three roundings of it.
 fn parameter_upper_bound(ray: &Ray, t: &[Point3; 3]) -> f64 {
-    let (n, d) = parameter(ray, t);
+    let (n, d) = crate::queries::visp::parameter(ray, t);
     let q = accurate_sum(&n) / accurate_sum(&d);
     q + q.abs() * 4.0 * f64::EPSILON + f64::MIN_POSITIVE
 }
 
 /// The hit point `o + t·u`, with `t` from the correctly rounded numerator and denominator.
 fn hit_point(ray: &Ray, t: &[Point3; 3]) -> Point3 {
-    let (n, d) = parameter(ray, t);
+    let (n, d) = crate::queries::visp::parameter(ray, t);
     let s = accurate_sum(&n) / accurate_sum(&d);
     Point3::from([0, 1, 2].map(|k| ray.origin[k] + s * ray.direction[k]))
 }

@@ -382,7 +382,7 @@ fn pierces(ray: &Ray, t: &[Point3; 3]) -> bool {
 
 /// The exact terms of the ray parameter `t = n·(a - o) / n·u` where the ray meets the plane
 /// of triangle `t` (`n` its normal): the numerator's and denominator's expansions.
-fn parameter(ray: &Ray, t: &[Point3; 3]) -> (Vec<f64>, Vec<f64>) {
+pub(crate) fn parameter(ray: &Ray, t: &[Point3; 3]) -> (Vec<f64>, Vec<f64>) {
     let diff = |p: &Point3, q: &Point3, k: usize| {
         let (s, e) = two_sum(p[k], -q[k]);
         [s, e]
@@ -405,7 +405,7 @@ fn parameter(ray: &Ray, t: &[Point3; 3]) -> (Vec<f64>, Vec<f64>) {
 }
 
 /// The exact order of the points where the ray meets the planes of `a` and `b` (both pierced).
-fn compare_hits(ray: &Ray, a: &[Point3; 3], b: &[Point3; 3]) -> Ordering {
+pub(crate) fn compare_hits(ray: &Ray, a: &[Point3; 3], b: &[Point3; 3]) -> Ordering {
     let (na, da) = parameter(ray, a);
     let (nb, db) = parameter(ray, b);
     // t_a - t_b = (na·db - nb·da) / (da·db).

@@ -83,3 +83,28 @@ pub fn qsign(x: &Q) -> Ordering {
         Ordering::Equal
     }
 }
+
+/// The octahedron |x| + |y| + |z| ≤ 1, vertices (±1, 0, 0), (0, ±1, 0), (0, 0, ±1): integer
+/// vertices, so rays through vertices and edge midpoints are exact.
+pub fn unit_octahedron() -> kepler::mesh::Mesh {
+    use kepler::geometry::Point3;
+    let v = vec![
+        Point3::new(1.0, 0.0, 0.0),
+        Point3::new(-1.0, 0.0, 0.0),
+        Point3::new(0.0, 1.0, 0.0),
+        Point3::new(0.0, -1.0, 0.0),
+        Point3::new(0.0, 0.0, 1.0),
+        Point3::new(0.0, 0.0, -1.0),
+    ];
+    let faces = vec![
+        vec![0, 2, 4],
+        vec![2, 1, 4],
+        vec![1, 3, 4],
+        vec![3, 0, 4],
+        vec![2, 0, 5],
+        vec![1, 2, 5],
+        vec![3, 1, 5],
+        vec![0, 3, 5],
+    ];
+    kepler::mesh::Mesh::from_polygons(v, faces).expect("valid octahedron")
+}
