@@ -42,6 +42,7 @@ pub mod queries;
 pub mod scene;
 pub mod solids;
 pub mod surfaces;
+pub mod triboxes;
 pub mod views;
 
 pub use error::{Error, Result};

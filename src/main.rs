@@ -4,6 +4,7 @@ use anyhow::Result;
 use clap::{Args, Parser, Subcommand};
 use geo::Line;
 use indicatif::{ProgressBar, ProgressStyle};
+use kepler::bounds::tribox::Tribox;
 use kepler::boxtree::spheres::{DEFAULT_GAP, PAPER_FACETS};
 use kepler::boxtree::{Merge, sphere_experiment};
 use kepler::culling::{CullReport, Ideograph, cull, ideographs};
@@ -12,6 +13,7 @@ use kepler::geometry::{Point3, Vector3};
 use kepler::grid::{intersecting_pairs, random_segments};
 use kepler::hidden::{self, Drawing, EdgeClass, EdgeSelection};
 use kepler::io::points::{read_points, read_segments};
+use kepler::mesh::Mesh;
 use kepler::output::{
     PageTransform, Shading, SvgOptions, write_json, write_surfaces_json, write_surfaces_svg,
     write_svg,
@@ -21,6 +23,7 @@ use kepler::queries::include::{IncludeIndex, Inclusion};
 use kepler::queries::visp::{Visibility, VisibilityIndex};
 use kepler::scene::{Scene, file, report::BoundsReport};
 use kepler::surfaces::{visible_surfaces, visobj};
+use kepler::triboxes::{Hierarchy, Level, Options as TriboxOptions, SplitRule, tribox_mesh};
 use kepler::views::{Picture, View, ViewOptions};
 use std::fmt::Write as _;
 use std::io::IsTerminal;
@@ -176,6 +179,46 @@ enum Command {
         #[arg(long, value_name = "FILE")]
         json: Option<PathBuf>,
     },
+    /// Hierarchical triboxes (Crosnier and Rossignac 1999, §4): split a closed object by
+    /// planes across the tribox's 9 directions while the triboxes' total area drops, and print
+    /// each level of detail (triboxes, faces M, compression N/M, volume and area excess,
+    /// Hausdorff distance bounds).
+    Triboxes {
+        /// A scene file (.toml) or a mesh file.
+        scene: PathBuf,
+        /// The object (its path, e.g. `round/ring`); default: all objects together.
+        #[arg(long, value_name = "PATH")]
+        object: Option<String>,
+        /// How many levels to report (depths 0 to K−1).
+        #[arg(long, value_name = "K", default_value_t = 4)]
+        levels: usize,
+        /// Split a cell only when the total tribox area drops by this fraction (negative:
+        /// may rise by that fraction, to build deeper levels).
+        #[arg(
+            long,
+            value_name = "FRACTION",
+            default_value_t = 0.05,
+            allow_hyphen_values = true
+        )]
+        gain: f64,
+        /// Split no cell deeper than this.
+        #[arg(long, value_name = "DEPTH", default_value_t = 8)]
+        max_depth: usize,
+        /// The splitting plane: the `best` of the nine slab bisectors, or the paper's
+        /// `thickest` slab's.
+        #[arg(long, value_enum, default_value_t = SplitArg::Best)]
+        split: SplitArg,
+        /// Draw the object and the levels side by side (hidden lines removed) to this SVG file.
+        #[arg(short = 'o', long = "output", value_name = "FILE")]
+        output: Option<PathBuf>,
+        /// Also write the levels and the nodes as JSON to this file.
+        #[arg(long, value_name = "FILE")]
+        json: Option<PathBuf>,
+        #[command(flatten)]
+        page: PageArgs,
+        #[command(flatten)]
+        view: ViewArgs,
+    },
     /// VISP: print VISIBLE or HIDDEN for each point, in order (a summary goes to stderr).
     Visp {
         /// A scene file (.toml) or a mesh file.
@@ -253,6 +296,13 @@ fn load_drawable(path: &std::path::Path) -> Result<Scene> {
         anyhow::bail!("{}: the scene has no objects to draw", path.display());
     }
     Ok(scene)
+}
+
+/// `--split`.
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum SplitArg {
+    Best,
+    Thickest,
 }
 
 /// `--experiment`.
@@ -594,6 +644,64 @@ fn run(cli: Cli) -> Result<()> {
                 })?;
             }
         }
+        Command::Triboxes {
+            scene: path,
+            object,
+            levels,
+            gain,
+            max_depth,
+            split,
+            output,
+            json,
+            page,
+            view,
+        } => {
+            let scene = load_drawable(&path)?;
+            let (name, mesh) = match &object {
+                Some(name) => {
+                    let Some(id) = scene.find(name) else {
+                        anyhow::bail!("{}: no object named '{name}'", path.display());
+                    };
+                    (scene.path(id), scene.flatten(id)?)
+                }
+                None => (path.display().to_string(), whole_scene(&scene, &path)?),
+            };
+            let options = TriboxOptions {
+                gain,
+                max_depth,
+                split: match split {
+                    SplitArg::Best => SplitRule::Best,
+                    SplitArg::Thickest => SplitRule::Thickest,
+                },
+                ..TriboxOptions::default()
+            };
+            let hierarchy = Hierarchy::build(&mesh, &options)
+                .map_err(|e| anyhow::anyhow!("object '{name}': {e}"))?;
+            let report = hierarchy.levels(levels);
+            emit(&tribox_table(&name, mesh.faces().len(), &report))?;
+            if let Some(json) = &json {
+                let value = serde_json::json!({
+                    "object": name,
+                    "faces": mesh.faces().len(),
+                    "volume": mesh.volume(),
+                    "area": mesh.surface_area(),
+                    "levels": report,
+                    "nodes": hierarchy.nodes(),
+                });
+                write_file(json, |out| {
+                    serde_json::to_writer(&mut *out, &value).map_err(std::io::Error::other)?;
+                    writeln!(out)
+                })?;
+            }
+            if let Some(output) = &output {
+                let view = view.view(&scene)?;
+                let panels = tribox_panels(&mesh, &hierarchy, report.len(), &view)?;
+                let drawing = hidden::draw(&panels, &view, &hidden::Options::default())?;
+                write_file(output, |mut out| {
+                    write_svg(&drawing, &page.svg_options(), &mut out)
+                })?;
+            }
+        }
         Command::Visp {
             scene,
             points,
@@ -782,6 +890,79 @@ fn stats_report(drawing: &Drawing, loaded: Duration, written: Duration) -> Strin
         );
     }
     text
+}
+
+/// All the scene's meshes as one mesh (an error naming the file if that fails).
+fn whole_scene(scene: &Scene, path: &std::path::Path) -> Result<Mesh> {
+    let mut vertices = Vec::new();
+    let mut faces: Vec<Vec<u32>> = Vec::new();
+    for (_, mesh) in scene.mesh_objects(scene.roots()) {
+        let offset = vertices.len() as u32;
+        vertices.extend_from_slice(mesh.vertices());
+        faces.extend(
+            mesh.faces()
+                .iter()
+                .map(|f| f.vertices().iter().map(|&v| v + offset).collect()),
+        );
+    }
+    Mesh::from_polygons(vertices, faces)
+        .map_err(|e| anyhow::anyhow!("{}: all objects together: {e}", path.display()))
+}
+
+/// The table of `kepler triboxes`.
+fn tribox_table(name: &str, faces: usize, levels: &[Level]) -> String {
+    let mut t = format!("{name}: N = {faces} faces\n");
+    t += &format!(
+        "{:>5} {:>8} {:>7} {:>11} {:>13} {:>11}  {}\n",
+        "depth",
+        "triboxes",
+        "faces M",
+        "compression",
+        "volume excess",
+        "area excess",
+        "hausdorff (lower bound)"
+    );
+    for l in levels {
+        t += &format!(
+            "{:>5} {:>8} {:>7} {:>11.2} {:>12.2}% {:>10.2}%  {:.6} ({:.6})\n",
+            l.depth,
+            l.triboxes,
+            l.faces,
+            l.compression,
+            100.0 * l.volume_excess,
+            100.0 * l.area_excess,
+            l.hausdorff,
+            l.hausdorff_lower
+        );
+    }
+    t
+}
+
+/// The object and the levels of detail side by side: each panel moved along the picture's
+/// horizontal by the object's width and a gap.
+fn tribox_panels(mesh: &Mesh, h: &Hierarchy, levels: usize, view: &View) -> Result<Scene> {
+    let (right, _) = view.right_up();
+    let root = Tribox::new(&h.nodes()[0].tribox).cleaned();
+    let along = root.vertices().iter().map(|v| v.coords.dot(&right));
+    let (lo, hi) = along.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+        (lo.min(x), hi.max(x))
+    });
+    let pitch = 1.25 * (hi - lo);
+    let shifted = |m: &Mesh, k: usize| {
+        m.transformed(&nalgebra::Matrix4::new_translation(
+            &(right * (pitch * k as f64)),
+        ))
+    };
+    let mut scene = Scene::new();
+    scene.add_mesh(None, "object", shifted(mesh, 0)?)?;
+    for depth in 0..levels {
+        let group = scene.add_group(None, format!("level-{depth}"))?;
+        for (i, node) in h.cut(depth).into_iter().enumerate() {
+            let m = tribox_mesh(&h.nodes()[node].tribox, h.simplify_tolerance())?;
+            scene.add_mesh(Some(group), format!("tribox-{i}"), shifted(&m, depth + 1)?)?;
+        }
+    }
+    Ok(scene)
 }
 
 /// Writes to standard output; a reader that closed the pipe early (`| head`) is not an error.

@@ -639,6 +639,51 @@ impl TriboxBounds {
         }
     }
 
+    /// The points in both: the intersection of the two sets of 18 half-spaces (empty bounds
+    /// when some slab pair does not overlap).
+    ///
+    /// ```
+    /// use kepler::bounds::tribox::TriboxBounds;
+    /// use kepler::geometry::Point3;
+    /// let a = TriboxBounds::from_points(&[Point3::new(0.0, 0.0, 0.0), Point3::new(2.0, 2.0, 2.0)]);
+    /// let b = TriboxBounds::from_points(&[Point3::new(1.0, 1.0, 1.0), Point3::new(3.0, 3.0, 3.0)]);
+    /// let both = a.intersection(&b);
+    /// assert_eq!((both.min()[0], both.max()[0], both.max()[3]), (1.0, 2.0, 4.0));
+    /// assert!(a.intersection(&TriboxBounds::empty()).is_empty());
+    /// ```
+    pub fn intersection(&self, other: &TriboxBounds) -> TriboxBounds {
+        let b = TriboxBounds {
+            min: std::array::from_fn(|d| self.min[d].max(other.min[d])),
+            max: std::array::from_fn(|d| self.max[d].min(other.max[d])),
+        };
+        if (0..9).any(|d| b.min[d] > b.max[d]) {
+            TriboxBounds::empty()
+        } else {
+            b
+        }
+    }
+
+    /// The two halves cut by the plane `d · x = h` across direction `d` (an index into
+    /// [`DIRECTIONS`](Self::DIRECTIONS)): `[below, above]`, the first with its maximum along `d`
+    /// lowered to `h`, the second with its minimum raised to `h` (either empty when `h` lies
+    /// outside the slab). Hierarchical triboxes split their regions this way.
+    ///
+    /// ```
+    /// use kepler::bounds::tribox::TriboxBounds;
+    /// use kepler::geometry::Point3;
+    /// let b = TriboxBounds::from_points(&[Point3::new(0.0, 0.0, 0.0), Point3::new(2.0, 2.0, 2.0)]);
+    /// let [below, above] = b.split(3, 1.0); // the plane x + y = 1
+    /// assert_eq!((below.min()[3], below.max()[3]), (0.0, 1.0));
+    /// assert_eq!((above.min()[3], above.max()[3]), (1.0, 4.0));
+    /// assert!(b.split(0, 5.0)[1].is_empty());
+    /// ```
+    pub fn split(&self, d: usize, h: f64) -> [TriboxBounds; 2] {
+        let (mut below, mut above) = (*self, *self);
+        below.max[d] = below.max[d].min(h);
+        above.min[d] = above.min[d].max(h);
+        [below, above].map(|b| b.intersection(&b))
+    }
+
     /// The boundary of the tribox, by the paper's corner classification. See [`Tribox`].
     ///
     /// ```

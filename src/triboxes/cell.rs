@@ -1,0 +1,457 @@
+//! One cell `S ∩ C` of the subdivision and its split by a plane (Crosnier and Rossignac 1999,
+//! §4). A cell is kept implicitly, as the paper does: its region `C` (a tribox: at most 18
+//! half-spaces along the 9 directions), the object's triangles that may meet `C`, and the
+//! cell's vertices, from which its tribox follows.
+//!
+//! # The vertices of a cell, incrementally
+//!
+//! Splitting a cell by the plane `h: d · x = h` keeps, on each side, the parent's vertices on
+//! that side (closed), and adds the vertices the cut creates, all on `h` and shared by both
+//! children:
+//! - edges of `S` crossing `h` inside `C` (the paper's "edges of S with faces of C");
+//! - vertices of the polygon `C ∩ h` inside `S` ("vertices of C in S");
+//! - edges of that polygon crossing faces of `S` ("edges of C with faces of S").
+//!
+//! Vertices of `S` in `C` are the root cell's vertices, passed down. Every vertex of `S ∩ C'`
+//! is one of these, so the children's vertex sets are complete.
+//!
+//! # Exactness
+//!
+//! Every decision (side of `h`, inside a half-space of `C`, crossing or not) is an exact sign
+//! of an expansion in the input coordinates and the regions' offsets. A built point is each
+//! coordinate's exact rational value, numerator and denominator each correctly rounded, then
+//! divided: within 2 ulps of the coordinate, and known exact when both were exact and the
+//! division leaves no remainder (a region corner is exact when it lies exactly on its three
+//! planes). Each inexact coordinate carries an error of 4 ulps that surely holds the exact
+//! one; a tribox is taken over the corners of these error boxes, so it contains the exact
+//! cell. Only the region's corners are classified against `S` as rounded points: one that may
+//! lie within its error of the surface is kept whatever the answer, since an extra point can
+//! only loosen a bound.
+
+use crate::bounds::tribox::{Tribox, TriboxBounds};
+use crate::geometry::Point3;
+use crate::geometry::exact::{
+    add_round_down, add_round_up, estimate, expansion, expansion_product, expansion_sum, negated,
+    scale_expansion, sum_sign,
+};
+use crate::mesh::{Containment, Mesh, TriangleTree, classify_point};
+use std::cmp::Ordering;
+
+/// A vertex of a cell: a point, and how far (in each coordinate) the exact vertex may be from
+/// it: 0 for the object's own vertices and for built coordinates found exact.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct CellVertex {
+    p: Point3,
+    err: [f64; 3],
+}
+
+impl CellVertex {
+    /// An exact point.
+    fn exact(p: Point3) -> CellVertex {
+        CellVertex { p, err: [0.0; 3] }
+    }
+
+    /// A built point: coordinates marked exact are, the others are within 2 ulps.
+    fn built(p: Point3, exact: [bool; 3]) -> CellVertex {
+        CellVertex {
+            p,
+            err: [0, 1, 2].map(|k| {
+                if exact[k] {
+                    0.0
+                } else {
+                    4.0 * f64::EPSILON * p[k].abs() + 4.0 * f64::MIN_POSITIVE
+                }
+            }),
+        }
+    }
+
+    /// The largest error of a coordinate.
+    fn max_err(&self) -> f64 {
+        self.err[0].max(self.err[1]).max(self.err[2])
+    }
+}
+
+/// A cell `S ∩ C`.
+#[derive(Clone, Debug)]
+pub(crate) struct Cell {
+    /// The region `C`.
+    pub region: TriboxBounds,
+    /// The tribox of the cell (contains the exact cell; inside `region`).
+    pub tribox: TriboxBounds,
+    /// The object's triangles that meet `C` (closed).
+    triangles: Vec<u32>,
+    /// The cell's vertices (a superset only by points within rounding of the cell).
+    vertices: Vec<CellVertex>,
+}
+
+/// Which children a parent's vertex goes to.
+#[derive(Clone, Copy, PartialEq)]
+enum Side {
+    Below,
+    Above,
+    Both,
+}
+
+/// The terms of `n_j · p − β_j` for plane `j` of a region (all products exact: the normals'
+/// entries are 0 and ±1).
+fn plane_terms(j: usize, beta: f64, p: &Point3) -> ([f64; 4], usize) {
+    let n = Tribox::PLANE_NORMALS[j];
+    let mut t = [0.0; 4];
+    let mut len = 0;
+    for k in 0..3 {
+        if n[k] != 0.0 {
+            t[len] = n[k] * p[k];
+            len += 1;
+        }
+    }
+    t[len] = -beta;
+    (t, len + 1)
+}
+
+/// The exact value of `n_j · p − β_j` as an expansion.
+fn plane_value(j: usize, beta: f64, p: &Point3) -> Vec<f64> {
+    let (t, len) = plane_terms(j, beta, p);
+    expansion(&t[..len])
+}
+
+/// The exact sign of `n_j · p − β_j`.
+fn plane_sign(j: usize, beta: f64, p: &Point3) -> Ordering {
+    let (t, len) = plane_terms(j, beta, p);
+    sum_sign(&t[..len])
+}
+
+/// The offsets `β_j` of the 18 half-spaces `n_j · x ≤ β_j` of a region.
+fn offsets(region: &TriboxBounds) -> [f64; 18] {
+    std::array::from_fn(|j| {
+        if j % 2 == 0 {
+            -region.min()[j / 2]
+        } else {
+            region.max()[j / 2]
+        }
+    })
+}
+
+/// The sign of an expansion.
+fn sign(e: &[f64]) -> Ordering {
+    sum_sign(e)
+}
+
+/// The point `Σ wᵢ pᵢ / Σ wᵢ` for exact weights, each coordinate from a correctly rounded
+/// numerator and denominator; a coordinate is exact when both are and the division leaves no
+/// remainder.
+fn weighted_point(weights: &[Vec<f64>], points: &[Point3], total: &[f64]) -> CellVertex {
+    let den = estimate(total);
+    let den_exact = sum_sign(&[total, &[-den]].concat()) == Ordering::Equal;
+    let coordinate = |k: usize| {
+        let mut num: Vec<f64> = Vec::new();
+        for (w, p) in weights.iter().zip(points) {
+            num = expansion_sum(&num, &scale_expansion(w, p[k]));
+        }
+        let n = estimate(&num);
+        let q = n / den;
+        let exact = den_exact
+            && sum_sign(&[&num[..], &[-n]].concat()) == Ordering::Equal
+            && (-q).mul_add(den, n) == 0.0
+            && (q == 0.0 || q.abs() >= f64::MIN_POSITIVE);
+        (q, exact)
+    };
+    let c = [0, 1, 2].map(coordinate);
+    CellVertex::built(Point3::new(c[0].0, c[1].0, c[2].0), c.map(|(_, e)| e))
+}
+
+/// Whether the point `Σ wᵢ pᵢ / W` (weights all of one sign with `W`, so a convex combination)
+/// satisfies the half-spaces of `region` other than `skip`, decided exactly.
+fn combination_inside(
+    beta: &[f64; 18],
+    skip: impl Fn(usize) -> bool,
+    weights: &[Vec<f64>],
+    points: &[Point3],
+    total_sign: Ordering,
+) -> bool {
+    (0..18).filter(|&j| !skip(j)).all(|j| {
+        let signs: Vec<Ordering> = points.iter().map(|p| plane_sign(j, beta[j], p)).collect();
+        if signs.iter().all(|&s| s != Ordering::Greater) {
+            return true; // a convex combination of points inside
+        }
+        if signs.iter().all(|&s| s == Ordering::Greater) {
+            return false;
+        }
+        let mut value: Vec<f64> = Vec::new();
+        for (w, p) in weights.iter().zip(points) {
+            value = expansion_sum(&value, &expansion_product(w, &plane_value(j, beta[j], p)));
+        }
+        let s = sign(&value);
+        let s = if total_sign == Ordering::Less {
+            s.reverse()
+        } else {
+            s
+        };
+        s != Ordering::Greater
+    })
+}
+
+impl Cell {
+    /// The whole object: its tribox is its region.
+    pub fn root(mesh: &Mesh) -> Cell {
+        let mut used = vec![false; mesh.vertices().len()];
+        for t in mesh.triangles() {
+            for &v in t {
+                used[v as usize] = true;
+            }
+        }
+        let vertices: Vec<CellVertex> = mesh
+            .vertices()
+            .iter()
+            .zip(&used)
+            .filter(|&(_, &u)| u)
+            .map(|(&p, _)| CellVertex::exact(p))
+            .collect();
+        let points: Vec<Point3> = vertices.iter().map(|v| v.p).collect();
+        let tribox = TriboxBounds::from_points(&points);
+        Cell {
+            region: tribox,
+            tribox,
+            triangles: (0..mesh.triangles().len() as u32).collect(),
+            vertices,
+        }
+    }
+
+    /// The number of vertices kept for the cell.
+    pub fn vertex_count(&self) -> usize {
+        self.vertices.len()
+    }
+
+    /// The number of the object's triangles that may meet the cell's region.
+    pub fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// The plane `d · x = h` bisecting the cell's tribox slab along direction `d`, if that slab
+    /// has room for a plane strictly inside.
+    pub fn bisector(&self, d: usize) -> Option<f64> {
+        let (lo, hi) = (self.tribox.min()[d], self.tribox.max()[d]);
+        let h = 0.5 * lo + 0.5 * hi;
+        (lo < h && h < hi).then_some(h)
+    }
+
+    /// The width of the cell's tribox along direction `d` (in length units).
+    pub fn thickness(&self, d: usize) -> f64 {
+        let n = TriboxBounds::DIRECTIONS[d];
+        let norm = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        (self.tribox.max()[d] - self.tribox.min()[d]) / norm
+    }
+
+    /// Splits the cell by the plane `d · x = h` (strictly inside its tribox's slab along `d`):
+    /// `[below, above]`.
+    pub fn split(&self, mesh: &Mesh, tree: &TriangleTree, d: usize, h: f64) -> [Cell; 2] {
+        let [below_region, above_region] = self.region.split(d, h);
+        let beta = offsets(&self.region);
+        let (lo_plane, hi_plane) = (2 * d, 2 * d + 1);
+        // The side of h as the sign of n · p − h with n = direction d: plane 2d + 1 with
+        // offset h.
+        let side_of = |p: &Point3| plane_sign(hi_plane, h, p);
+
+        // Triangles, and the edges of S crossing h.
+        let mut below_triangles = Vec::new();
+        let mut above_triangles = Vec::new();
+        let mut on_h = Vec::new();
+        let mut crossing_edges: Vec<(u32, u32)> = Vec::new();
+        for &t in &self.triangles {
+            let tri = mesh.triangles()[t as usize];
+            let s = tri.map(|v| side_of(&mesh.vertices()[v as usize]));
+            let below = s.iter().any(|&x| x != Ordering::Greater);
+            let above = s.iter().any(|&x| x != Ordering::Less);
+            if below {
+                below_triangles.push(t);
+            }
+            if above {
+                above_triangles.push(t);
+            }
+            if below && above {
+                on_h.push(t);
+                for k in 0..3 {
+                    let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                    if (s[k] == Ordering::Less && s[(k + 1) % 3] == Ordering::Greater)
+                        || (s[k] == Ordering::Greater && s[(k + 1) % 3] == Ordering::Less)
+                    {
+                        crossing_edges.push((a.min(b), a.max(b)));
+                    }
+                }
+            }
+        }
+        crossing_edges.sort_unstable();
+        crossing_edges.dedup();
+
+        let mut new_vertices = Vec::new();
+        // Edges of S crossing h inside C: the point (A b − B a) / (A − B) with A, B the values
+        // of the plane at a and b, inside C when each other half-space holds there.
+        let skip_d = |j: usize| j == lo_plane || j == hi_plane;
+        for &(a, b) in &crossing_edges {
+            let points = [mesh.vertices()[a as usize], mesh.vertices()[b as usize]];
+            let (va, vb) = (
+                plane_value(hi_plane, h, &points[0]),
+                plane_value(hi_plane, h, &points[1]),
+            );
+            let weights = [negated(&vb), va.clone()];
+            let total = expansion_sum(&va, &negated(&vb));
+            let total_sign = sign(&total);
+            if combination_inside(&beta, skip_d, &weights, &points, total_sign) {
+                new_vertices.push(weighted_point(&weights, &points, &total));
+            }
+        }
+
+        // The polygon C ∩ h: a face of the upper region's boundary.
+        let boundary = Tribox::new(&above_region).cleaned();
+        let polygon = boundary.face(lo_plane);
+        let corners = boundary.vertices();
+        let above_beta = offsets(&above_region);
+        // A corner is exact when it lies exactly on its three (independent) planes.
+        let corner = |v: u8| {
+            let p = corners[v as usize];
+            let on_planes = boundary.vertex_planes()[v as usize]
+                .iter()
+                .all(|&j| plane_sign(j as usize, above_beta[j as usize], &p) == Ordering::Equal);
+            CellVertex::built(p, [on_planes; 3])
+        };
+        for &v in polygon {
+            let vertex = corner(v);
+            // Rounded points: one that may lie within err of the surface is kept.
+            if classify_point(tree, &vertex.p) != Containment::Outside
+                || tree.distance(&vertex.p) <= 4.0 * vertex.max_err()
+            {
+                new_vertices.push(vertex);
+            }
+        }
+
+        // Edges of the polygon crossing faces of S: the line {n_lo · x = β_lo, n_j · x = β_j}
+        // meets triangle t where its barycentric weights, the 2 × 2 determinants of the two
+        // plane values at the other two corners, agree in sign.
+        for (k, &u) in polygon.iter().enumerate() {
+            let v = polygon[(k + 1) % polygon.len()];
+            let Some(j) = (0..18).find(|&j| {
+                j != lo_plane && {
+                    let f = boundary.face(j);
+                    (0..f.len()).any(|i| {
+                        let (x, y) = (f[i], f[(i + 1) % f.len()]);
+                        (x, y) == (u, v) || (x, y) == (v, u)
+                    })
+                }
+            }) else {
+                continue;
+            };
+            let (pu, pv) = (corner(u), corner(v));
+            let pad = pu.max_err().max(pv.max_err());
+            let lo = [0, 1, 2].map(|i| pu.p[i].min(pv.p[i]) - pad);
+            let hi = [0, 1, 2].map(|i| pu.p[i].max(pv.p[i]) + pad);
+            for &t in &on_h {
+                let tri = mesh.triangle(t as usize);
+                let outside_box = (0..3)
+                    .any(|i| tri.iter().all(|p| p[i] < lo[i]) || tri.iter().all(|p| p[i] > hi[i]));
+                if outside_box {
+                    continue;
+                }
+                let values = tri.map(|p| {
+                    (
+                        plane_value(lo_plane, -h, &p),
+                        plane_value(j, above_beta[j], &p),
+                    )
+                });
+                let weights: Vec<Vec<f64>> = (0..3)
+                    .map(|i| {
+                        let (b, c) = (&values[(i + 1) % 3], &values[(i + 2) % 3]);
+                        expansion_sum(
+                            &expansion_product(&b.0, &c.1),
+                            &negated(&expansion_product(&c.0, &b.1)),
+                        )
+                    })
+                    .collect();
+                let total = expansion_sum(&expansion_sum(&weights[0], &weights[1]), &weights[2]);
+                let total_sign = sign(&total);
+                if total_sign == Ordering::Equal
+                    || weights.iter().any(|w| sign(w) == total_sign.reverse())
+                {
+                    continue;
+                }
+                let skip = |m: usize| skip_d(m) || m == j;
+                if combination_inside(&above_beta, skip, &weights, &tri, total_sign) {
+                    new_vertices.push(weighted_point(&weights, &tri, &total));
+                }
+            }
+        }
+
+        // The parent's vertices go to their side (both when a built point is within its err
+        // of h).
+        let mut below_vertices = Vec::with_capacity(new_vertices.len());
+        let mut above_vertices = Vec::with_capacity(new_vertices.len());
+        for v in &self.vertices {
+            let n = TriboxBounds::DIRECTIONS[d];
+            let reach: f64 = (0..3).map(|k| n[k].abs() * v.err[k]).sum();
+            let side = if reach == 0.0 {
+                match side_of(&v.p) {
+                    Ordering::Less => Side::Below,
+                    Ordering::Greater => Side::Above,
+                    Ordering::Equal => Side::Both,
+                }
+            } else {
+                // reach is a sum of at most two errors, rounded up enough by their slack.
+                let (t, len) = plane_terms(hi_plane, h, &v.p);
+                let mut terms = [0.0; 5];
+                terms[..len].copy_from_slice(&t[..len]);
+                terms[len] = reach;
+                let upper = sum_sign(&terms[..=len]);
+                terms[len] = -reach;
+                let lower = sum_sign(&terms[..=len]);
+                if upper == Ordering::Less {
+                    Side::Below
+                } else if lower == Ordering::Greater {
+                    Side::Above
+                } else {
+                    Side::Both
+                }
+            };
+            if side != Side::Above {
+                below_vertices.push(*v);
+            }
+            if side != Side::Below {
+                above_vertices.push(*v);
+            }
+        }
+        below_vertices.extend_from_slice(&new_vertices);
+        above_vertices.extend_from_slice(&new_vertices);
+
+        let child = |region: TriboxBounds, triangles: Vec<u32>, vertices: Vec<CellVertex>| {
+            let tribox = bounds_of(&vertices)
+                .intersection(&region)
+                .intersection(&self.tribox);
+            Cell {
+                region,
+                tribox,
+                triangles,
+                vertices,
+            }
+        };
+        [
+            child(below_region, below_triangles, below_vertices),
+            child(above_region, above_triangles, above_vertices),
+        ]
+    }
+}
+
+/// The tribox of the vertices' boxes: the exact bounds of the object's vertices, and of the
+/// eight corners (rounded outward) of each built vertex's box.
+fn bounds_of(vertices: &[CellVertex]) -> TriboxBounds {
+    let mut points = Vec::with_capacity(vertices.len() * 2);
+    for v in vertices {
+        if v.err == [0.0; 3] {
+            points.push(v.p);
+        } else {
+            let lo = [0, 1, 2].map(|k| add_round_down(v.p[k], -v.err[k]));
+            let hi = [0, 1, 2].map(|k| add_round_up(v.p[k], v.err[k]));
+            for c in 0..8 {
+                let pick = |k: usize| if c >> k & 1 == 0 { lo[k] } else { hi[k] };
+                points.push(Point3::new(pick(0), pick(1), pick(2)));
+            }
+        }
+    }
+    TriboxBounds::from_points(&points)
+}

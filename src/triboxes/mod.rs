@@ -1,0 +1,451 @@
+//! Hierarchical triboxes (Crosnier and Rossignac 1999, §4): a closed object is split
+//! recursively by planes across the tribox's 9 directions, and the triboxes of the cells make
+//! tighter and tighter bounds.
+//!
+//! Each node of the binary tree is a cell `S ∩ C`, where `C` (the node's *region*) is the
+//! root tribox cut by the planes on the way down; the node keeps the cell's tribox. A cell is
+//! split by the plane bisecting one of its tribox's slabs: the paper starts with the thickest
+//! slab ([`SplitRule::Thickest`]); by default all nine bisectors are tried and the one whose
+//! two triboxes have the least total area is kept ([`SplitRule::Best`]). A cell stays a leaf
+//! when no split lowers the total area by the fraction [`Options::gain`] (the paper's rule),
+//! or at [`Options::max_depth`].
+//!
+//! The cells' vertices are computed exactly as the paper lists them, incrementally from the
+//! parent cell (see the `cell` module): every tribox contains its exact cell. A level of
+//! detail is the union of the triboxes of a cut through the tree ([`Hierarchy::cut`]); the
+//! triboxes of a cut have disjoint interiors, since each lies in its region. [`Level`] reports
+//! its size, compression, volume and area excess and a bounded Hausdorff distance.
+//!
+//! ```
+//! use kepler::triboxes::{Hierarchy, Options};
+//! use kepler::geometry::Point3;
+//! // An L-shaped wall: one tribox covers the notch; two fit the L much better.
+//! use geo::polygon;
+//! let outline = polygon![(x: 0.0, y: 0.0), (x: 6.0, y: 0.0), (x: 6.0, y: 1.0),
+//!     (x: 1.0, y: 1.0), (x: 1.0, y: 4.0), (x: 0.0, y: 4.0)];
+//! let wall = kepler::solids::prism(&outline, 3.0).unwrap();
+//! let h = Hierarchy::build(&wall, &Options::default()).unwrap();
+//! let levels = h.levels(2);
+//! assert_eq!(levels[0].triboxes, 1);
+//! assert!(levels[1].triboxes >= 2 && levels[1].volume_excess < levels[0].volume_excess);
+//! ```
+
+mod cell;
+mod hausdorff;
+mod levels;
+
+pub use hausdorff::{DistanceBounds, hausdorff};
+pub use levels::{Level, union_area};
+
+use crate::bounds::tribox::{Tribox, TriboxBounds};
+use crate::mesh::{Mesh, MeshError, TriangleTree};
+use cell::Cell;
+use rayon::prelude::*;
+use serde::Serialize;
+
+/// Why a hierarchy cannot be built.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum TriboxesError {
+    /// The mesh does not bound a solid: its cells would have no inside.
+    #[error("hierarchical triboxes need a closed, consistently oriented mesh")]
+    NotSolid,
+    /// The mesh has no triangle.
+    #[error("the mesh has no face")]
+    Empty,
+    /// An option out of range.
+    #[error("{0}")]
+    Option(String),
+}
+
+/// How a cell's splitting plane is chosen.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SplitRule {
+    /// Try the bisectors of all nine slabs; keep the one with the least total area.
+    #[default]
+    Best,
+    /// The paper's first choice: the bisector of the thickest slab.
+    Thickest,
+}
+
+/// The options of [`Hierarchy::build`].
+///
+/// ```
+/// let o = kepler::triboxes::Options::default();
+/// assert_eq!((o.gain, o.max_depth), (0.05, 8));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Options {
+    /// A cell is split only when its children's triboxes have a total area at most
+    /// `(1 − gain)` times its own tribox's area (the paper's rule, with `gain` below 1). A
+    /// negative gain lets splits raise the area by up to `−gain` times, to build deeper levels
+    /// of objects whose cavities no single cut makes cheaper (a U-shaped prism, a torus).
+    pub gain: f64,
+    /// No cell deeper than this is split (the root is at depth 0).
+    pub max_depth: usize,
+    /// How the splitting plane is chosen.
+    pub split: SplitRule,
+    /// The Hausdorff bounds of [`Hierarchy::levels`] stop when their gap is at most this
+    /// fraction of the root tribox's diagonal.
+    pub hausdorff_tolerance: f64,
+}
+
+impl Default for Options {
+    fn default() -> Options {
+        Options {
+            gain: 0.05,
+            max_depth: 8,
+            split: SplitRule::Best,
+            hausdorff_tolerance: 1e-3,
+        }
+    }
+}
+
+/// The tolerance of the simplification of [`Node::faces`] and of the drawn triboxes,
+/// relative to the root tribox's diagonal: rounding slivers go, real faces stay.
+///
+/// ```
+/// assert_eq!(kepler::triboxes::SIMPLIFY, 1e-9);
+/// ```
+pub const SIMPLIFY: f64 = 1e-9;
+
+/// A splitting plane `d · x = offset` across direction `d` of
+/// [`TriboxBounds::DIRECTIONS`].
+///
+/// ```
+/// let p = kepler::triboxes::Plane { direction: 3, offset: 1.5 }; // x + y = 1.5
+/// assert_eq!(kepler::bounds::tribox::TriboxBounds::DIRECTIONS[p.direction], [1.0, 1.0, 0.0]);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Plane {
+    /// The direction's index.
+    pub direction: usize,
+    /// The plane's value along the direction.
+    pub offset: f64,
+}
+
+/// A node of the hierarchy: a cell `S ∩ region` and its tribox.
+///
+/// ```
+/// use kepler::triboxes::{Hierarchy, Options};
+/// let h = Hierarchy::build(&kepler::solids::cube(2.0).unwrap(), &Options::default()).unwrap();
+/// let root = &h.nodes()[0];
+/// assert_eq!((root.depth, root.children, root.faces, root.volume), (0, None, 6, 8.0));
+/// ```
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Node {
+    /// The tribox of the cell (contains the exact cell, and lies in the region and in the
+    /// parent's tribox).
+    pub tribox: TriboxBounds,
+    /// The region `C`: the root tribox cut by the planes above this node.
+    pub region: TriboxBounds,
+    /// The depth (0 at the root).
+    pub depth: usize,
+    /// The parent's index.
+    pub parent: Option<usize>,
+    /// The children's indices, below and above the split plane.
+    pub children: Option<[usize; 2]>,
+    /// The plane splitting the cell, if it is split.
+    pub split: Option<Plane>,
+    /// The number of vertices kept for the cell.
+    pub cell_vertices: usize,
+    /// The number of the object's triangles that may meet the region.
+    pub triangles: usize,
+    /// The tribox's volume.
+    pub volume: f64,
+    /// The tribox's surface area.
+    pub area: f64,
+    /// The tribox's number of faces once simplified as the paper does, with the tolerance
+    /// [`SIMPLIFY`] times the root tribox's diagonal.
+    pub faces: usize,
+}
+
+/// The binary tree of hierarchical triboxes of one closed object.
+///
+/// ```
+/// use kepler::triboxes::{Hierarchy, Options};
+/// // A torus: every bisecting plane cuts the ring, and the two halves' triboxes have more
+/// // area than the whole one, so the paper's rule keeps a single tribox.
+/// let torus = kepler::solids::torus(2.0, 0.5, 24, 12).unwrap();
+/// let h = Hierarchy::build(&torus, &Options::default()).unwrap();
+/// assert_eq!((h.depth(), h.cut(0)), (0, vec![0]));
+/// ```
+#[derive(Debug)]
+pub struct Hierarchy {
+    nodes: Vec<Node>,
+    tree: TriangleTree,
+    object_faces: usize,
+    object_volume: f64,
+    object_area: f64,
+    tolerance: f64,
+    simplify: f64,
+}
+
+impl Hierarchy {
+    /// Builds the hierarchy of a closed, consistently oriented mesh, level by level (the cells
+    /// of a level in parallel).
+    ///
+    /// ```
+    /// use kepler::triboxes::{Hierarchy, Options, TriboxesError};
+    /// let open = kepler::mesh::Mesh::from_polygons(
+    ///     vec![[0.0, 0.0, 0.0].into(), [1.0, 0.0, 0.0].into(), [0.0, 1.0, 0.0].into()],
+    ///     vec![vec![0, 1, 2]],
+    /// ).unwrap();
+    /// assert_eq!(Hierarchy::build(&open, &Options::default()).unwrap_err(), TriboxesError::NotSolid);
+    /// ```
+    pub fn build(mesh: &Mesh, options: &Options) -> Result<Hierarchy, TriboxesError> {
+        if !(options.gain < 1.0 && options.gain.is_finite()) {
+            return Err(TriboxesError::Option(format!(
+                "the gain must be a number below 1, not {}",
+                options.gain
+            )));
+        }
+        if !(options.hausdorff_tolerance > 0.0 && options.hausdorff_tolerance.is_finite()) {
+            return Err(TriboxesError::Option(format!(
+                "the Hausdorff tolerance must be positive, not {}",
+                options.hausdorff_tolerance
+            )));
+        }
+        if mesh.triangles().is_empty() {
+            return Err(TriboxesError::Empty);
+        }
+        if !mesh.is_solid() {
+            return Err(TriboxesError::NotSolid);
+        }
+        let tree = TriangleTree::new(mesh);
+        let root = Cell::root(mesh);
+        let diagonal = {
+            let (lo, hi) = (root.tribox.min(), root.tribox.max());
+            ((hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2) + (hi[2] - lo[2]).powi(2)).sqrt()
+        };
+        let simplify = SIMPLIFY * diagonal;
+        let node =
+            |cell: &Cell, depth: usize, parent: Option<usize>| node(cell, depth, parent, simplify);
+        let mut nodes = vec![node(&root, 0, None)];
+        let mut level = vec![(0usize, root)];
+        while !level.is_empty() {
+            let splits: Vec<Option<(Plane, [Cell; 2])>> = level
+                .par_iter()
+                .map(|(index, cell)| {
+                    if nodes[*index].depth >= options.max_depth {
+                        return None;
+                    }
+                    best_split(cell, mesh, &tree, options, nodes[*index].area)
+                })
+                .collect();
+            let mut next = Vec::new();
+            for ((index, _), split) in level.into_iter().zip(splits) {
+                let Some((plane, children)) = split else {
+                    continue;
+                };
+                let depth = nodes[index].depth + 1;
+                let first = nodes.len();
+                for cell in children {
+                    nodes.push(node(&cell, depth, Some(index)));
+                    next.push((nodes.len() - 1, cell));
+                }
+                nodes[index].children = Some([first, first + 1]);
+                nodes[index].split = Some(plane);
+            }
+            level = next;
+        }
+        Ok(Hierarchy {
+            nodes,
+            tree,
+            object_faces: mesh.faces().len(),
+            object_volume: mesh.volume(),
+            object_area: mesh.surface_area(),
+            tolerance: options.hausdorff_tolerance * diagonal,
+            simplify,
+        })
+    }
+
+    /// The nodes, the root first; children follow their parents.
+    ///
+    /// ```
+    /// use kepler::triboxes::{Hierarchy, Options};
+    /// let h = Hierarchy::build(&kepler::solids::cube(1.0).unwrap(), &Options::default()).unwrap();
+    /// assert_eq!(h.nodes().len(), 1); // no split makes a cube's tribox smaller
+    /// ```
+    pub fn nodes(&self) -> &[Node] {
+        &self.nodes
+    }
+
+    /// The depth of the deepest node.
+    ///
+    /// ```
+    /// use kepler::triboxes::{Hierarchy, Options};
+    /// let h = Hierarchy::build(&kepler::solids::cube(1.0).unwrap(), &Options::default()).unwrap();
+    /// assert_eq!(h.depth(), 0);
+    /// ```
+    pub fn depth(&self) -> usize {
+        self.nodes.iter().map(|n| n.depth).max().unwrap_or(0)
+    }
+
+    /// The cut at `depth`: the nodes at that depth and the leaves above it. Their triboxes
+    /// cover the object and have disjoint interiors.
+    ///
+    /// ```
+    /// use geo::polygon;
+    /// use kepler::triboxes::{Hierarchy, Options};
+    /// // A U-shaped prism: no single cut lowers the total area, so allow it to rise by 20%.
+    /// let u = polygon![(x: 0.0, y: 0.0), (x: 5.0, y: 0.0), (x: 5.0, y: 5.0), (x: 4.0, y: 5.0),
+    ///     (x: 4.0, y: 1.0), (x: 1.0, y: 1.0), (x: 1.0, y: 5.0), (x: 0.0, y: 5.0)];
+    /// let o = Options { gain: -0.2, max_depth: 3, ..Options::default() };
+    /// let h = Hierarchy::build(&kepler::solids::prism(&u, 1.0).unwrap(), &o).unwrap();
+    /// assert_eq!(h.cut(1).len(), 2);
+    /// assert_eq!(h.cut(h.depth() + 5), h.cut(h.depth()));
+    /// assert_eq!(h.cut(h.depth()), h.leaves());
+    /// ```
+    pub fn cut(&self, depth: usize) -> Vec<usize> {
+        (0..self.nodes.len())
+            .filter(|&i| {
+                let n = &self.nodes[i];
+                n.depth == depth || (n.depth < depth && n.children.is_none())
+            })
+            .collect()
+    }
+
+    /// The leaves.
+    ///
+    /// ```
+    /// use kepler::triboxes::{Hierarchy, Options};
+    /// let h = Hierarchy::build(&kepler::solids::cube(1.0).unwrap(), &Options::default()).unwrap();
+    /// assert_eq!(h.leaves(), vec![0]);
+    /// ```
+    pub fn leaves(&self) -> Vec<usize> {
+        (0..self.nodes.len())
+            .filter(|&i| self.nodes[i].children.is_none())
+            .collect()
+    }
+
+    /// The object's triangles, for distance and containment queries.
+    ///
+    /// ```
+    /// use kepler::triboxes::{Hierarchy, Options};
+    /// let h = Hierarchy::build(&kepler::solids::cube(1.0).unwrap(), &Options::default()).unwrap();
+    /// assert_eq!(h.object_tree().len(), 12);
+    /// ```
+    pub fn object_tree(&self) -> &TriangleTree {
+        &self.tree
+    }
+
+    /// The simplification tolerance of [`Node::faces`] ([`SIMPLIFY`] times the root
+    /// tribox's diagonal), for [`tribox_mesh`].
+    ///
+    /// ```
+    /// use kepler::triboxes::{Hierarchy, Options};
+    /// let h = Hierarchy::build(&kepler::solids::cube(1.0).unwrap(), &Options::default()).unwrap();
+    /// assert_eq!(h.simplify_tolerance(), 1e-9 * 3f64.sqrt());
+    /// ```
+    pub fn simplify_tolerance(&self) -> f64 {
+        self.simplify
+    }
+
+    /// The report of the first `count` levels (depths `0..count`, and no deeper than the
+    /// tree), computed in parallel.
+    ///
+    /// ```
+    /// use kepler::triboxes::{Hierarchy, Options};
+    /// let h = Hierarchy::build(&kepler::solids::cube(1.0).unwrap(), &Options::default()).unwrap();
+    /// let l = &h.levels(3)[0];
+    /// assert_eq!((l.triboxes, l.faces, l.volume_excess, l.hausdorff), (1, 6, 0.0, 0.0));
+    /// ```
+    pub fn levels(&self, count: usize) -> Vec<Level> {
+        let depths = count.min(self.depth() + 1);
+        (0..depths)
+            .into_par_iter()
+            .map(|depth| {
+                levels::level(
+                    self,
+                    depth,
+                    self.object_faces,
+                    self.object_volume,
+                    self.object_area,
+                    self.tolerance,
+                )
+            })
+            .collect()
+    }
+}
+
+/// The boundary of a tribox as a mesh (its faces counter-clockwise seen from outside), for
+/// drawing a level of detail: first simplified as the paper does ([`Tribox::simplified`]:
+/// planes moved outward by at most `tol` to remove faces narrower than that, such as the
+/// slivers left by rounding the cells' built vertices outward).
+///
+/// ```
+/// use kepler::bounds::tribox::TriboxBounds;
+/// use kepler::geometry::Point3;
+/// let b = TriboxBounds::from_points(&[Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 2.0, 3.0),
+///     Point3::new(1.0, 0.0, 0.0), Point3::new(0.0, 2.0, 3.0)]);
+/// let m = kepler::triboxes::tribox_mesh(&b, 0.0).unwrap();
+/// assert!(m.is_solid());
+/// assert!((m.volume() - b.boundary().cleaned().volume()).abs() < 1e-12);
+/// ```
+pub fn tribox_mesh(tribox: &TriboxBounds, tol: f64) -> Result<Mesh, MeshError> {
+    let boundary = Tribox::new(tribox).simplified(tol);
+    let faces = boundary
+        .faces()
+        .filter(|(_, f)| f.len() >= 3)
+        .map(|(_, f)| f.iter().map(|&v| u32::from(v)).collect())
+        .collect();
+    Mesh::from_polygons(boundary.vertices().to_vec(), faces)
+}
+
+/// A node for a cell.
+fn node(cell: &Cell, depth: usize, parent: Option<usize>, simplify: f64) -> Node {
+    let raw = Tribox::new(&cell.tribox);
+    let boundary = raw.cleaned();
+    Node {
+        tribox: cell.tribox,
+        region: cell.region,
+        depth,
+        parent,
+        children: None,
+        split: None,
+        cell_vertices: cell.vertex_count(),
+        triangles: cell.triangle_count(),
+        volume: boundary.volume(),
+        area: boundary.surface_area(),
+        faces: raw.simplified(simplify).face_count(),
+    }
+}
+
+/// The split of a cell that the rule picks, if it lowers the area enough.
+fn best_split(
+    cell: &Cell,
+    mesh: &Mesh,
+    tree: &TriangleTree,
+    options: &Options,
+    area: f64,
+) -> Option<(Plane, [Cell; 2])> {
+    let directions: Vec<usize> = match options.split {
+        SplitRule::Best => (0..9).collect(),
+        SplitRule::Thickest => (0..9)
+            .filter(|&d| cell.bisector(d).is_some())
+            .max_by(|&a, &b| cell.thickness(a).total_cmp(&cell.thickness(b)))
+            .into_iter()
+            .collect(),
+    };
+    let best = directions
+        .into_par_iter()
+        .filter_map(|d| {
+            let h = cell.bisector(d)?;
+            let children = cell.split(mesh, tree, d, h);
+            let total: f64 = children
+                .iter()
+                .map(|c| Tribox::new(&c.tribox).cleaned().surface_area())
+                .sum();
+            Some((
+                total,
+                Plane {
+                    direction: d,
+                    offset: h,
+                },
+                children,
+            ))
+        })
+        .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.direction.cmp(&b.1.direction)))?;
+    (best.0 <= (1.0 - options.gain) * area).then_some((best.1, best.2))
+}
