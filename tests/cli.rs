@@ -1101,3 +1101,64 @@ fn boxtree_sphere_experiment_prints_ours_beside_the_papers() {
         assert_eq!(r["tests"], tests);
     }
 }
+
+#[test]
+fn triboxes_prints_levels_and_writes_json_and_svg() {
+    let (json, svg) = (temp_path("triboxes.json"), temp_path("triboxes.svg"));
+    let out = ok(&[
+        "triboxes",
+        "scenes/solids.toml",
+        "--object",
+        "l-wall",
+        "--levels",
+        "3",
+        "--json",
+        &json,
+        "-o",
+        &svg,
+    ]);
+    // The L wall splits once (at x = 3): two levels, the first one tribox of 7 faces.
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), 4, "{out}");
+    assert!(lines[0].starts_with("l-wall: N = 8 faces"), "{out}");
+    let first: Vec<&str> = lines[2].split_whitespace().collect();
+    assert_eq!(&first[..4], &["0", "1", "7", "1.14"], "{out}");
+    let report: Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let levels = report["levels"].as_array().expect("levels");
+    assert_eq!(levels.len(), 2);
+    assert_eq!(levels[0]["triboxes"], 1);
+    assert_eq!(levels[0]["faces"], 7);
+    assert_eq!(levels[0]["compression"], 8.0 / 7.0);
+    assert_eq!(levels[1]["triboxes"], 2);
+    for l in levels {
+        for key in [
+            "hausdorff",
+            "hausdorff_lower",
+            "volume_excess",
+            "area_excess",
+        ] {
+            assert!(l[key].is_number(), "{key}: {l}");
+        }
+        assert!(l["hausdorff_lower"].as_f64() <= l["hausdorff"].as_f64());
+    }
+    // The wall is 27 units³; its tribox 58.5.
+    assert_eq!(report["volume"], 27.0);
+    assert_eq!(levels[0]["volume"], 58.5);
+    assert_eq!(report["nodes"].as_array().unwrap().len(), 3);
+    assert_eq!(report["nodes"][0]["split"]["direction"], 0);
+    // The drawing: the object and two levels, side by side.
+    let lines = svg_polylines(&std::fs::read_to_string(&svg).unwrap());
+    assert!(lines.len() > 20, "{}", lines.len());
+}
+
+#[test]
+fn triboxes_of_a_whole_scene_and_its_errors() {
+    let out = ok(&["triboxes", "tests/data/cube.obj", "--levels", "2"]);
+    assert!(out.starts_with("tests/data/cube.obj: N = 6 faces"), "{out}");
+    let err = fails(&["triboxes", "scenes/meshes.toml", "--object", "tent"]);
+    assert!(err.contains("'tent'") && err.contains("closed"), "{err}");
+    let err = fails(&["triboxes", "scenes/solids.toml", "--object", "nothing"]);
+    assert!(err.contains("no object named 'nothing'"), "{err}");
+    let err = fails(&["triboxes", "scenes/solids.toml", "--gain", "1.5"]);
+    assert!(err.contains("gain"), "{err}");
+}

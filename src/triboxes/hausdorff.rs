@@ -10,6 +10,11 @@
 //! the 9 directions, and are halved along all three axes, largest upper bound first, until
 //! the bounds are within the tolerance.
 //!
+//! The number of boxes grows as `1/tolerance` where the distance is reached along a ridge
+//! and as `1/tolerance²` on a plateau (both common on prisms) or where the union hugs the
+//! object (every box across the surface keeps a positive upper bound). Past a budget of
+//! 400,000 boxes the bounds are returned as they stand: still valid, wider than asked.
+//!
 //! Inside or outside is decided exactly (INCLUDE's ray test); distances to triangles are
 //! rounded, so every bound is moved outward by 64 ulps of the largest coordinate, far more
 //! than the rounding of the closest-point computation.
