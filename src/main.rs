@@ -204,9 +204,10 @@ enum Command {
         /// Split no cell deeper than this.
         #[arg(long, value_name = "DEPTH", default_value_t = 8)]
         max_depth: usize,
-        /// The splitting plane: the `best` of the nine slab bisectors, or the paper's
-        /// `thickest` slab's.
-        #[arg(long, value_enum, default_value_t = SplitArg::Best)]
+        /// The candidate splitting planes: the paper's `thickest` slab's bisector, the nine
+        /// `bisectors`, or also planes through the object's vertices (`features`); the one
+        /// giving the least total tribox area is taken.
+        #[arg(long, value_enum, default_value_t = SplitArg::Bisectors)]
         split: SplitArg,
         /// Draw the object and the levels side by side (hidden lines removed) to this SVG file.
         #[arg(short = 'o', long = "output", value_name = "FILE")]
@@ -301,8 +302,9 @@ fn load_drawable(path: &std::path::Path) -> Result<Scene> {
 /// `--split`.
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 enum SplitArg {
-    Best,
     Thickest,
+    Bisectors,
+    Features,
 }
 
 /// `--experiment`.
@@ -670,8 +672,9 @@ fn run(cli: Cli) -> Result<()> {
                 gain,
                 max_depth,
                 split: match split {
-                    SplitArg::Best => SplitRule::Best,
                     SplitArg::Thickest => SplitRule::Thickest,
+                    SplitArg::Bisectors => SplitRule::Bisectors,
+                    SplitArg::Features => SplitRule::Features,
                 },
                 ..TriboxOptions::default()
             };

@@ -47,94 +47,44 @@ fn deep(depth: usize, split: SplitRule) -> Options {
 
 // ---------------------------------------------------------------------------------------
 // Volume of S ∩ C, independently: S's indicator is the signed sum of the indicators of the
-// tetrahedra (o, triangle) for any o, so vol(S ∩ C) = Σ ± vol(tet ∩ C); each tet ∩ C is a
-// convex polytope, clipped plane by plane.
+// tetrahedra (o, triangle) for any o, so vol(S ∩ C) = Σ ± vol(tet ∩ C); each tet ∩ C is cut
+// plane by plane into tetrahedra.
 // ---------------------------------------------------------------------------------------
 
-/// A convex polytope as its faces (convex polygons, any orientation).
-type Polytope = Vec<Vec<Point3>>;
+type Tet = [Point3; 4];
 
-fn tetrahedron(p: [Point3; 4]) -> Polytope {
-    vec![
-        vec![p[0], p[1], p[2]],
-        vec![p[0], p[1], p[3]],
-        vec![p[0], p[2], p[3]],
-        vec![p[1], p[2], p[3]],
-    ]
+/// The point where the plane value goes from `fa` at `a` to `fb` at `b` (opposite signs).
+fn crossing(a: &Point3, b: &Point3, fa: f64, fb: f64) -> Point3 {
+    a + (b - a) * (fa / (fa - fb))
 }
 
-/// Keeps the part with n · x ≤ beta.
-fn clip(poly: Polytope, n: &Vector3, beta: f64) -> Polytope {
-    let values: Vec<f64> = poly
-        .iter()
-        .flatten()
-        .map(|p| n.dot(&p.coords) - beta)
-        .collect();
-    if values.iter().all(|&v| v <= 0.0) {
-        return poly; // nothing cut off
+/// The part of tetrahedron `t` with n · x ≤ beta, as tetrahedra (a vertex on the plane
+/// counts as inside): the corner tetrahedron, or a prism cut into three.
+fn clip(t: &Tet, n: &Vector3, beta: f64, out: &mut Vec<Tet>) {
+    let f: Vec<f64> = t.iter().map(|p| n.dot(&p.coords) - beta).collect();
+    let inside: Vec<usize> = (0..4).filter(|&i| f[i] <= 0.0).collect();
+    let outside: Vec<usize> = (0..4).filter(|&i| f[i] > 0.0).collect();
+    let x = |i: usize, o: usize| crossing(&t[i], &t[o], f[i], f[o]);
+    let prism = |a: [Point3; 3], b: [Point3; 3], out: &mut Vec<Tet>| {
+        out.push([a[0], a[1], a[2], b[0]]);
+        out.push([a[1], a[2], b[0], b[1]]);
+        out.push([a[2], b[0], b[1], b[2]]);
+    };
+    match (inside.as_slice(), outside.as_slice()) {
+        (_, []) => out.push(*t),
+        ([], _) => {}
+        (&[a], &[b, c, d]) => out.push([t[a], x(a, b), x(a, c), x(a, d)]),
+        (&[a, b, c], &[d]) => prism([t[a], t[b], t[c]], [x(a, d), x(b, d), x(c, d)], out),
+        (&[a, b], &[c, d]) => prism([t[a], x(a, c), x(a, d)], [t[b], x(b, c), x(b, d)], out),
+        _ => unreachable!("four vertices"),
     }
-    if values.iter().all(|&v| v >= 0.0) {
-        return Vec::new(); // nothing (of positive volume) left
-    }
-    let mut out: Polytope = Vec::new();
-    let mut cut: Vec<Point3> = Vec::new();
-    for face in poly {
-        let mut kept = Vec::new();
-        for i in 0..face.len() {
-            let (a, b) = (face[i], face[(i + 1) % face.len()]);
-            let (fa, fb) = (n.dot(&a.coords) - beta, n.dot(&b.coords) - beta);
-            if fa <= 0.0 {
-                kept.push(a);
-            }
-            if (fa < 0.0 && fb > 0.0) || (fa > 0.0 && fb < 0.0) {
-                let p = a + (b - a) * (fa / (fa - fb));
-                kept.push(p);
-                cut.push(p);
-            } else if fa == 0.0 {
-                cut.push(a);
-            }
-        }
-        if kept.len() >= 3 {
-            out.push(kept);
-        }
-    }
-    if cut.len() >= 3 {
-        // The cap: the cut points in angular order about their centroid.
-        let c = cut.iter().fold(Vector3::zeros(), |s, p| s + p.coords) / cut.len() as f64;
-        let u = (0..3)
-            .map(|k| Vector3::ith(k, 1.0).cross(n))
-            .max_by(|a, b| a.norm().total_cmp(&b.norm()))
-            .unwrap()
-            .normalize();
-        let v = n.normalize().cross(&u);
-        cut.sort_by(|a, b| {
-            let (da, db) = (a.coords - c, b.coords - c);
-            da.dot(&v)
-                .atan2(da.dot(&u))
-                .total_cmp(&db.dot(&v).atan2(db.dot(&u)))
-        });
-        out.push(cut);
-    }
-    out
 }
 
-/// The volume of a convex polytope: cones from its vertex centroid over the faces.
-fn volume(poly: &Polytope) -> f64 {
-    let points: Vec<&Point3> = poly.iter().flatten().collect();
-    if points.is_empty() {
-        return 0.0;
-    }
-    let c = points.iter().fold(Vector3::zeros(), |s, p| s + p.coords) / points.len() as f64;
-    poly.iter()
-        .map(|f| {
-            (1..f.len() - 1)
-                .map(|i| {
-                    let (a, b, d) = (f[0].coords - c, f[i].coords - c, f[i + 1].coords - c);
-                    a.dot(&b.cross(&d)).abs() / 6.0
-                })
-                .sum::<f64>()
-        })
-        .sum()
+fn tet_volume(t: &Tet) -> f64 {
+    (t[1] - t[0])
+        .dot(&(t[2] - t[0]).cross(&(t[3] - t[0])))
+        .abs()
+        / 6.0
 }
 
 /// vol(S ∩ region) by signed tetrahedra from `o` (a point of the root region).
@@ -154,14 +104,15 @@ fn cell_volume(mesh: &Mesh, region: &TriboxBounds, o: Point3) -> f64 {
         .map(|t| {
             let [a, b, c] = mesh.triangle(t);
             let sign = (a - o).dot(&(b - o).cross(&(c - o))).signum();
-            let mut poly = tetrahedron([o, a, b, c]);
+            let mut pieces = vec![[o, a, b, c]];
             for (n, beta) in &planes {
-                poly = clip(poly, n, *beta);
-                if poly.is_empty() {
-                    return 0.0;
+                let mut next = Vec::new();
+                for t in &pieces {
+                    clip(t, n, *beta, &mut next);
                 }
+                pieces = next;
             }
-            sign * volume(&poly)
+            sign * pieces.iter().map(tet_volume).sum::<f64>()
         })
         .sum()
 }
@@ -203,7 +154,11 @@ fn check_partition(mesh: &Mesh, options: &Options) {
 #[test]
 fn cells_partition_the_object() {
     for mesh in [l_wall(), u_prism(), star(), torus()] {
-        for split in [SplitRule::Best, SplitRule::Thickest] {
+        for split in [
+            SplitRule::Bisectors,
+            SplitRule::Thickest,
+            SplitRule::Features,
+        ] {
             check_partition(&mesh, &deep(3, split));
         }
         check_partition(&mesh, &Options::default());
@@ -214,7 +169,7 @@ fn cells_partition_the_object() {
 fn the_partition_test_sees_a_missing_cell() {
     // The same sum without one leaf falls short: the check can fail.
     let mesh = u_prism();
-    let h = Hierarchy::build(&mesh, &deep(2, SplitRule::Best)).unwrap();
+    let h = Hierarchy::build(&mesh, &deep(2, SplitRule::Bisectors)).unwrap();
     let o = centre(&h.nodes()[0].region);
     let leaves = h.leaves();
     assert_eq!(leaves.len(), 4);
@@ -275,7 +230,8 @@ fn check_tree(mesh: &Mesh, options: &Options) {
 #[test]
 fn the_tree_nests() {
     for mesh in [l_wall(), u_prism(), star(), torus()] {
-        check_tree(&mesh, &deep(4, SplitRule::Best));
+        check_tree(&mesh, &deep(4, SplitRule::Bisectors));
+        check_tree(&mesh, &deep(3, SplitRule::Features));
         check_tree(&mesh, &deep(4, SplitRule::Thickest));
         check_tree(&mesh, &Options::default());
     }
@@ -332,7 +288,7 @@ fn bad_options_and_open_meshes_are_errors() {
 #[test]
 fn level_figures_agree_with_direct_computations() {
     let mesh = u_prism();
-    let h = Hierarchy::build(&mesh, &deep(3, SplitRule::Best)).unwrap();
+    let h = Hierarchy::build(&mesh, &deep(3, SplitRule::Bisectors)).unwrap();
     let levels = h.levels(10);
     assert_eq!(levels.len(), 4);
     for (depth, l) in levels.iter().enumerate() {
@@ -487,7 +443,7 @@ fn check_hausdorff(mesh: &Mesh, triboxes: &[TriboxBounds], seed: u64) {
 #[test]
 fn hausdorff_bounds_bracket_brute_force_distances() {
     for (k, mesh) in [l_wall(), u_prism(), star(), torus()].iter().enumerate() {
-        let h = Hierarchy::build(mesh, &deep(2, SplitRule::Best)).unwrap();
+        let h = Hierarchy::build(mesh, &deep(2, SplitRule::Bisectors)).unwrap();
         for depth in 0..=h.depth() {
             let triboxes: Vec<TriboxBounds> =
                 h.cut(depth).iter().map(|&i| h.nodes()[i].tribox).collect();
@@ -537,7 +493,7 @@ fn hausdorff_of_a_shape_equal_to_its_tribox_is_zero() {
 
 #[test]
 fn tribox_meshes_are_closed_and_match_the_bounds() {
-    let h = Hierarchy::build(&torus(), &deep(3, SplitRule::Best)).unwrap();
+    let h = Hierarchy::build(&torus(), &deep(3, SplitRule::Bisectors)).unwrap();
     for n in h.nodes() {
         let m = tribox_mesh(&n.tribox, h.simplify_tolerance()).unwrap();
         assert!(m.is_solid());
@@ -558,7 +514,7 @@ proptest! {
         radii in prop::collection::vec(0.5f64..4.0, 5..12),
         height in 0.5f64..3.0,
         depth in 1usize..4,
-        thickest in any::<bool>(),
+        rule in 0usize..3,
     ) {
         let n = radii.len();
         let outline: Vec<(f64, f64)> = radii
@@ -571,7 +527,7 @@ proptest! {
             .collect();
         let polygon = geo::Polygon::new(geo::LineString::from(outline), vec![]);
         let mesh = kepler::solids::prism(&polygon, height).unwrap();
-        let split = if thickest { SplitRule::Thickest } else { SplitRule::Best };
+        let split = [SplitRule::Thickest, SplitRule::Bisectors, SplitRule::Features][rule];
         check_partition(&mesh, &deep(depth, split));
         check_tree(&mesh, &deep(depth, split));
     }

@@ -234,6 +234,29 @@ impl Cell {
         (lo < h && h < hi).then_some(h)
     }
 
+    /// Up to `count` planes across direction `d` through the object's vertices in the cell,
+    /// strictly inside its tribox's slab (evenly spread in rank when there are more): where a
+    /// concave corner can be cut off, which no bisector reaches.
+    pub fn feature_planes(&self, d: usize, count: usize) -> Vec<f64> {
+        let n = TriboxBounds::DIRECTIONS[d];
+        let (lo, hi) = (self.tribox.min()[d], self.tribox.max()[d]);
+        let mut values: Vec<f64> = self
+            .vertices
+            .iter()
+            .filter(|v| v.err == [0.0; 3])
+            .map(|v| n[0] * v.p.x + n[1] * v.p.y + n[2] * v.p.z)
+            .filter(|&h| lo < h && h < hi)
+            .collect();
+        values.sort_unstable_by(f64::total_cmp);
+        values.dedup();
+        if values.len() <= count {
+            return values;
+        }
+        (0..count)
+            .map(|i| values[(2 * i + 1) * values.len() / (2 * count)])
+            .collect()
+    }
+
     /// The width of the cell's tribox along direction `d` (in length units).
     pub fn thickness(&self, d: usize) -> f64 {
         let n = TriboxBounds::DIRECTIONS[d];
