@@ -40,6 +40,7 @@ pub use hausdorff::{DistanceBounds, hausdorff};
 pub use levels::{Level, union_area};
 
 use crate::bounds::tribox::{Tribox, TriboxBounds};
+use crate::geometry::Point3;
 use crate::mesh::{Mesh, MeshError, TriangleTree};
 use cell::Cell;
 use rayon::prelude::*;
@@ -171,8 +172,9 @@ pub struct Node {
     pub volume: f64,
     /// The tribox's surface area.
     pub area: f64,
-    /// The tribox's number of faces once simplified as the paper does, with the tolerance
-    /// [`SIMPLIFY`] times the root tribox's diagonal.
+    /// The tribox's number of faces as drawn by [`tribox_mesh`] with the tolerance
+    /// [`SIMPLIFY`] times the root tribox's diagonal (simplified as the paper does, rounding
+    /// slivers removed).
     pub faces: usize,
 }
 
@@ -387,9 +389,10 @@ impl Hierarchy {
 }
 
 /// The boundary of a tribox as a mesh (its faces counter-clockwise seen from outside), for
-/// drawing a level of detail: first simplified as the paper does ([`Tribox::simplified`]:
-/// planes moved outward by at most `tol` to remove faces narrower than that, such as the
-/// slivers left by rounding the cells' built vertices outward).
+/// drawing a level of detail: the boundary simplified as the paper does
+/// ([`Tribox::simplified`]: planes moved outward by at most `tol` where that removes a face),
+/// then vertices closer than `tol` merged and the faces they collapse dropped (slivers where
+/// three planes meet within rounding of one line, which no single plane's move removes).
 ///
 /// ```
 /// use kepler::bounds::tribox::TriboxBounds;
@@ -401,19 +404,51 @@ impl Hierarchy {
 /// assert!((m.volume() - b.boundary().cleaned().volume()).abs() < 1e-12);
 /// ```
 pub fn tribox_mesh(tribox: &TriboxBounds, tol: f64) -> Result<Mesh, MeshError> {
+    let (vertices, faces) = snapped_boundary(tribox, tol);
+    Mesh::from_polygons(vertices, faces)
+}
+
+/// The simplified boundary with vertices closer than `tol` merged (to the first of them) and
+/// the faces left with fewer than 3 vertices dropped.
+fn snapped_boundary(tribox: &TriboxBounds, tol: f64) -> (Vec<Point3>, Vec<Vec<u32>>) {
     let boundary = Tribox::new(tribox).simplified(tol);
+    let points = boundary.vertices();
+    let mut target: Vec<usize> = (0..points.len()).collect();
+    for i in 0..points.len() {
+        if let Some(j) = (0..i).find(|&j| target[j] == j && (points[i] - points[j]).norm() < tol) {
+            target[i] = j;
+        }
+    }
+    let mut index = vec![u32::MAX; points.len()];
+    let mut vertices = Vec::new();
+    for i in 0..points.len() {
+        if target[i] == i {
+            index[i] = vertices.len() as u32;
+            vertices.push(points[i]);
+        }
+    }
     let faces = boundary
         .faces()
-        .filter(|(_, f)| f.len() >= 3)
-        .map(|(_, f)| f.iter().map(|&v| u32::from(v)).collect())
+        .filter_map(|(_, f)| {
+            let mut face: Vec<u32> = Vec::with_capacity(f.len());
+            for &v in f {
+                let k = index[target[v as usize]];
+                if face.last() != Some(&k) {
+                    face.push(k);
+                }
+            }
+            while face.len() > 1 && face.first() == face.last() {
+                face.pop();
+            }
+            (face.len() >= 3).then_some(face)
+        })
         .collect();
-    Mesh::from_polygons(boundary.vertices().to_vec(), faces)
+    (vertices, faces)
 }
 
 /// A node for a cell.
 fn node(cell: &Cell, depth: usize, parent: Option<usize>, simplify: f64) -> Node {
-    let raw = Tribox::new(&cell.tribox);
-    let boundary = raw.cleaned();
+    let boundary = Tribox::new(&cell.tribox).cleaned();
     Node {
         tribox: cell.tribox,
         region: cell.region,
@@ -425,7 +460,7 @@ fn node(cell: &Cell, depth: usize, parent: Option<usize>, simplify: f64) -> Node
         triangles: cell.triangle_count(),
         volume: boundary.volume(),
         area: boundary.surface_area(),
-        faces: raw.simplified(simplify).face_count(),
+        faces: snapped_boundary(&cell.tribox, simplify).1.len(),
     }
 }
 
