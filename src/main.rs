@@ -666,7 +666,12 @@ fn run(cli: Cli) -> Result<()> {
                     };
                     (scene.path(id), scene.flatten(id)?)
                 }
-                None => (path.display().to_string(), whole_scene(&scene, &path)?),
+                None => (
+                    path.display().to_string(),
+                    scene
+                        .flatten_all()
+                        .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?,
+                ),
             };
             let options = TriboxOptions {
                 gain,
@@ -893,23 +898,6 @@ fn stats_report(drawing: &Drawing, loaded: Duration, written: Duration) -> Strin
         );
     }
     text
-}
-
-/// All the scene's meshes as one mesh (an error naming the file if that fails).
-fn whole_scene(scene: &Scene, path: &std::path::Path) -> Result<Mesh> {
-    let mut vertices = Vec::new();
-    let mut faces: Vec<Vec<u32>> = Vec::new();
-    for (_, mesh) in scene.mesh_objects(scene.roots()) {
-        let offset = vertices.len() as u32;
-        vertices.extend_from_slice(mesh.vertices());
-        faces.extend(
-            mesh.faces()
-                .iter()
-                .map(|f| f.vertices().iter().map(|&v| v + offset).collect()),
-        );
-    }
-    Mesh::from_polygons(vertices, faces)
-        .map_err(|e| anyhow::anyhow!("{}: all objects together: {e}", path.display()))
 }
 
 /// The table of `kepler triboxes`.

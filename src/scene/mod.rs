@@ -723,20 +723,46 @@ impl Scene {
     /// assert_eq!((flat.faces().len(), flat.vertices().len()), (12, 12));
     /// ```
     pub fn flatten(&self, id: ObjectId) -> Result<Mesh> {
-        let mut vertices: Vec<Point3> = Vec::new();
-        let mut faces: Vec<Vec<u32>> = Vec::new();
-        for mesh in self.meshes(id) {
-            let offset = vertices.len() as u32;
-            vertices.extend_from_slice(mesh.vertices());
-            faces.extend(
-                mesh.faces()
-                    .iter()
-                    .map(|f| f.vertices().iter().map(|&v| v + offset).collect()),
-            );
-        }
-        Mesh::from_polygons(vertices, faces).map_err(|e| Error::Object {
+        concatenate(self.meshes(id)).map_err(|e| Error::Object {
             object: self.path(id),
             message: format!("flattening: {e}"),
         })
     }
+
+    /// Flattens every object of the scene into one mesh, as [`flatten`](Self::flatten) does
+    /// one subtree.
+    ///
+    /// ```
+    /// use kepler::scene::{Scene, Transform};
+    /// let mut s = Scene::new();
+    /// let a = s.add_mesh(None, "a", kepler::solids::cube(1.0).unwrap()).unwrap();
+    /// let t = Transform { translate: [3.0, 0.0, 0.0], ..Transform::default() };
+    /// s.instantiate(a, None, "b", &t).unwrap();
+    /// let flat = s.flatten_all().unwrap();
+    /// assert_eq!((flat.faces().len(), flat.vertices().len()), (12, 16));
+    /// ```
+    pub fn flatten_all(&self) -> Result<Mesh> {
+        let meshes = self.roots().iter().flat_map(|&r| self.meshes(r)).collect();
+        concatenate(meshes).map_err(|e| Error::Object {
+            object: "(all objects)".to_string(),
+            message: format!("flattening: {e}"),
+        })
+    }
+}
+
+/// The meshes' vertex lists appended and their faces renumbered, as one mesh (equal vertices
+/// merged by [`Mesh::from_polygons`]).
+fn concatenate(meshes: Vec<&Mesh>) -> std::result::Result<Mesh, crate::mesh::MeshError> {
+    let mut vertices: Vec<Point3> = Vec::new();
+    let mut faces: Vec<Vec<u32>> = Vec::new();
+    for mesh in meshes {
+        let offset = vertices.len() as u32;
+        vertices.extend_from_slice(mesh.vertices());
+        faces.extend(
+            mesh.faces()
+                .iter()
+                .map(|f| f.vertices().iter().map(|&v| v + offset).collect()),
+        );
+    }
+    Mesh::from_polygons(vertices, faces)
 }

@@ -131,11 +131,6 @@ fn offsets(region: &TriboxBounds) -> [f64; 18] {
     })
 }
 
-/// The sign of an expansion.
-fn sign(e: &[f64]) -> Ordering {
-    sum_sign(e)
-}
-
 /// The point `Σ wᵢ pᵢ / Σ wᵢ` for exact weights, each coordinate from a correctly rounded
 /// numerator and denominator; a coordinate is exact when both are and the division leaves no
 /// remainder.
@@ -180,7 +175,7 @@ fn combination_inside(
         for (w, p) in weights.iter().zip(points) {
             value = expansion_sum(&value, &expansion_product(w, &plane_value(j, beta[j], p)));
         }
-        let s = sign(&value);
+        let s = sum_sign(&value);
         let s = if total_sign == Ordering::Less {
             s.reverse()
         } else {
@@ -234,7 +229,8 @@ impl Cell {
         (lo < h && h < hi).then_some(h)
     }
 
-    /// Up to `count` planes across direction `d` through the object's vertices in the cell,
+    /// Up to `count` planes across direction `d` through the object's vertices in the cell
+    /// (at their values along `d`, rounded for the diagonal directions),
     /// strictly inside its tribox's slab (evenly spread in rank when there are more): where a
     /// concave corner can be cut off, which no bisector reaches.
     pub fn feature_planes(&self, d: usize, count: usize) -> Vec<f64> {
@@ -317,7 +313,7 @@ impl Cell {
             );
             let weights = [negated(&vb), va.clone()];
             let total = expansion_sum(&va, &negated(&vb));
-            let total_sign = sign(&total);
+            let total_sign = sum_sign(&total);
             if combination_inside(&beta, skip_d, &weights, &points, total_sign) {
                 new_vertices.push(weighted_point(&weights, &points, &total));
             }
@@ -389,9 +385,9 @@ impl Cell {
                     })
                     .collect();
                 let total = expansion_sum(&expansion_sum(&weights[0], &weights[1]), &weights[2]);
-                let total_sign = sign(&total);
+                let total_sign = sum_sign(&total);
                 if total_sign == Ordering::Equal
-                    || weights.iter().any(|w| sign(w) == total_sign.reverse())
+                    || weights.iter().any(|w| sum_sign(w) == total_sign.reverse())
                 {
                     continue;
                 }

@@ -42,30 +42,23 @@ pub struct Level {
 }
 
 /// The report of the cut at `depth`.
-pub(crate) fn level(
-    h: &Hierarchy,
-    depth: usize,
-    object_faces: usize,
-    object_volume: f64,
-    object_area: f64,
-    tolerance: f64,
-) -> Level {
+pub(crate) fn level(h: &Hierarchy, depth: usize) -> Level {
     let cut = h.cut(depth);
     let triboxes: Vec<TriboxBounds> = cut.iter().map(|&i| h.nodes()[i].tribox).collect();
     let faces: usize = cut.iter().map(|&i| h.nodes()[i].faces).sum();
     let volume: f64 = cut.iter().map(|&i| h.nodes()[i].volume).sum();
     // Tribox vertices are within MAX_COORDINATE-sized values, far inside the clipping range.
     let area = union_area(&triboxes).expect("tribox faces of a mesh are within clipping range");
-    let distance = hausdorff(&triboxes, h.object_tree(), tolerance);
+    let distance = hausdorff(&triboxes, &h.tree, h.tolerance);
     Level {
         depth,
         triboxes: cut.len(),
         faces,
-        compression: object_faces as f64 / faces as f64,
+        compression: h.object_faces as f64 / faces as f64,
         volume,
-        volume_excess: volume / object_volume - 1.0,
+        volume_excess: volume / h.object_volume - 1.0,
         area,
-        area_excess: area / object_area - 1.0,
+        area_excess: area / h.object_area - 1.0,
         hausdorff: distance.upper,
         hausdorff_lower: distance.lower,
     }

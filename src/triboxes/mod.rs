@@ -337,17 +337,6 @@ impl Hierarchy {
             .collect()
     }
 
-    /// The object's triangles, for distance and containment queries.
-    ///
-    /// ```
-    /// use kepler::triboxes::{Hierarchy, Options};
-    /// let h = Hierarchy::build(&kepler::solids::cube(1.0).unwrap(), &Options::default()).unwrap();
-    /// assert_eq!(h.object_tree().len(), 12);
-    /// ```
-    pub fn object_tree(&self) -> &TriangleTree {
-        &self.tree
-    }
-
     /// The simplification tolerance of [`Node::faces`] ([`SIMPLIFY`] times the root
     /// tribox's diagonal), for [`tribox_mesh`].
     ///
@@ -374,16 +363,7 @@ impl Hierarchy {
         let depths = count.min(self.depth() + 1);
         (0..depths)
             .into_par_iter()
-            .map(|depth| {
-                levels::level(
-                    self,
-                    depth,
-                    self.object_faces,
-                    self.object_volume,
-                    self.object_area,
-                    self.tolerance,
-                )
-            })
+            .map(|depth| levels::level(self, depth))
             .collect()
     }
 }
