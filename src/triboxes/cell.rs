@@ -38,23 +38,31 @@ use crate::mesh::{Containment, Mesh, TriangleTree, classify_point};
 use std::cmp::Ordering;
 
 /// A vertex of a cell: a point, and how far (in each coordinate) the exact vertex may be from
-/// it: 0 for the object's own vertices and for built coordinates found exact.
+/// it: 0 for the object's own vertices and for built coordinates found exact. `sure` tells
+/// that the exact vertex is known to lie in the cell; the others are kept only because they
+/// may (a built point whose error box meets a splitting plane goes to both sides).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct CellVertex {
     p: Point3,
     err: [f64; 3],
+    sure: bool,
 }
 
 impl CellVertex {
-    /// An exact point.
+    /// An exact point of the cell.
     fn exact(p: Point3) -> CellVertex {
-        CellVertex { p, err: [0.0; 3] }
+        CellVertex {
+            p,
+            err: [0.0; 3],
+            sure: true,
+        }
     }
 
-    /// A built point: coordinates marked exact are, the others are within 2 ulps.
+    /// A built point of the cell: coordinates marked exact are, the others are within 2 ulps.
     fn built(p: Point3, exact: [bool; 3]) -> CellVertex {
         CellVertex {
             p,
+            sure: true,
             err: [0, 1, 2].map(|k| {
                 if exact[k] {
                     0.0
@@ -85,7 +93,7 @@ pub(crate) struct Cell {
 }
 
 /// Which children a parent's vertex goes to.
-#[derive(Clone, Copy, PartialEq)]
+#[derive(Clone, Copy, PartialEq, Debug)]
 enum Side {
     Below,
     Above,
@@ -260,9 +268,43 @@ impl Cell {
         (self.tribox.max()[d] - self.tribox.min()[d]) / norm
     }
 
-    /// Splits the cell by the plane `d · x = h` (strictly inside its tribox's slab along `d`):
-    /// `[below, above]`.
-    pub fn split(&self, mesh: &Mesh, tree: &TriangleTree, d: usize, h: f64) -> [Cell; 2] {
+    /// The side of the plane `d · x = h` that a vertex is on, decided exactly for its whole
+    /// error box: `Both` when the box meets the plane.
+    fn side(v: &CellVertex, d: usize, h: f64) -> Side {
+        let n = TriboxBounds::DIRECTIONS[d];
+        // reach is a sum of at most two errors, each with slack enough for its rounding.
+        let reach: f64 = (0..3).map(|k| n[k].abs() * v.err[k]).sum();
+        let (t, len) = plane_terms(2 * d + 1, h, &v.p);
+        let mut terms = [0.0; 5];
+        terms[..len].copy_from_slice(&t[..len]);
+        terms[len] = reach;
+        let upper = sum_sign(&terms[..=len]);
+        terms[len] = -reach;
+        let lower = sum_sign(&terms[..=len]);
+        if upper == Ordering::Less {
+            Side::Below
+        } else if lower == Ordering::Greater {
+            Side::Above
+        } else {
+            Side::Both
+        }
+    }
+
+    /// Splits the cell by the plane `d · x = h`: `[below, above]`, or None unless some vertex
+    /// surely of the cell lies strictly on each side. Then both exact children have volume and both
+    /// regions are solid; a plane at the cell's extreme (inside the tribox only by its
+    /// outward rounding) or just beyond it would leave a flat region or an empty cell.
+    pub fn split(&self, mesh: &Mesh, tree: &TriangleTree, d: usize, h: f64) -> Option<[Cell; 2]> {
+        let sides: Vec<Side> = self.vertices.iter().map(|v| Cell::side(v, d, h)).collect();
+        let strictly = |want: Side| {
+            self.vertices
+                .iter()
+                .zip(&sides)
+                .any(|(v, &side)| v.sure && side == want)
+        };
+        if !(strictly(Side::Below) && strictly(Side::Above)) {
+            return None;
+        }
         let [below_region, above_region] = self.region.split(d, h);
         let beta = offsets(&self.region);
         let (lo_plane, hi_plane) = (2 * d, 2 * d + 1);
@@ -333,11 +375,11 @@ impl Cell {
             CellVertex::built(p, [on_planes; 3])
         };
         for &v in polygon {
-            let vertex = corner(v);
-            // Rounded points: one that may lie within err of the surface is kept.
-            if classify_point(tree, &vertex.p) != Containment::Outside
-                || tree.distance(&vertex.p) <= 4.0 * vertex.max_err()
-            {
+            let mut vertex = corner(v);
+            // A rounded corner that may lie within err of the surface is kept, not sure.
+            let inside = classify_point(tree, &vertex.p) != Containment::Outside;
+            if inside || tree.distance(&vertex.p) <= 4.0 * vertex.max_err() {
+                vertex.sure = inside && vertex.err == [0.0; 3];
                 new_vertices.push(vertex);
             }
         }
@@ -400,39 +442,19 @@ impl Cell {
 
         // The parent's vertices go to their side (both when a built point is within its err
         // of h).
-        let mut below_vertices = Vec::with_capacity(new_vertices.len());
-        let mut above_vertices = Vec::with_capacity(new_vertices.len());
-        for v in &self.vertices {
-            let n = TriboxBounds::DIRECTIONS[d];
-            let reach: f64 = (0..3).map(|k| n[k].abs() * v.err[k]).sum();
-            let side = if reach == 0.0 {
-                match side_of(&v.p) {
-                    Ordering::Less => Side::Below,
-                    Ordering::Greater => Side::Above,
-                    Ordering::Equal => Side::Both,
-                }
-            } else {
-                // reach is a sum of at most two errors, rounded up enough by their slack.
-                let (t, len) = plane_terms(hi_plane, h, &v.p);
-                let mut terms = [0.0; 5];
-                terms[..len].copy_from_slice(&t[..len]);
-                terms[len] = reach;
-                let upper = sum_sign(&terms[..=len]);
-                terms[len] = -reach;
-                let lower = sum_sign(&terms[..=len]);
-                if upper == Ordering::Less {
-                    Side::Below
-                } else if lower == Ordering::Greater {
-                    Side::Above
-                } else {
-                    Side::Both
-                }
+        let mut below_vertices = Vec::with_capacity(self.vertices.len() + new_vertices.len());
+        let mut above_vertices = Vec::with_capacity(self.vertices.len() + new_vertices.len());
+        for (v, side) in self.vertices.iter().zip(&sides) {
+            // A built point on both sides by its error box may be in either cell only.
+            let kept = CellVertex {
+                sure: v.sure && (*side != Side::Both || v.err == [0.0; 3]),
+                ..*v
             };
-            if side != Side::Above {
-                below_vertices.push(*v);
+            if *side != Side::Above {
+                below_vertices.push(kept);
             }
-            if side != Side::Below {
-                above_vertices.push(*v);
+            if *side != Side::Below {
+                above_vertices.push(kept);
             }
         }
         below_vertices.extend_from_slice(&new_vertices);
@@ -449,10 +471,10 @@ impl Cell {
                 vertices,
             }
         };
-        [
+        Some([
             child(below_region, below_triangles, below_vertices),
             child(above_region, above_triangles, above_vertices),
-        ]
+        ])
     }
 }
 

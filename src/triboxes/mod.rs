@@ -475,7 +475,7 @@ fn best_split(
     let best = candidates
         .into_par_iter()
         .filter_map(|(d, h)| {
-            let children = cell.split(mesh, tree, d, h);
+            let children = cell.split(mesh, tree, d, h)?;
             let boundaries = children
                 .each_ref()
                 .map(|c| Tribox::new(&c.tribox).cleaned());
