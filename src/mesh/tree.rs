@@ -5,18 +5,30 @@ use super::Mesh;
 use crate::geometry::{Aabb, Point3, Vector3};
 use rstar::{AABB, PointDistance, RTree, RTreeObject, SelectionFunction};
 
-/// One triangle of the mesh in the tree: its index in [`Mesh::triangles`] and corners.
+/// One triangle of the mesh in the tree: its index in [`Mesh::triangles`], corners, and box
+/// (kept, not recomputed: bulk loading asks for it at every comparison of its sorts).
 #[derive(Debug, Clone, Copy)]
 struct Entry {
     index: usize,
     corners: [Point3; 3],
+    envelope: AABB<[f64; 3]>,
+}
+
+impl Entry {
+    fn new(index: usize, corners: [Point3; 3]) -> Entry {
+        let b = Aabb::from_points(&corners);
+        Entry {
+            index,
+            corners,
+            envelope: AABB::from_corners(b.min, b.max),
+        }
+    }
 }
 
 impl RTreeObject for Entry {
     type Envelope = AABB<[f64; 3]>;
     fn envelope(&self) -> Self::Envelope {
-        let b = Aabb::from_points(&self.corners);
-        AABB::from_corners(b.min, b.max)
+        self.envelope
     }
 }
 
@@ -51,10 +63,7 @@ impl TriangleTree {
     /// ```
     pub fn new(mesh: &Mesh) -> TriangleTree {
         let entries = (0..mesh.triangles().len())
-            .map(|index| Entry {
-                index,
-                corners: mesh.triangle(index),
-            })
+            .map(|index| Entry::new(index, mesh.triangle(index)))
             .collect();
         TriangleTree {
             tree: RTree::bulk_load(entries),

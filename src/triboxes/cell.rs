@@ -274,6 +274,13 @@ impl Cell {
         let n = TriboxBounds::DIRECTIONS[d];
         // reach is a sum of at most two errors, each with slack enough for its rounding.
         let reach: f64 = (0..3).map(|k| n[k].abs() * v.err[k]).sum();
+        if reach == 0.0 {
+            return match plane_sign(2 * d + 1, h, &v.p) {
+                Ordering::Less => Side::Below,
+                Ordering::Greater => Side::Above,
+                Ordering::Equal => Side::Both,
+            };
+        }
         let (t, len) = plane_terms(2 * d + 1, h, &v.p);
         let mut terms = [0.0; 5];
         terms[..len].copy_from_slice(&t[..len]);
