@@ -205,8 +205,8 @@ enum Command {
         #[arg(long, value_name = "DEPTH", default_value_t = 8)]
         max_depth: usize,
         /// The candidate splitting planes: the paper's `thickest` slab's bisector, the nine
-        /// `bisectors`, or also planes through the object's vertices (`features`); the one
-        /// giving the least total tribox area is taken.
+        /// `bisectors`, or also planes through the object's vertices (`features`); of those
+        /// that lower the total tribox area enough (`--gain`), the least total volume wins.
         #[arg(long, value_enum, default_value_t = SplitArg::Bisectors)]
         split: SplitArg,
         /// Draw the object and the levels side by side (hidden lines removed) to this SVG file.
