@@ -47,6 +47,13 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 /// Why a hierarchy cannot be built.
+///
+/// ```
+/// use kepler::triboxes::{Hierarchy, Options, TriboxesError};
+/// let cube = kepler::solids::cube(1.0).unwrap();
+/// let bad = Options { gain: 1.0, ..Options::default() };
+/// assert!(matches!(Hierarchy::build(&cube, &bad), Err(TriboxesError::Option(_))));
+/// ```
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum TriboxesError {
     /// The mesh does not bound a solid: its cells would have no inside.
@@ -64,6 +71,18 @@ pub enum TriboxesError {
 /// enough ([`Options::gain`], the paper's rule), the one whose two triboxes have the least
 /// total volume is taken: the paper's greedy choice by area alone favours shaving off thin
 /// corners, which lowers the area sum a little and the volume not at all.
+///
+/// ```
+/// use kepler::triboxes::{Hierarchy, Options, SplitRule};
+/// use geo::polygon;
+/// let l = polygon![(x: 0.0, y: 0.0), (x: 6.0, y: 0.0), (x: 6.0, y: 1.0),
+///     (x: 1.0, y: 1.0), (x: 1.0, y: 4.0), (x: 0.0, y: 4.0)];
+/// let wall = kepler::solids::prism(&l, 3.0).unwrap();
+/// // A plane through the notch's corner cuts the L into its two arms exactly.
+/// let o = Options { split: SplitRule::Features, ..Options::default() };
+/// let level = Hierarchy::build(&wall, &o).unwrap().levels(2)[1];
+/// assert_eq!((level.triboxes, level.volume), (2, 27.0));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum SplitRule {
