@@ -16,6 +16,7 @@ use criterion::{
 };
 use kepler::bounds::tribox::TriboxBounds;
 use kepler::boxtree::pca::{PcaAll, PcaMax, PcaMin};
+use kepler::boxtree::spheres::SplitMix64 as Rng;
 use kepler::boxtree::spheres::{DEFAULT_GAP, PAPER_FACETS, paper_pie_slice_tests};
 use kepler::boxtree::{BoxTree, Merge, NodeShape, Shape, sphere_experiment, sphere_pair};
 use kepler::geometry::{Aabb, Point3};
@@ -24,24 +25,6 @@ use kepler::queries::visp::Ray;
 
 /// Rays per ray-shooting batch.
 const RAYS: usize = 10_000;
-
-/// A splitmix64 generator (no dependency needed for benchmark data).
-struct Rng(u64);
-
-impl Rng {
-    fn unit(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-}
 
 /// The torus: R = 2, r = 0.7, 240 × 145 quads, 69,600 triangles.
 fn torus() -> Mesh {

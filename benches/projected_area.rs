@@ -14,42 +14,28 @@ use kepler::bounds::oriented::OrientedBox;
 use kepler::bounds::projected_area::{
     HULL, bounding_rect_area, classify, projected_area, projected_area_aabb,
 };
+use kepler::boxtree::spheres::SplitMix64 as Rng;
 use kepler::geometry::{Aabb, Point3, Vector3};
 use kepler::views::{Picture, View};
 use nalgebra::{Rotation3, Unit};
 
 const BOXES: usize = 10_000;
 
-/// A xorshift generator (no dependency needed for benchmark data).
-struct Rng(u64);
-
-impl Rng {
-    fn unit(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-
-    fn vector(&mut self) -> Vector3 {
-        Vector3::new(
-            self.range(-1.0, 1.0),
-            self.range(-1.0, 1.0),
-            self.range(-1.0, 1.0),
-        )
-    }
+/// A vector with coordinates uniform in `[-1, 1)`.
+fn vector(rng: &mut Rng) -> Vector3 {
+    Vector3::new(
+        rng.range(-1.0, 1.0),
+        rng.range(-1.0, 1.0),
+        rng.range(-1.0, 1.0),
+    )
 }
 
 /// A random box: centre in `[-50, 50]³`, extents in `[0.5, 5]`, turned at random.
 fn random_box(rng: &mut Rng) -> OrientedBox {
-    let axis = Unit::new_normalize(rng.vector() + Vector3::new(1e-3, 0.0, 0.0));
+    let axis = Unit::new_normalize(vector(rng) + Vector3::new(1e-3, 0.0, 0.0));
     let rotation = Rotation3::from_axis_angle(&axis, rng.range(0.0, std::f64::consts::TAU));
     let axes = [0, 1, 2].map(|k| rotation * Vector3::ith(k, 1.0));
-    let centre = rng.vector() * 50.0;
+    let centre = vector(rng) * 50.0;
     let half = [0; 3].map(|_| rng.range(0.25, 2.5));
     let mid = [0, 1, 2].map(|k| axes[k].dot(&centre));
     OrientedBox {
@@ -64,8 +50,8 @@ fn random_box(rng: &mut Rng) -> OrientedBox {
 fn perspective_view(rng: &mut Rng, corners: &[Point3; 8]) -> View {
     let centre = Point3::from(corners.iter().map(|p| p.coords).sum::<Vector3>() / 8.0);
     loop {
-        let eye = centre + rng.vector().normalize() * rng.range(5.0, 50.0);
-        if let Ok(view) = View::perspective(eye, centre, rng.vector(), rng.range(30.0, 90.0)) {
+        let eye = centre + vector(rng).normalize() * rng.range(5.0, 50.0);
+        if let Ok(view) = View::perspective(eye, centre, vector(rng), rng.range(30.0, 90.0)) {
             let picture = Picture::of(&view);
             if corners.iter().all(|p| picture.in_front(p)) {
                 return view;
@@ -76,7 +62,7 @@ fn perspective_view(rng: &mut Rng, corners: &[Point3; 8]) -> View {
 
 fn orthographic_view(rng: &mut Rng) -> View {
     loop {
-        if let Ok(view) = View::orthographic(rng.vector(), rng.vector()) {
+        if let Ok(view) = View::orthographic(vector(rng), vector(rng)) {
             return view;
         }
     }

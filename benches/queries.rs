@@ -10,6 +10,7 @@ use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 use criterion::{BatchSize, Criterion, SamplingMode, Throughput, criterion_group, criterion_main};
+use kepler::boxtree::spheres::SplitMix64 as Rng;
 use kepler::geometry::{Point3, Vector3};
 use kepler::mesh::Mesh;
 use kepler::queries::include::{IncludeIndex, Inclusion};
@@ -26,20 +27,6 @@ const BATCH: usize = 1_000_000;
 
 /// Points the single-query benchmarks cycle through (the first of the batch).
 const SINGLES: usize = 10_000;
-
-/// A splitmix64 generator (no dependency needed for benchmark data).
-struct Rng(u64);
-
-impl Rng {
-    fn unit(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
 
 /// The torus: R = 2, r = 0.7, 240 × 145 quads, 69,600 triangles.
 fn torus() -> Mesh {

@@ -725,6 +725,11 @@ fn segx_usage_errors() {
     assert!(err.contains("'ten'") && err.contains("--n"), "{err}");
 }
 
+/// The JSON in a file a command wrote.
+fn json_file(path: &str) -> Value {
+    serde_json::from_str(&std::fs::read_to_string(path).expect("the JSON")).expect("JSON")
+}
+
 /// A path for a test's output file in the temporary directory.
 fn temp_path(name: &str) -> String {
     let dir = std::env::temp_dir().join(format!("kepler-cli-{}", std::process::id()));
@@ -943,8 +948,7 @@ fn surfaces_writes_shaded_polygons_and_json() {
         .descendants()
         .filter(|n| n.has_tag_name("path"))
         .collect();
-    let value: Value =
-        serde_json::from_str(&std::fs::read_to_string(&json).expect("the JSON")).expect("JSON");
+    let value: Value = json_file(&json);
     let faces = value["faces"].as_array().expect("faces");
     assert_eq!(faces.len(), 6);
     let status = |s: &str| faces.iter().filter(|f| f["status"] == s).count();
@@ -1032,8 +1036,7 @@ fn cull_prints_a_table_and_json() {
         .map(|l| l.split_whitespace().next().unwrap_or(""))
         .collect();
     assert_eq!(names, ["rstar", "cbox", "tribox", "inbox", "left"]);
-    let value: Value =
-        serde_json::from_str(&std::fs::read_to_string(&json).expect("the JSON")).expect("JSON");
+    let value: Value = json_file(&json);
     assert_eq!(value["pairs"], 53628);
     let filters = value["filters"].as_array().expect("filters");
     assert_eq!(filters.len(), 4);
@@ -1080,8 +1083,7 @@ fn render_draws_small_objects_as_ideographs() {
 fn boxtree_sphere_experiment_prints_ours_beside_the_papers() {
     let json = temp_path("boxtree.json");
     let table = ok(&["boxtree", "--experiment", "spheres", "--json", &json]);
-    let value: Value =
-        serde_json::from_str(&std::fs::read_to_string(&json).expect("the JSON")).expect("JSON");
+    let value: Value = json_file(&json);
     let rows = value.as_array().expect("rows");
     assert_eq!(rows.len(), 15);
     let shapes: Vec<&str> = rows[..5]
@@ -1123,7 +1125,7 @@ fn triboxes_prints_levels_and_writes_json_and_svg() {
     assert!(lines[0].starts_with("l-wall: N = 8 faces"), "{out}");
     let first: Vec<&str> = lines[2].split_whitespace().collect();
     assert_eq!(&first[..4], &["0", "1", "7", "1.14"], "{out}");
-    let report: Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let report: Value = json_file(&json);
     let levels = report["levels"].as_array().expect("levels");
     assert_eq!(levels.len(), 2);
     assert_eq!(levels[0]["triboxes"], 1);

@@ -17,8 +17,8 @@
 //! meets a closed triangle when it crosses the triangle's plane at some `t > 0` inside it (a
 //! triangle whose plane contains the ray's origin, or that the ray runs along, is not met);
 //! hits are ordered by the exact ray parameter `n·(a − o) / n·u` as a ratio of expansions, and
-//! ties go to the lowest triangle index. (That rule's functions are private to `visp`, so they
-//! are written again here.)
+//! ties go to the lowest triangle index. The functions of that rule are `visp`'s
+//! ([`pierces`], [`compare_hits`]).
 //!
 //! ```
 //! use kepler::boxtree::{BoxTree, Merge};
@@ -39,9 +39,8 @@
 use super::tree::Link;
 use super::{BoxTree, NodeShape, RayProbe};
 use crate::geometry::exact::accurate_sum;
-use crate::geometry::predicates::{orient3d, orient3d_at_infinity};
 use crate::geometry::{Point3, Vector3};
-use crate::queries::visp::Ray;
+use crate::queries::visp::{Ray, compare_hits, hit_point, pierces};
 use std::cmp::Ordering;
 
 /// Where a ray first meets a triangle.
@@ -234,50 +233,6 @@ pub fn first_hit_brute_force(triangles: &[[Point3; 3]], ray: &Ray) -> Option<Ray
     })
 }
 
-/// Whether the ray crosses the plane of `t` at some `t > 0` inside the closed triangle,
-/// exactly.
-///
-/// ```
-/// use kepler::boxtree::ray::pierces;
-/// use kepler::geometry::{Point3, Vector3};
-/// use kepler::queries::visp::Ray;
-/// let t = [Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0)];
-/// let down = |x, y| Ray { origin: Point3::new(x, y, 1.0), direction: -Vector3::z() };
-/// assert!(pierces(&down(0.5, 0.5), &t)); // on the hypotenuse
-/// assert!(!pierces(&down(0.5, 0.6), &t));
-/// ```
-pub fn pierces(ray: &Ray, t: &[Point3; 3]) -> bool {
-    let u = &ray.direction;
-    let origin_side = orient3d(&t[0], &t[1], &t[2], &ray.origin);
-    let far_side = orient3d_at_infinity(&t[0], &t[1], &t[2], u);
-    if origin_side == Ordering::Equal || far_side != origin_side.reverse() {
-        return false;
-    }
-    let o = &ray.origin;
-    let s = [
-        orient3d_at_infinity(o, &t[0], &t[1], u),
-        orient3d_at_infinity(o, &t[1], &t[2], u),
-        orient3d_at_infinity(o, &t[2], &t[0], u),
-    ];
-    !(s.contains(&Ordering::Greater) && s.contains(&Ordering::Less))
-}
-
-/// The exact order of the points where the ray meets the planes of `a` and `b` (both
-/// pierced): `Less` when it meets `a` first.
-///
-/// ```
-/// use kepler::boxtree::ray::compare_hits;
-/// use kepler::geometry::{Point3, Vector3};
-/// use kepler::queries::visp::Ray;
-/// use std::cmp::Ordering;
-/// let at = |z| [Point3::new(-1.0, -1.0, z), Point3::new(3.0, -1.0, z), Point3::new(-1.0, 3.0, z)];
-/// let ray = Ray { origin: Point3::new(0.0, 0.0, 10.0), direction: -Vector3::z() };
-/// assert_eq!(compare_hits(&ray, &at(0.1 + 0.2), &at(0.3)), Ordering::Less);
-/// ```
-pub fn compare_hits(ray: &Ray, a: &[Point3; 3], b: &[Point3; 3]) -> Ordering {
-    crate::queries::visp::compare_hits(ray, a, b)
-}
-
 /// An enclosure `[lo, hi]` of the exact parameter `t = n·(a − o) / n·u` at which the ray
 /// meets the plane of a pierced triangle, in floating point (`None` when the error bound
 /// cannot tell the denominator from zero): the normal's components carry at most about 4u of
@@ -315,11 +270,4 @@ fn parameter_upper_bound(ray: &Ray, t: &[Point3; 3]) -> f64 {
     let (n, d) = crate::queries::visp::parameter(ray, t);
     let q = accurate_sum(&n) / accurate_sum(&d);
     q + q.abs() * 4.0 * f64::EPSILON + f64::MIN_POSITIVE
-}
-
-/// The hit point `o + t·u`, with `t` from the correctly rounded numerator and denominator.
-fn hit_point(ray: &Ray, t: &[Point3; 3]) -> Point3 {
-    let (n, d) = crate::queries::visp::parameter(ray, t);
-    let s = accurate_sum(&n) / accurate_sum(&d);
-    Point3::from([0, 1, 2].map(|k| ray.origin[k] + s * ray.direction[k]))
 }

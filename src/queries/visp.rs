@@ -363,8 +363,19 @@ impl<'s> VisibilityIndex<'s> {
     }
 }
 
-/// Whether the ray crosses the plane of `t` at some `t > 0` inside the closed triangle.
-fn pierces(ray: &Ray, t: &[Point3; 3]) -> bool {
+/// Whether the ray crosses the plane of `t` at some `t > 0` inside the closed triangle,
+/// exactly.
+///
+/// ```
+/// use kepler::queries::visp::pierces;
+/// use kepler::geometry::{Point3, Vector3};
+/// use kepler::queries::visp::Ray;
+/// let t = [Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0)];
+/// let down = |x, y| Ray { origin: Point3::new(x, y, 1.0), direction: -Vector3::z() };
+/// assert!(pierces(&down(0.5, 0.5), &t)); // on the hypotenuse
+/// assert!(!pierces(&down(0.5, 0.6), &t));
+/// ```
+pub fn pierces(ray: &Ray, t: &[Point3; 3]) -> bool {
     let u = &ray.direction;
     let origin_side = orient3d(&t[0], &t[1], &t[2], &ray.origin);
     let far_side = orient3d_at_infinity(&t[0], &t[1], &t[2], u);
@@ -404,8 +415,19 @@ pub(crate) fn parameter(ray: &Ray, t: &[Point3; 3]) -> (Vec<f64>, Vec<f64>) {
     (expansion(&numerator), expansion(&denominator))
 }
 
-/// The exact order of the points where the ray meets the planes of `a` and `b` (both pierced).
-pub(crate) fn compare_hits(ray: &Ray, a: &[Point3; 3], b: &[Point3; 3]) -> Ordering {
+/// The exact order of the points where the ray meets the planes of `a` and `b` (both
+/// pierced): `Less` when it meets `a` first.
+///
+/// ```
+/// use kepler::queries::visp::compare_hits;
+/// use kepler::geometry::{Point3, Vector3};
+/// use kepler::queries::visp::Ray;
+/// use std::cmp::Ordering;
+/// let at = |z| [Point3::new(-1.0, -1.0, z), Point3::new(3.0, -1.0, z), Point3::new(-1.0, 3.0, z)];
+/// let ray = Ray { origin: Point3::new(0.0, 0.0, 10.0), direction: -Vector3::z() };
+/// assert_eq!(compare_hits(&ray, &at(0.1 + 0.2), &at(0.3)), Ordering::Less);
+/// ```
+pub fn compare_hits(ray: &Ray, a: &[Point3; 3], b: &[Point3; 3]) -> Ordering {
     let (na, da) = parameter(ray, a);
     let (nb, db) = parameter(ray, b);
     // t_a - t_b = (na·db - nb·da) / (da·db).
@@ -423,7 +445,7 @@ pub(crate) fn compare_hits(ray: &Ray, a: &[Point3; 3], b: &[Point3; 3]) -> Order
 }
 
 /// The hit point `o + t·u`, with `t` from the correctly rounded numerator and denominator.
-fn hit_point(ray: &Ray, t: &[Point3; 3]) -> Point3 {
+pub(crate) fn hit_point(ray: &Ray, t: &[Point3; 3]) -> Point3 {
     let (n, d) = parameter(ray, t);
     let s = accurate_sum(&n) / accurate_sum(&d);
     Point3::from([0, 1, 2].map(|k| ray.origin[k] + s * ray.direction[k]))

@@ -29,11 +29,11 @@
 //! only loosen a bound.
 
 use crate::bounds::tribox::{Tribox, TriboxBounds};
-use crate::geometry::Point3;
 use crate::geometry::exact::{
     add_round_down, add_round_up, estimate, expansion, expansion_product, expansion_sum, negated,
     scale_expansion, sum_sign,
 };
+use crate::geometry::{Aabb, Point3, Vector3};
 use crate::mesh::{Containment, Mesh, TriangleTree, classify_point};
 use std::cmp::Ordering;
 
@@ -263,8 +263,7 @@ impl Cell {
 
     /// The width of the cell's tribox along direction `d` (in length units).
     pub fn thickness(&self, d: usize) -> f64 {
-        let n = TriboxBounds::DIRECTIONS[d];
-        let norm = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        let norm = Vector3::from(TriboxBounds::DIRECTIONS[d]).norm();
         (self.tribox.max()[d] - self.tribox.min()[d]) / norm
     }
 
@@ -493,12 +492,11 @@ fn bounds_of(vertices: &[CellVertex]) -> TriboxBounds {
         if v.err == [0.0; 3] {
             points.push(v.p);
         } else {
-            let lo = [0, 1, 2].map(|k| add_round_down(v.p[k], -v.err[k]));
-            let hi = [0, 1, 2].map(|k| add_round_up(v.p[k], v.err[k]));
-            for c in 0..8 {
-                let pick = |k: usize| if c >> k & 1 == 0 { lo[k] } else { hi[k] };
-                points.push(Point3::new(pick(0), pick(1), pick(2)));
-            }
+            let error_box = Aabb {
+                min: [0, 1, 2].map(|k| add_round_down(v.p[k], -v.err[k])),
+                max: [0, 1, 2].map(|k| add_round_up(v.p[k], v.err[k])),
+            };
+            points.extend_from_slice(&error_box.corners());
         }
     }
     TriboxBounds::from_points(&points)

@@ -20,7 +20,7 @@
 //! than the rounding of the closest-point computation.
 
 use crate::bounds::tribox::{Tribox, TriboxBounds};
-use crate::geometry::Point3;
+use crate::geometry::{Aabb, Point3};
 use crate::mesh::{Containment, TriangleTree, classify_point};
 use serde::Serialize;
 use std::cmp::Ordering;
@@ -47,8 +47,7 @@ const MAX_BOXES: usize = 400_000;
 /// A box waiting to be halved.
 struct Candidate {
     upper: f64,
-    lo: [f64; 3],
-    hi: [f64; 3],
+    cell: Aabb,
     tribox: usize,
 }
 
@@ -112,19 +111,13 @@ pub fn hausdorff(triboxes: &[TriboxBounds], tree: &TriangleTree, tolerance: f64)
     let mut heap = BinaryHeap::new();
     let mut dropped = 0.0f64;
     let mut boxes = 0;
-    let consider = |lo: [f64; 3],
-                    hi: [f64; 3],
+    let consider = |cell: Aabb,
                     i: usize,
                     lower: &mut f64,
                     heap: &mut BinaryHeap<Candidate>,
                     dropped: &mut f64| {
-        let corners: Vec<Point3> = (0..8)
-            .map(|c| {
-                let pick = |k: usize| if c >> k & 1 == 0 { lo[k] } else { hi[k] };
-                Point3::new(pick(0), pick(1), pick(2))
-            })
-            .collect();
-        if !TriboxBounds::from_points(&corners).intersects(&triboxes[i]) {
+        let (lo, hi) = (cell.min, cell.max);
+        if !TriboxBounds::from_points(&cell.corners()).intersects(&triboxes[i]) {
             return;
         }
         let c = Point3::new(
@@ -147,8 +140,7 @@ pub fn hausdorff(triboxes: &[TriboxBounds], tree: &TriangleTree, tolerance: f64)
         } else {
             heap.push(Candidate {
                 upper,
-                lo,
-                hi,
+                cell,
                 tribox: i,
             });
         }
@@ -157,22 +149,26 @@ pub fn hausdorff(triboxes: &[TriboxBounds], tree: &TriangleTree, tolerance: f64)
         if t.is_empty() {
             continue;
         }
-        let (lo, hi) = (
-            [t.min()[0], t.min()[1], t.min()[2]],
-            [t.max()[0], t.max()[1], t.max()[2]],
-        );
-        consider(lo, hi, i, &mut lower, &mut heap, &mut dropped);
+        // A tribox's first three slabs are its axis-aligned box.
+        let cell = Aabb {
+            min: [t.min()[0], t.min()[1], t.min()[2]],
+            max: [t.max()[0], t.max()[1], t.max()[2]],
+        };
+        consider(cell, i, &mut lower, &mut heap, &mut dropped);
     }
     while let Some(top) = heap.peek() {
         if top.upper <= lower + tolerance || boxes >= MAX_BOXES {
             break;
         }
         let Some(b) = heap.pop() else { break };
-        let mid = [0, 1, 2].map(|k| 0.5 * b.lo[k] + 0.5 * b.hi[k]);
+        let (lo, hi) = (b.cell.min, b.cell.max);
+        let mid = [0, 1, 2].map(|k| 0.5 * lo[k] + 0.5 * hi[k]);
         for c in 0..8 {
-            let lo = [0, 1, 2].map(|k| if c >> k & 1 == 0 { b.lo[k] } else { mid[k] });
-            let hi = [0, 1, 2].map(|k| if c >> k & 1 == 0 { mid[k] } else { b.hi[k] });
-            consider(lo, hi, b.tribox, &mut lower, &mut heap, &mut dropped);
+            let octant = Aabb {
+                min: [0, 1, 2].map(|k| if c >> k & 1 == 0 { lo[k] } else { mid[k] }),
+                max: [0, 1, 2].map(|k| if c >> k & 1 == 0 { mid[k] } else { hi[k] }),
+            };
+            consider(octant, b.tribox, &mut lower, &mut heap, &mut dropped);
             boxes += 1;
         }
     }

@@ -3,6 +3,7 @@
 use super::{Hierarchy, hausdorff};
 use crate::bounds::tribox::{Tribox, TriboxBounds};
 use crate::clip::{self, ClipError};
+use crate::geometry::Vector3;
 use geo::{Area, LineString, MultiPolygon, Polygon};
 use serde::Serialize;
 
@@ -122,6 +123,5 @@ fn shared_area(a: &Tribox, fa: usize, b: &Tribox, fb: usize) -> Result<f64, Clip
         }
     };
     let overlap = clip::intersection(&polygon(a, fa), &polygon(b, fb))?;
-    let norm = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-    Ok(overlap.unsigned_area() * norm)
+    Ok(overlap.unsigned_area() * Vector3::from(n).norm())
 }

@@ -193,26 +193,15 @@ pub fn cuboid_at(size: [f64; 3], at: [f64; 3]) -> Mesh {
 }
 
 /// A long thin parallelepiped `p0 + i·d + j·u + k·v` (i, j, k in {0, 1}), with faces
-/// numbered as [`solids::cuboid`]'s (d, u, v right-handed, so counter-clockwise outside).
+/// numbered as [`solids::box_between`]'s (d, u, v right-handed, so counter-clockwise outside).
 pub fn parallelepiped(p0: [f64; 3], d: [f64; 3], u: [f64; 3], v: [f64; 3]) -> Mesh {
-    let vertices = (0..8)
-        .map(|k: u32| {
-            let c = |bit: u32| if k & (1 << bit) != 0 { 1.0 } else { 0.0 };
-            // Dyadic coordinates: every vertex is exact.
-            Point3::new(
-                p0[0] + c(0) * d[0] + c(1) * u[0] + c(2) * v[0],
-                p0[1] + c(0) * d[1] + c(1) * u[1] + c(2) * v[1],
-                p0[2] + c(0) * d[2] + c(1) * u[2] + c(2) * v[2],
-            )
-        })
-        .collect();
-    let faces = vec![
-        vec![0, 4, 6, 2],
-        vec![1, 3, 7, 5],
-        vec![0, 1, 5, 4],
-        vec![2, 6, 7, 3],
-        vec![0, 2, 3, 1],
-        vec![4, 5, 7, 6],
-    ];
-    Mesh::from_polygons(vertices, faces).unwrap()
+    // The unit box under x ↦ p0 + x·d + y·u + z·v: with dyadic inputs every vertex is exact.
+    let m = Matrix4::new(
+        d[0], u[0], v[0], p0[0], d[1], u[1], v[1], p0[1], d[2], u[2], v[2], p0[2], 0.0, 0.0, 0.0,
+        1.0,
+    );
+    solids::box_between([0.0; 3], [1.0; 3])
+        .unwrap()
+        .transformed(&m)
+        .unwrap()
 }
