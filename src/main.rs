@@ -23,7 +23,9 @@ use kepler::queries::include::{IncludeIndex, Inclusion};
 use kepler::queries::visp::{Visibility, VisibilityIndex};
 use kepler::scene::{Scene, file, report::BoundsReport};
 use kepler::surfaces::{visible_surfaces, visobj};
-use kepler::triboxes::{Hierarchy, Level, Options as TriboxOptions, SplitRule, tribox_mesh};
+use kepler::triboxes::{
+    Hierarchy, Level, Options as TriboxOptions, SplitRule, TriboxesError, tribox_mesh,
+};
 use kepler::views::{Picture, View, ViewOptions};
 use std::fmt::Write as _;
 use std::io::IsTerminal;
@@ -666,12 +668,19 @@ fn run(cli: Cli) -> Result<()> {
                     };
                     (scene.path(id), scene.flatten(id)?)
                 }
-                None => (
-                    path.display().to_string(),
-                    scene
-                        .flatten_all()
-                        .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?,
-                ),
+                None => {
+                    // Name the first object that cannot bound a solid, not only the file.
+                    let roots = scene.mesh_objects(scene.roots());
+                    if let Some((id, _)) = roots.iter().find(|(_, m)| !m.is_solid()) {
+                        anyhow::bail!("object '{}': {}", scene.path(*id), TriboxesError::NotSolid);
+                    }
+                    (
+                        path.display().to_string(),
+                        scene
+                            .flatten_all()
+                            .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?,
+                    )
+                }
             };
             let options = TriboxOptions {
                 gain,
@@ -683,8 +692,10 @@ fn run(cli: Cli) -> Result<()> {
                 },
                 ..TriboxOptions::default()
             };
-            let hierarchy = Hierarchy::build(&mesh, &options)
-                .map_err(|e| anyhow::anyhow!("object '{name}': {e}"))?;
+            let hierarchy = Hierarchy::build(&mesh, &options).map_err(|e| match e {
+                TriboxesError::Option(message) => anyhow::anyhow!("{message}"),
+                e => anyhow::anyhow!("object '{name}': {e}"),
+            })?;
             let report = hierarchy.levels(levels);
             emit(&tribox_table(&name, mesh.faces().len(), &report))?;
             if let Some(json) = &json {

@@ -1162,5 +1162,8 @@ fn triboxes_of_a_whole_scene_and_its_errors() {
     let err = fails(&["triboxes", "scenes/solids.toml", "--object", "nothing"]);
     assert!(err.contains("no object named 'nothing'"), "{err}");
     let err = fails(&["triboxes", "scenes/solids.toml", "--gain", "1.5"]);
-    assert!(err.contains("gain"), "{err}");
+    assert!(err.starts_with("--gain: ") && err.contains("1.5"), "{err}");
+    // All objects together: the open one is named.
+    let err = fails(&["triboxes", "scenes/meshes.toml"]);
+    assert!(err.contains("'tent'") && err.contains("closed"), "{err}");
 }
