@@ -693,7 +693,8 @@ fn run(cli: Cli) -> Result<()> {
                 ..TriboxOptions::default()
             };
             let hierarchy = Hierarchy::build(&mesh, &options).map_err(|e| match e {
-                TriboxesError::Option(message) => anyhow::anyhow!("{message}"),
+                // The command sets no option but the gain that the library checks.
+                TriboxesError::Option(message) => anyhow::anyhow!("--gain: {message}"),
                 e => anyhow::anyhow!("object '{name}': {e}"),
             })?;
             let report = hierarchy.levels(levels);

@@ -233,7 +233,7 @@ impl Hierarchy {
     pub fn build(mesh: &Mesh, options: &Options) -> Result<Hierarchy, TriboxesError> {
         if !(options.gain < 1.0 && options.gain.is_finite()) {
             return Err(TriboxesError::Option(format!(
-                "--gain: the gain must be a number below 1, not {}",
+                "the gain must be a number below 1, not {}",
                 options.gain
             )));
         }
