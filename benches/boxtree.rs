@@ -15,13 +15,13 @@ use criterion::{
     BenchmarkGroup, BenchmarkId, Criterion, Throughput, criterion_group, criterion_main,
 };
 use kepler::bounds::tribox::TriboxBounds;
-use kepler::boxtree::pca::{PcaAll, PcaMax, PcaMin};
-use kepler::boxtree::spheres::SplitMix64 as Rng;
-use kepler::boxtree::spheres::{DEFAULT_GAP, PAPER_FACETS, paper_pie_slice_tests};
-use kepler::boxtree::{BoxTree, Merge, NodeShape, Shape, sphere_experiment, sphere_pair};
+use kepler::geometry::ray::Ray;
 use kepler::geometry::{Aabb, Point3};
+use kepler::lab::boxtree::pca::{PcaAll, PcaMax, PcaMin};
+use kepler::lab::boxtree::spheres::SplitMix64 as Rng;
+use kepler::lab::boxtree::spheres::{DEFAULT_GAP, PAPER_FACETS, paper_pie_slice_tests};
+use kepler::lab::boxtree::{BoxTree, Merge, NodeShape, Shape, sphere_experiment, sphere_pair};
 use kepler::mesh::Mesh;
-use kepler::queries::visp::Ray;
 
 /// Rays per ray-shooting batch.
 const RAYS: usize = 10_000;

@@ -10,12 +10,11 @@
 use std::hint::black_box;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use kepler::bounds::oriented::OrientedBox;
-use kepler::bounds::projected_area::{
-    HULL, bounding_rect_area, classify, projected_area, projected_area_aabb,
-};
-use kepler::boxtree::spheres::SplitMix64 as Rng;
 use kepler::geometry::{Aabb, Point3, Vector3};
+use kepler::lab::boxtree::spheres::SplitMix64 as Rng;
+use kepler::lab::oriented::OrientedBox;
+use kepler::lab::projected_area::{bounding_rect_area, projected_area};
+use kepler::views::projected_area::{HULL, classify, projected_area_aabb};
 use kepler::views::{Picture, View};
 use nalgebra::{Rotation3, Unit};
 

@@ -10,8 +10,8 @@ use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 use criterion::{BatchSize, Criterion, SamplingMode, Throughput, criterion_group, criterion_main};
-use kepler::boxtree::spheres::SplitMix64 as Rng;
 use kepler::geometry::{Point3, Vector3};
+use kepler::lab::boxtree::spheres::SplitMix64 as Rng;
 use kepler::mesh::Mesh;
 use kepler::queries::include::{IncludeIndex, Inclusion};
 use kepler::queries::projection_grid::ProjectionGrid;

@@ -15,8 +15,8 @@ use std::time::Duration;
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use geo::polygon;
 use kepler::bounds::tribox::TriboxBounds;
+use kepler::lab::tribox_hierarchy::{Hierarchy, Options, SplitRule};
 use kepler::mesh::Mesh;
-use kepler::triboxes::{Hierarchy, Options, SplitRule};
 
 const RULES: [(&str, SplitRule); 3] = [
     ("thickest", SplitRule::Thickest),

@@ -28,21 +28,19 @@
 //! ```
 
 pub mod bounds;
-pub mod boxtree;
 pub mod clip;
-pub mod culling;
 pub mod error;
 pub mod geometry;
 pub mod grid;
 pub mod hidden;
 pub mod io;
+pub mod lab;
 pub mod mesh;
 pub mod output;
 pub mod queries;
 pub mod scene;
 pub mod solids;
 pub mod surfaces;
-pub mod triboxes;
 pub mod views;
 
 pub use error::{Error, Result};

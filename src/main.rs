@@ -5,14 +5,17 @@ use clap::{Args, Parser, Subcommand};
 use geo::Line;
 use indicatif::{ProgressBar, ProgressStyle};
 use kepler::bounds::tribox::Tribox;
-use kepler::boxtree::spheres::{DEFAULT_GAP, PAPER_FACETS};
-use kepler::boxtree::{Merge, sphere_experiment};
-use kepler::culling::{CullReport, Ideograph, cull, ideographs};
 use kepler::geometry::polygon::bounding_box;
 use kepler::geometry::{Point3, Vector3};
 use kepler::grid::{intersecting_pairs, random_segments};
 use kepler::hidden::{self, Drawing, EdgeClass, EdgeSelection};
 use kepler::io::points::{read_points, read_segments};
+use kepler::lab::boxtree::spheres::{DEFAULT_GAP, PAPER_FACETS};
+use kepler::lab::boxtree::{Merge, sphere_experiment};
+use kepler::lab::culling::{CullReport, cull};
+use kepler::lab::tribox_hierarchy::{
+    Hierarchy, Level, Options as TriboxOptions, SplitRule, TriboxesError, tribox_mesh,
+};
 use kepler::mesh::Mesh;
 use kepler::output::{
     PageTransform, Shading, SvgOptions, write_json, write_surfaces_json, write_surfaces_svg,
@@ -23,9 +26,7 @@ use kepler::queries::include::{IncludeIndex, Inclusion};
 use kepler::queries::visp::{Visibility, VisibilityIndex};
 use kepler::scene::{Scene, file, report::BoundsReport};
 use kepler::surfaces::{visible_surfaces, visobj};
-use kepler::triboxes::{
-    Hierarchy, Level, Options as TriboxOptions, SplitRule, TriboxesError, tribox_mesh,
-};
+use kepler::views::ideographs::{Ideograph, ideographs};
 use kepler::views::{Picture, View, ViewOptions};
 use std::fmt::Write as _;
 use std::io::IsTerminal;

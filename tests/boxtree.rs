@@ -1,4 +1,4 @@
-//! BOXTREE (`kepler::boxtree`) against exact and brute-force references: every bound of every
+//! BOXTREE (`kepler::lab::boxtree`) against exact and brute-force references: every bound of every
 //! hierarchy contains its triangles' vertices and its children's bounds (checked exactly, with
 //! rational arithmetic for oriented boxes); ray shooting agrees with testing every triangle and
 //! with `VisibilityIndex::first_hit`; collision detection agrees with testing every pair of
@@ -9,14 +9,15 @@ mod common;
 
 use common::{Q, Rng, q, qcross, qdot, qsign, qsub, qv, unit_octahedron as octahedron};
 use kepler::bounds::tribox::TriboxBounds;
-use kepler::boxtree::pca::{PcaAll, PcaMax, PcaMin, Principal};
-use kepler::boxtree::ray::first_hit_brute_force;
-use kepler::boxtree::tritri::triangles_meet;
-use kepler::boxtree::{BoxTree, Merge, NodeShape, Shape, sphere_experiment, sphere_pair};
 use kepler::geometry::predicates::{collinear, orient3d};
+use kepler::geometry::ray::Ray;
 use kepler::geometry::{Aabb, Point3, Vector3};
+use kepler::lab::boxtree::pca::{PcaAll, PcaMax, PcaMin, Principal};
+use kepler::lab::boxtree::ray::first_hit_brute_force;
+use kepler::lab::boxtree::tritri::triangles_meet;
+use kepler::lab::boxtree::{BoxTree, Merge, NodeShape, Shape, sphere_experiment, sphere_pair};
 use kepler::mesh::Mesh;
-use kepler::queries::visp::{Ray, VisibilityIndex};
+use kepler::queries::visp::VisibilityIndex;
 use kepler::scene::Scene;
 use kepler::views::View;
 use num_traits::Zero;
@@ -85,7 +86,7 @@ impl Nested for TriboxBounds {
     }
 }
 
-impl<P: Principal> Nested for kepler::boxtree::pca::PcaBox<P> {
+impl<P: Principal> Nested for kepler::lab::boxtree::pca::PcaBox<P> {
     /// The exact extremes over the child's box `lo ≤ C x ≤ hi` of each parent axis `a`:
     /// `a · x = λ · (C x)` with `Cᵀ λ = a` (Cramer's rule in rationals), extreme at the corner
     /// picked by the signs of λ.
@@ -313,7 +314,7 @@ proptest! {
             u += rng.vector(1e-12);
         }
         let origin = Point3::from(rng.vector(big));
-        let probe = kepler::boxtree::RayProbe::new(&Ray { origin, direction: u });
+        let probe = kepler::lab::boxtree::RayProbe::new(&Ray { origin, direction: u });
         prop_assume!(probe.is_some());
         let probe = probe.unwrap();
         let (x, y) = (rng.range(-big, big), rng.range(-big, big));
@@ -344,7 +345,7 @@ fn stabbing_counts_every_bound_the_ray_meets() {
     let mut rng = Rng(5);
     for ray in rays(&mut rng, &mesh, 100, false) {
         // Boxes met, one by one: a node is met only if its parent is, so the descent finds all.
-        let probe = kepler::boxtree::RayProbe::new(&ray).unwrap();
+        let probe = kepler::lab::boxtree::RayProbe::new(&ray).unwrap();
         let all = tree
             .nodes()
             .iter()

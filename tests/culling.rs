@@ -1,10 +1,10 @@
-//! The culling experiment (`kepler::culling::cull`): exact counts on hand-made scenes, and on
+//! The culling experiment (`kepler::lab::culling::cull`): exact counts on hand-made scenes, and on
 //! random scenes every filter's decisions against independent references (geo's polygon
 //! intersection for the pictures, VISP for the INBOX).
 
 use geo::{ConvexHull, Intersects, MultiPoint, Point};
-use kepler::culling::cull;
 use kepler::geometry::{Point3, Vector3};
+use kepler::lab::culling::cull;
 use kepler::mesh::Mesh;
 use kepler::queries::visp::{Visibility, VisibilityIndex, visp};
 use kepler::scene::Scene;
@@ -188,8 +188,8 @@ fn random_scenes_agree_with_independent_references() {
 
 #[test]
 fn ideographs_replace_objects_by_their_exact_projected_area() {
-    use kepler::culling::{Ideograph, ideographs};
     use kepler::hidden::{Options, draw};
+    use kepler::views::ideographs::{Ideograph, ideographs};
     // Cubes of side 1, 2 and 3 seen from above have pictures of area 1, 4 and 9 exactly.
     let cubes: Vec<Mesh> = [1.0, 2.0, 3.0]
         .iter()

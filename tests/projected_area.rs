@@ -5,12 +5,11 @@
 mod common;
 
 use common::Rng;
-use kepler::bounds::oriented::OrientedBox;
-use kepler::bounds::projected_area::{
-    HULL, bounding_rect_area, classify, projected_area, projected_area_aabb, projected_area_tribox,
-};
 use kepler::bounds::tribox::TriboxBounds;
 use kepler::geometry::{Aabb, Point3, Vector3};
+use kepler::lab::oriented::OrientedBox;
+use kepler::lab::projected_area::{bounding_rect_area, projected_area, projected_area_tribox};
+use kepler::views::projected_area::{HULL, classify, projected_area_aabb};
 use kepler::views::{Eye, Picture, View};
 use nalgebra::{Rotation3, Unit};
 use proptest::prelude::*;

@@ -1,4 +1,4 @@
-//! Hierarchical triboxes (`kepler::triboxes`): the cells partition the object (their volumes,
+//! Hierarchical triboxes (`kepler::lab::tribox_hierarchy`): the cells partition the object (their volumes,
 //! computed here independently by clipping the object's signed tetrahedra to each leaf's
 //! region, sum to the object's volume), the tree's regions and triboxes nest, the levels'
 //! figures agree with direct computations, and the Hausdorff bounds bracket distances
@@ -8,8 +8,10 @@
 use geo::polygon;
 use kepler::bounds::tribox::{Tribox, TriboxBounds};
 use kepler::geometry::{Point3, Vector3};
+use kepler::lab::tribox_hierarchy::{
+    Hierarchy, Options, SplitRule, hausdorff, tribox_mesh, union_area,
+};
 use kepler::mesh::{Containment, Mesh, TriangleTree, classify_point};
-use kepler::triboxes::{Hierarchy, Options, SplitRule, hausdorff, tribox_mesh, union_area};
 use proptest::prelude::*;
 use proptest::test_runner::{RngAlgorithm, TestRng};
 

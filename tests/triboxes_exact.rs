@@ -37,8 +37,8 @@
 use geo::{Coord, LineString, Polygon, polygon};
 use kepler::bounds::tribox::{Tribox, TriboxBounds};
 use kepler::geometry::Point3;
+use kepler::lab::tribox_hierarchy::{Hierarchy, Options, SplitRule};
 use kepler::mesh::Mesh;
-use kepler::triboxes::{Hierarchy, Options, SplitRule};
 use nalgebra::{Rotation3, Unit, Vector3};
 use num_bigint::{BigInt, Sign};
 use num_rational::BigRational;

@@ -4,10 +4,11 @@
 //! inputs, `BigRational` otherwise; the symbolic perturbation evaluated as the sign of a
 //! polynomial in ε).
 
+use kepler::geometry::ray::Ray;
 use kepler::geometry::{Point3, Vector3};
 use kepler::mesh::Mesh;
 use kepler::queries::Stage;
-use kepler::queries::visp::{Hit, Ray, Visibility, VisibilityIndex, hides, visp};
+use kepler::queries::visp::{Hit, Visibility, VisibilityIndex, hides, visp};
 use kepler::scene::{ObjectId, Scene};
 use kepler::solids;
 use kepler::views::{Eye, View};

@@ -1,6 +1,5 @@
 //! The three bounds Franklin's objects keep: the circumscribing box (CBOX), the inscribing
-//! box (INBOX) and, after Crosnier and Rossignac (1999), the tribox; and oriented boxes
-//! ([`oriented`]) for bounding hierarchies.
+//! box (INBOX) and, after Crosnier and Rossignac (1999), the tribox.
 //!
 //! ```
 //! use kepler::bounds::{cbox, inbox};
@@ -10,8 +9,6 @@
 //! ```
 
 mod inbox;
-pub mod oriented;
-pub mod projected_area;
 pub mod tribox;
 
 pub use crate::geometry::Aabb;

@@ -18,5 +18,6 @@ pub type Point3 = nalgebra::Point3<f64>;
 pub type Vector3 = nalgebra::Vector3<f64>;
 pub mod polygon;
 pub mod predicates;
+pub mod ray;
 
 pub use aabb::Aabb;

@@ -47,12 +47,10 @@
 //! assert_eq!((visible(EdgeClass::Silhouette), visible(EdgeClass::Crease)), (6, 3));
 //! ```
 
-mod along;
 mod chain;
 mod cover;
 mod drawing;
 mod edges;
-mod intersections;
 
 pub use drawing::{Drawing, EdgeClass, Polyline, StageReport};
 
@@ -62,10 +60,12 @@ use crate::geometry::predicates::orient3d;
 use crate::grid::SegmentGrid;
 use crate::mesh::Mesh;
 use crate::queries::Counters;
+use crate::queries::along::{Form, cut_point, hides_along};
+use crate::queries::intersections;
+use crate::queries::own_solid::turned_away;
 use crate::queries::visp::Visibility;
 use crate::scene::{ObjectId, Scene};
 use crate::views::{Eye, Picture, View};
-use along::{Form, cut_point, hides_along};
 use chain::{Piece, chain};
 use cover::Occluders;
 use geo::{Line as GeoLine, coord};
@@ -76,19 +76,6 @@ use std::cmp::Ordering;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicU64, Ordering as Atomic};
 use std::time::Instant;
-
-/// The picture of the point where the segment `ab` crosses the plane of the triangle `plane`
-/// (its ends strictly on either side), built once from the input coordinates: within 1.5 units
-/// in the last place (see the module documentation).
-pub(crate) fn cut_point_on_plane(
-    picture: &Picture,
-    eye: &Eye,
-    plane: &[Point3; 3],
-    a: &Point3,
-    b: &Point3,
-) -> [f64; 2] {
-    cut_point(picture, eye, &Form::Plane(*plane), a, b)
-}
 
 /// Which edges a drawing shows.
 ///
@@ -746,47 +733,6 @@ fn cut_picture(picture: &Picture, eye: &Eye, l: &Line, at: Option<CutAt>) -> [f6
         Some(CutAt::Form(form)) => cut_point(picture, eye, &form, &l.a, &l.b),
         Some(CutAt::Point(p)) => p,
         None => l.ends[0],
-    }
-}
-
-/// [`turned_away`] for a mesh that, moreover, does not pierce itself (no two of its triangles
-/// without a common vertex cross; found as the hidden-line pass finds intersection lines): the
-/// sign of [`Eye::orient3d`] of a face the solid itself hides all of, or `None`.
-pub(crate) fn hidden_by_own_solid(
-    scene: &Scene,
-    id: ObjectId,
-    mesh: &Mesh,
-    eye: &Eye,
-) -> Option<Ordering> {
-    let side = turned_away(scene, id, mesh, eye)?;
-    intersections::between(mesh, mesh, true, eye)
-        .is_empty()
-        .then_some(side)
-}
-
-/// For a mesh that bounds a solid the eye is outside of (closed, consistently oriented, not
-/// flat; the eye outside its CBOX), the sign of [`Eye::orient3d`] of a face turned away from
-/// the eye; `None` otherwise. Every point of an edge between two faces turned away is then
-/// hidden by the solid itself: its line of sight enters the solid, which it must leave through
-/// a face in front of the point before reaching the eye.
-fn turned_away(scene: &Scene, id: ObjectId, mesh: &Mesh, eye: &Eye) -> Option<Ordering> {
-    let topology = mesh.topology();
-    if !(topology.closed && topology.consistently_oriented) {
-        return None;
-    }
-    if let Eye::Point(e) = eye
-        && scene.cbox(id).contains_point(e)
-    {
-        return None;
-    }
-    // Seen from outside, an outward face is counter-clockwise: orient3d(face, eye) < 0.
-    let volume = mesh.volume();
-    if volume > 0.0 {
-        Some(Ordering::Greater)
-    } else if volume < 0.0 {
-        Some(Ordering::Less)
-    } else {
-        None
     }
 }
 

@@ -16,7 +16,10 @@
 //! assert_eq!(include(&scene, cube, &Point3::new(1.0, 0.5, 0.5)).unwrap(), (Inclusion::On, Stage::Faces));
 //! ```
 
+pub(crate) mod along;
 pub mod include;
+pub(crate) mod intersections;
+pub(crate) mod own_solid;
 pub mod projection_grid;
 pub(crate) mod sight;
 pub mod visp;

@@ -26,7 +26,9 @@ use crate::scene::{Camera, Projection};
 use nalgebra::Matrix4;
 use std::cmp::Ordering;
 
+pub mod ideographs;
 mod picture;
+pub mod projected_area;
 pub use picture::Picture;
 
 /// A view that cannot be built, and why.

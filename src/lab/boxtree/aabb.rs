@@ -6,7 +6,7 @@
 //! two boxes overlap exactly when their coordinate ranges do.
 //!
 //! ```
-//! use kepler::boxtree::NodeShape;
+//! use kepler::lab::boxtree::NodeShape;
 //! use kepler::geometry::{Aabb, Point3};
 //! let t = [Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0), Point3::new(0.0, 2.0, 1.0)];
 //! let b = Aabb::leaf(&t);

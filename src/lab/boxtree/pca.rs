@@ -52,7 +52,7 @@
 //! bound, so it never reports disjoint boxes that overlap.
 //!
 //! ```
-//! use kepler::boxtree::{NodeShape, pca::PcaMin};
+//! use kepler::lab::boxtree::{NodeShape, pca::PcaMin};
 //! use kepler::geometry::Point3;
 //! let t = [Point3::new(0.0, 0.0, 0.0), Point3::new(2.0, 0.0, 0.0), Point3::new(1.0, 1.0, 0.0)];
 //! let u = [Point3::new(0.0, 0.0, 1.0), Point3::new(2.0, 0.0, 1.0), Point3::new(1.0, 1.0, 1.0)];
@@ -67,9 +67,9 @@
 
 use super::slab::meet;
 use super::{Measures, NodeShape, RayProbe, Shape};
-use crate::bounds::oriented::OrientedBox;
 use crate::geometry::exact::{product_terms, sum_sign};
 use crate::geometry::{Point3, Vector3};
+use crate::lab::oriented::OrientedBox;
 use nalgebra::{Matrix3, SymmetricEigen};
 use std::cmp::Ordering;
 use std::marker::PhantomData;
@@ -81,7 +81,7 @@ const U: f64 = f64::EPSILON / 2.0;
 /// [`Max`] and [`Min`].
 ///
 /// ```
-/// use kepler::boxtree::{Shape, pca::{Max, Principal}};
+/// use kepler::lab::boxtree::{Shape, pca::{Max, Principal}};
 /// assert_eq!(Max::SHAPE, Shape::PcaMax);
 /// ```
 pub trait Principal: Send + Sync + 'static {
@@ -92,7 +92,7 @@ pub trait Principal: Send + Sync + 'static {
 /// All principal components as the box's directions.
 ///
 /// ```
-/// use kepler::boxtree::pca::{All, Principal};
+/// use kepler::lab::boxtree::pca::{All, Principal};
 /// assert_eq!(All::SHAPE.name(), "pca-all");
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -101,7 +101,7 @@ pub struct All;
 /// The largest principal component, then the minimum-area rectangle normal to it.
 ///
 /// ```
-/// use kepler::boxtree::pca::{Max, Principal};
+/// use kepler::lab::boxtree::pca::{Max, Principal};
 /// assert_eq!(Max::SHAPE.name(), "pca-max");
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -110,7 +110,7 @@ pub struct Max;
 /// The smallest principal component, then the minimum-area rectangle normal to it.
 ///
 /// ```
-/// use kepler::boxtree::pca::{Min, Principal};
+/// use kepler::lab::boxtree::pca::{Min, Principal};
 /// assert_eq!(Min::SHAPE.name(), "pca-min");
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -139,7 +139,7 @@ pub type PcaMin = PcaBox<Min>;
 /// module documentation).
 ///
 /// ```
-/// use kepler::boxtree::{NodeShape, pca::PcaAll};
+/// use kepler::lab::boxtree::{NodeShape, pca::PcaAll};
 /// use kepler::geometry::Point3;
 /// let t = [Point3::new(0.1, 0.2, 0.3), Point3::new(1.7, -0.4, 0.9), Point3::new(-0.3, 1.1, 2.0)];
 /// let b = PcaAll::leaf(&t);
@@ -174,7 +174,7 @@ impl<P: Principal> PcaBox<P> {
     /// The box as slabs.
     ///
     /// ```
-    /// use kepler::boxtree::{NodeShape, pca::PcaMax};
+    /// use kepler::lab::boxtree::{NodeShape, pca::PcaMax};
     /// use kepler::geometry::Point3;
     /// let t = [Point3::new(0.0, 0.0, 0.0), Point3::new(3.0, 0.0, 0.0), Point3::new(0.0, 4.0, 0.0)];
     /// let e = PcaMax::leaf(&t).oriented().extents();
@@ -188,7 +188,7 @@ impl<P: Principal> PcaBox<P> {
     /// parent bounds (the paper's "16 vertices of a pair of child boxes").
     ///
     /// ```
-    /// use kepler::boxtree::{NodeShape, pca::PcaMin};
+    /// use kepler::lab::boxtree::{NodeShape, pca::PcaMin};
     /// use kepler::geometry::Point3;
     /// let t = [Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0)];
     /// let b = PcaMin::leaf(&t);

@@ -26,9 +26,9 @@
 //! convex spheres and the number of bound-bound collision tests per shape.
 //!
 //! ```
-//! use kepler::boxtree::{BoxTree, Merge};
+//! use kepler::lab::boxtree::{BoxTree, Merge};
 //! use kepler::geometry::{Aabb, Point3, Vector3};
-//! use kepler::queries::visp::Ray;
+//! use kepler::geometry::ray::Ray;
 //! let cube = kepler::solids::cube(2.0).unwrap();
 //! let tree: BoxTree<Aabb> = BoxTree::build(&cube, Merge::Area);
 //! assert_eq!(tree.nodes().len(), 2 * 12 - 1);
@@ -46,7 +46,7 @@ pub mod ray;
 pub mod slab;
 pub mod spheres;
 pub mod tree;
-pub mod tribox;
+pub mod tribox_node;
 pub mod tritri;
 
 pub use collide::Collision;
@@ -61,7 +61,7 @@ use serde::Serialize;
 /// The five node shapes, by the names the paper's methods and the command line use.
 ///
 /// ```
-/// use kepler::boxtree::Shape;
+/// use kepler::lab::boxtree::Shape;
 /// assert_eq!(Shape::PcaMin.to_string(), "pca-min");
 /// assert_eq!("tribox".parse::<Shape>(), Ok(Shape::Tribox));
 /// assert_eq!(Shape::ALL.len(), 5);
@@ -88,7 +88,7 @@ impl Shape {
     /// Every shape, in the order of the experiment's rows.
     ///
     /// ```
-    /// assert_eq!(kepler::boxtree::Shape::ALL[0], kepler::boxtree::Shape::Aabb);
+    /// assert_eq!(kepler::lab::boxtree::Shape::ALL[0], kepler::lab::boxtree::Shape::Aabb);
     /// ```
     pub const ALL: [Shape; 5] = [
         Shape::Aabb,
@@ -101,7 +101,7 @@ impl Shape {
     /// The shape's name: `aabb`, `pca-all`, `pca-max`, `pca-min` or `tribox`.
     ///
     /// ```
-    /// assert_eq!(kepler::boxtree::Shape::PcaMax.name(), "pca-max");
+    /// assert_eq!(kepler::lab::boxtree::Shape::PcaMax.name(), "pca-max");
     /// ```
     pub fn name(self) -> &'static str {
         match self {
@@ -123,7 +123,7 @@ impl std::fmt::Display for Shape {
 /// A name that is not one of the five shapes.
 ///
 /// ```
-/// let e = "sphere".parse::<kepler::boxtree::Shape>().unwrap_err();
+/// let e = "sphere".parse::<kepler::lab::boxtree::Shape>().unwrap_err();
 /// assert_eq!(e.to_string(), "unknown shape 'sphere' (expected aabb, pca-all, pca-max, pca-min or tribox)");
 /// ```
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -144,7 +144,7 @@ impl std::str::FromStr for Shape {
 /// Which measure of a candidate parent the merge rule minimises; the other breaks ties.
 ///
 /// ```
-/// use kepler::boxtree::{Measures, Merge};
+/// use kepler::lab::boxtree::{Measures, Merge};
 /// let flat = Measures { area: 2.0, volume: 0.0 };
 /// let cube = Measures { area: 6.0, volume: 1.0 };
 /// assert!(Merge::Area.key(&flat) < Merge::Area.key(&cube));
@@ -164,7 +164,7 @@ impl Merge {
     /// The sort key of a candidate parent: (minimised measure, tie-breaking measure).
     ///
     /// ```
-    /// use kepler::boxtree::{Measures, Merge};
+    /// use kepler::lab::boxtree::{Measures, Merge};
     /// assert_eq!(Merge::Volume.key(&Measures { area: 6.0, volume: 1.0 }), [1.0, 6.0]);
     /// ```
     pub fn key(self, m: &Measures) -> [f64; 2] {
@@ -187,7 +187,7 @@ impl std::fmt::Display for Merge {
 /// Surface area and volume of a bound (floating point: they only rank candidates).
 ///
 /// ```
-/// use kepler::boxtree::{Measures, NodeShape};
+/// use kepler::lab::boxtree::{Measures, NodeShape};
 /// use kepler::geometry::{Aabb, Point3};
 /// let b = Aabb::new(Point3::origin(), Point3::new(1.0, 2.0, 3.0));
 /// assert_eq!(b.measures(), Measures { area: 22.0, volume: 6.0 });
@@ -210,7 +210,7 @@ pub struct Measures {
 /// "disjoint" for a bound the ray or the other bound meets.
 ///
 /// ```
-/// use kepler::boxtree::NodeShape;
+/// use kepler::lab::boxtree::NodeShape;
 /// use kepler::bounds::tribox::TriboxBounds;
 /// use kepler::geometry::Point3;
 /// let t = [Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0)];

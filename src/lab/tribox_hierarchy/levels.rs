@@ -10,7 +10,7 @@ use serde::Serialize;
 /// One level of detail, compared with the object (the paper's Table 1 and more).
 ///
 /// ```
-/// use kepler::triboxes::{Hierarchy, Options};
+/// use kepler::lab::tribox_hierarchy::{Hierarchy, Options};
 /// let h = Hierarchy::build(&kepler::solids::cube(1.0).unwrap(), &Options::default()).unwrap();
 /// let l = &h.levels(1)[0];
 /// assert_eq!((l.depth, l.triboxes, l.faces, l.compression), (0, 1, 6, 1.0));
@@ -72,7 +72,7 @@ pub(crate) fn level(h: &Hierarchy, depth: usize) -> Level {
 /// ```
 /// use kepler::bounds::tribox::TriboxBounds;
 /// use kepler::geometry::Point3;
-/// use kepler::triboxes::union_area;
+/// use kepler::lab::tribox_hierarchy::union_area;
 /// let cube = |x: f64, y: f64| TriboxBounds::from_points(&[
 ///     Point3::new(x, y, 0.0), Point3::new(x + 1.0, y + 1.0, 1.0),
 ///     Point3::new(x + 1.0, y, 0.0), Point3::new(x, y + 1.0, 1.0),

@@ -8,7 +8,7 @@
 //! floating point.
 //!
 //! ```
-//! use kepler::bounds::oriented::OrientedBox;
+//! use kepler::lab::oriented::OrientedBox;
 //! use kepler::geometry::{Point3, Vector3};
 //! let axes = [Vector3::x(), Vector3::y(), Vector3::z()];
 //! let points = [Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 2.0, 3.0)];
@@ -24,7 +24,7 @@ use std::cmp::Ordering;
 /// A box along three directions: `min[k] ≤ axes[k] · x ≤ max[k]`.
 ///
 /// ```
-/// use kepler::bounds::oriented::OrientedBox;
+/// use kepler::lab::oriented::OrientedBox;
 /// let b = OrientedBox::from_aabb(&kepler::geometry::Aabb { min: [0.0; 3], max: [1.0; 3] });
 /// assert_eq!((b.min, b.max), ([0.0; 3], [1.0; 3]));
 /// ```
@@ -43,7 +43,7 @@ impl OrientedBox {
     /// the exact extreme dot product rounded outward, so every point is inside exactly.
     ///
     /// ```
-    /// use kepler::bounds::oriented::OrientedBox;
+    /// use kepler::lab::oriented::OrientedBox;
     /// use kepler::geometry::{Point3, Vector3};
     /// let s = 0.5f64.sqrt();
     /// let axes = [Vector3::new(s, s, 0.0), Vector3::new(-s, s, 0.0), Vector3::z()];
@@ -79,7 +79,7 @@ impl OrientedBox {
     /// The axis-aligned box as an oriented one.
     ///
     /// ```
-    /// use kepler::{bounds::oriented::OrientedBox, geometry::{Aabb, Point3}};
+    /// use kepler::{lab::oriented::OrientedBox, geometry::{Aabb, Point3}};
     /// let b = OrientedBox::from_aabb(&Aabb { min: [0.0; 3], max: [2.0, 1.0, 1.0] });
     /// assert!(b.contains_point(&Point3::new(2.0, 0.5, 1.0)));
     /// ```
@@ -94,7 +94,7 @@ impl OrientedBox {
     /// Whether the box holds nothing.
     ///
     /// ```
-    /// use kepler::{bounds::oriented::OrientedBox, geometry::Vector3};
+    /// use kepler::{lab::oriented::OrientedBox, geometry::Vector3};
     /// assert!(OrientedBox::from_points([Vector3::x(), Vector3::y(), Vector3::z()], &[]).is_empty());
     /// ```
     pub fn is_empty(&self) -> bool {
@@ -104,7 +104,7 @@ impl OrientedBox {
     /// Whether `p` lies in the closed box, decided exactly.
     ///
     /// ```
-    /// use kepler::{bounds::oriented::OrientedBox, geometry::{Aabb, Point3}};
+    /// use kepler::{lab::oriented::OrientedBox, geometry::{Aabb, Point3}};
     /// let b = OrientedBox::from_aabb(&Aabb { min: [0.0; 3], max: [1.0; 3] });
     /// assert!(b.contains_point(&Point3::new(1.0, 1.0, 1.0)));
     /// assert!(!b.contains_point(&Point3::new(1.0, 1.0, 1.0f64.next_up())));
@@ -127,7 +127,7 @@ impl OrientedBox {
     /// The extent along each axis, `max − min`.
     ///
     /// ```
-    /// use kepler::{bounds::oriented::OrientedBox, geometry::Aabb};
+    /// use kepler::{lab::oriented::OrientedBox, geometry::Aabb};
     /// let b = OrientedBox::from_aabb(&Aabb { min: [0.0; 3], max: [1.0, 2.0, 3.0] });
     /// assert_eq!(b.extents(), [1.0, 2.0, 3.0]);
     /// ```
@@ -138,7 +138,7 @@ impl OrientedBox {
     /// The volume (the axes taken as orthonormal).
     ///
     /// ```
-    /// use kepler::{bounds::oriented::OrientedBox, geometry::Aabb};
+    /// use kepler::{lab::oriented::OrientedBox, geometry::Aabb};
     /// assert_eq!(OrientedBox::from_aabb(&Aabb { min: [0.0; 3], max: [1.0, 2.0, 3.0] }).volume(), 6.0);
     /// ```
     pub fn volume(&self) -> f64 {
@@ -149,7 +149,7 @@ impl OrientedBox {
     /// The surface area (the axes taken as orthonormal).
     ///
     /// ```
-    /// use kepler::{bounds::oriented::OrientedBox, geometry::Aabb};
+    /// use kepler::{lab::oriented::OrientedBox, geometry::Aabb};
     /// assert_eq!(OrientedBox::from_aabb(&Aabb { min: [0.0; 3], max: [1.0, 2.0, 3.0] }).surface_area(), 22.0);
     /// ```
     pub fn surface_area(&self) -> f64 {
@@ -161,7 +161,7 @@ impl OrientedBox {
     /// (the axes taken as orthonormal; floating point).
     ///
     /// ```
-    /// use kepler::{bounds::oriented::OrientedBox, geometry::{Aabb, Point3}};
+    /// use kepler::{lab::oriented::OrientedBox, geometry::{Aabb, Point3}};
     /// let b = OrientedBox::from_aabb(&Aabb { min: [0.0; 3], max: [1.0, 2.0, 3.0] });
     /// assert_eq!(b.corners()[7], Point3::new(1.0, 2.0, 3.0));
     /// ```

@@ -20,7 +20,7 @@
 //! pair, and in practice most nodes, so the tree is close to balanced.
 //!
 //! ```
-//! use kepler::boxtree::{BoxTree, Merge, pca::PcaMin};
+//! use kepler::lab::boxtree::{BoxTree, Merge, pca::PcaMin};
 //! let sphere = kepler::solids::uv_sphere(1.0, 16, 8).unwrap();
 //! let tree: BoxTree<PcaMin> = BoxTree::build(&sphere, Merge::Volume);
 //! assert_eq!(tree.len(), sphere.triangles().len());
@@ -40,7 +40,7 @@ use rstar::primitives::GeomWithData;
 /// the sphere experiment, and took longer.)
 ///
 /// ```
-/// assert_eq!(kepler::boxtree::tree::NEIGHBOURS, 3);
+/// assert_eq!(kepler::lab::boxtree::tree::NEIGHBOURS, 3);
 /// ```
 pub const NEIGHBOURS: usize = 3;
 
@@ -50,7 +50,7 @@ const LEAF: u32 = u32::MAX;
 /// A node of the hierarchy: its bound, and its two children or its triangle.
 ///
 /// ```
-/// use kepler::boxtree::{BoxTree, Merge};
+/// use kepler::lab::boxtree::{BoxTree, Merge};
 /// use kepler::geometry::Aabb;
 /// let tree: BoxTree<Aabb> = BoxTree::build(&kepler::solids::tetrahedron(1.0).unwrap(), Merge::Area);
 /// let leaf = &tree.nodes()[0];
@@ -86,7 +86,7 @@ impl<S> Node<S> {
     /// The node's bound.
     ///
     /// ```
-    /// use kepler::boxtree::{BoxTree, Merge};
+    /// use kepler::lab::boxtree::{BoxTree, Merge};
     /// use kepler::geometry::Aabb;
     /// let tree: BoxTree<Aabb> = BoxTree::build(&kepler::solids::cube(2.0).unwrap(), Merge::Area);
     /// assert_eq!(tree.nodes()[tree.root().unwrap()].bound().max, [1.0; 3]);
@@ -98,7 +98,7 @@ impl<S> Node<S> {
     /// The indices (in [`BoxTree::nodes`]) of the two children, or `None` for a leaf.
     ///
     /// ```
-    /// use kepler::boxtree::{BoxTree, Merge};
+    /// use kepler::lab::boxtree::{BoxTree, Merge};
     /// use kepler::geometry::Aabb;
     /// let tree: BoxTree<Aabb> = BoxTree::build(&kepler::solids::cube(2.0).unwrap(), Merge::Area);
     /// assert!(tree.nodes()[..12].iter().all(|n| n.children().is_none()));
@@ -110,7 +110,7 @@ impl<S> Node<S> {
     /// The index of a leaf's triangle (in the mesh's triangles), or `None` for an inner node.
     ///
     /// ```
-    /// use kepler::boxtree::{BoxTree, Merge};
+    /// use kepler::lab::boxtree::{BoxTree, Merge};
     /// use kepler::geometry::Aabb;
     /// let tree: BoxTree<Aabb> = BoxTree::build(&kepler::solids::cube(2.0).unwrap(), Merge::Area);
     /// assert_eq!(tree.nodes()[5].triangle(), Some(5));
@@ -122,7 +122,7 @@ impl<S> Node<S> {
     /// The bound's surface area and volume (computed once, when the node was made).
     ///
     /// ```
-    /// use kepler::boxtree::{BoxTree, Merge};
+    /// use kepler::lab::boxtree::{BoxTree, Merge};
     /// use kepler::geometry::Aabb;
     /// let tree: BoxTree<Aabb> = BoxTree::build(&kepler::solids::cube(2.0).unwrap(), Merge::Area);
     /// assert_eq!(tree.nodes()[tree.root().unwrap()].measures().volume, 8.0);
@@ -145,7 +145,7 @@ impl<S> Node<S> {
 /// mesh's order, inner nodes follow in the order they were made, and the root is last.
 ///
 /// ```
-/// use kepler::boxtree::{BoxTree, Merge};
+/// use kepler::lab::boxtree::{BoxTree, Merge};
 /// use kepler::bounds::tribox::TriboxBounds;
 /// let torus = kepler::solids::torus(2.0, 0.5, 24, 12).unwrap();
 /// let tree: BoxTree<TriboxBounds> = BoxTree::build(&torus, Merge::Area);
@@ -163,7 +163,7 @@ impl<S: NodeShape> BoxTree<S> {
     /// documentation).
     ///
     /// ```
-    /// use kepler::boxtree::{BoxTree, Merge, pca::PcaAll};
+    /// use kepler::lab::boxtree::{BoxTree, Merge, pca::PcaAll};
     /// let cube = kepler::solids::cube(1.0).unwrap();
     /// let tree: BoxTree<PcaAll> = BoxTree::build(&cube, Merge::Area);
     /// let root = tree.nodes()[tree.root().unwrap()].bound();
@@ -226,7 +226,7 @@ impl<S: NodeShape> BoxTree<S> {
     /// The number of triangles (leaves).
     ///
     /// ```
-    /// use kepler::boxtree::{BoxTree, Merge};
+    /// use kepler::lab::boxtree::{BoxTree, Merge};
     /// use kepler::geometry::Aabb;
     /// let tree: BoxTree<Aabb> = BoxTree::build(&kepler::solids::cube(1.0).unwrap(), Merge::Area);
     /// assert_eq!(tree.len(), 12);
@@ -238,7 +238,7 @@ impl<S: NodeShape> BoxTree<S> {
     /// Whether the tree has no triangle.
     ///
     /// ```
-    /// use kepler::boxtree::{BoxTree, Merge};
+    /// use kepler::lab::boxtree::{BoxTree, Merge};
     /// use kepler::geometry::Aabb;
     /// let tree: BoxTree<Aabb> = BoxTree::build(&kepler::solids::cube(1.0).unwrap(), Merge::Area);
     /// assert!(!tree.is_empty());
@@ -250,7 +250,7 @@ impl<S: NodeShape> BoxTree<S> {
     /// All nodes: the leaves first (leaf `t` holds triangle `t`), the root last.
     ///
     /// ```
-    /// use kepler::boxtree::{BoxTree, Merge};
+    /// use kepler::lab::boxtree::{BoxTree, Merge};
     /// use kepler::geometry::Aabb;
     /// let tree: BoxTree<Aabb> = BoxTree::build(&kepler::solids::octahedron(1.0).unwrap(), Merge::Area);
     /// assert_eq!(tree.nodes().iter().filter(|n| n.triangle().is_some()).count(), 8);
@@ -262,7 +262,7 @@ impl<S: NodeShape> BoxTree<S> {
     /// The index of the root node, `None` for an empty tree.
     ///
     /// ```
-    /// use kepler::boxtree::{BoxTree, Merge};
+    /// use kepler::lab::boxtree::{BoxTree, Merge};
     /// use kepler::geometry::Aabb;
     /// let tree: BoxTree<Aabb> = BoxTree::build(&kepler::solids::tetrahedron(1.0).unwrap(), Merge::Area);
     /// assert_eq!(tree.root(), Some(6));
@@ -274,7 +274,7 @@ impl<S: NodeShape> BoxTree<S> {
     /// The triangles' corners, in the mesh's order.
     ///
     /// ```
-    /// use kepler::boxtree::{BoxTree, Merge};
+    /// use kepler::lab::boxtree::{BoxTree, Merge};
     /// use kepler::geometry::Aabb;
     /// let cube = kepler::solids::cube(1.0).unwrap();
     /// let tree: BoxTree<Aabb> = BoxTree::build(&cube, Merge::Area);
@@ -288,7 +288,7 @@ impl<S: NodeShape> BoxTree<S> {
     /// or an empty tree).
     ///
     /// ```
-    /// use kepler::boxtree::{BoxTree, Merge};
+    /// use kepler::lab::boxtree::{BoxTree, Merge};
     /// use kepler::geometry::Aabb;
     /// let tree: BoxTree<Aabb> = BoxTree::build(&kepler::solids::cube(1.0).unwrap(), Merge::Area);
     /// assert!((4..=6).contains(&tree.height()));
@@ -309,7 +309,7 @@ impl<S: NodeShape> BoxTree<S> {
     /// of the nodes' surface areas over the root's (Cauchy's formula; 0 for an empty tree).
     ///
     /// ```
-    /// use kepler::boxtree::{BoxTree, Merge};
+    /// use kepler::lab::boxtree::{BoxTree, Merge};
     /// use kepler::geometry::Aabb;
     /// let tree: BoxTree<Aabb> = BoxTree::build(&kepler::solids::cube(1.0).unwrap(), Merge::Area);
     /// let cost = tree.plane_cost();
@@ -327,7 +327,7 @@ impl<S: NodeShape> BoxTree<S> {
     /// as the paper's Figures 3 and 4 plot them per level.
     ///
     /// ```
-    /// use kepler::boxtree::{BoxTree, Merge};
+    /// use kepler::lab::boxtree::{BoxTree, Merge};
     /// use kepler::geometry::Aabb;
     /// let tree: BoxTree<Aabb> = BoxTree::build(&kepler::solids::cube(2.0).unwrap(), Merge::Area);
     /// let levels = tree.mean_measures_by_height();

@@ -29,7 +29,7 @@ use std::collections::BinaryHeap;
 /// An interval that holds an exact distance.
 ///
 /// ```
-/// let b = kepler::triboxes::DistanceBounds { lower: 1.0, upper: 1.001 };
+/// let b = kepler::lab::tribox_hierarchy::DistanceBounds { lower: 1.0, upper: 1.001 };
 /// assert!(b.lower <= b.upper);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -78,7 +78,7 @@ impl Ord for Candidate {
 /// ```
 /// use kepler::bounds::tribox::TriboxBounds;
 /// use kepler::mesh::TriangleTree;
-/// use kepler::triboxes::hausdorff;
+/// use kepler::lab::tribox_hierarchy::hausdorff;
 /// // A regular tetrahedron in the cube [-1, 1]³: its tribox is the cube, whose far corners
 /// // are 2/√3 from the tetrahedron.
 /// let tet = kepler::mesh::Mesh::from_polygons(

@@ -166,3 +166,16 @@ pub(crate) fn cut_point(
     let depth = combine(&picture.form(2, a), &picture.form(2, b));
     [0, 1].map(|k| combine(&picture.form(k, a), &picture.form(k, b)) / depth)
 }
+
+/// The picture of the point where the segment `ab` crosses the plane of the triangle `plane`
+/// (its ends strictly on either side), built once from the input coordinates: within 1.5 units
+/// in the last place (see the module documentation).
+pub(crate) fn cut_point_on_plane(
+    picture: &Picture,
+    eye: &Eye,
+    plane: &[Point3; 3],
+    a: &Point3,
+    b: &Point3,
+) -> [f64; 2] {
+    cut_point(picture, eye, &Form::Plane(*plane), a, b)
+}

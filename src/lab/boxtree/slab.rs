@@ -10,9 +10,9 @@
 //! `a · u` carry explicit error bounds and each quotient is rounded outward.)
 //!
 //! ```
-//! use kepler::boxtree::RayProbe;
+//! use kepler::lab::boxtree::RayProbe;
 //! use kepler::geometry::{Point3, Vector3};
-//! use kepler::queries::visp::Ray;
+//! use kepler::geometry::ray::Ray;
 //! let probe = RayProbe::new(&Ray { origin: Point3::origin(), direction: Vector3::new(3.0, 0.0, 0.0) }).unwrap();
 //! // The direction is rescaled by a power of two (exactly) to have its largest component in [1, 2).
 //! assert_eq!(probe.ray().direction.x, 1.5);
@@ -24,7 +24,7 @@ use crate::geometry::Vector3;
 use crate::geometry::exact::{
     add_round_down, add_round_up, power_of_two_scaling, product_terms, sum_sign, two_sum,
 };
-use crate::queries::visp::Ray;
+use crate::geometry::ray::Ray;
 use std::cmp::Ordering;
 
 /// The unit roundoff.
@@ -42,9 +42,9 @@ const EMPTY: [f64; 2] = [f64::INFINITY, f64::NEG_INFINITY];
 /// changes no exact answer), and its projections on the tribox's nine fixed directions.
 ///
 /// ```
-/// use kepler::boxtree::RayProbe;
+/// use kepler::lab::boxtree::RayProbe;
 /// use kepler::geometry::{Point3, Vector3};
-/// use kepler::queries::visp::Ray;
+/// use kepler::geometry::ray::Ray;
 /// assert!(RayProbe::new(&Ray { origin: Point3::origin(), direction: Vector3::zeros() }).is_none());
 /// let p = RayProbe::new(&Ray { origin: Point3::new(1.0, 2.0, 3.0), direction: Vector3::z() }).unwrap();
 /// assert_eq!(p.ray().origin, Point3::new(1.0, 2.0, 3.0));
@@ -60,9 +60,9 @@ impl RayProbe {
     /// a ray meets nothing).
     ///
     /// ```
-    /// use kepler::boxtree::RayProbe;
+    /// use kepler::lab::boxtree::RayProbe;
     /// use kepler::geometry::{Point3, Vector3};
-    /// use kepler::queries::visp::Ray;
+    /// use kepler::geometry::ray::Ray;
     /// let r = Ray { origin: Point3::origin(), direction: Vector3::new(f64::NAN, 0.0, 1.0) };
     /// assert!(RayProbe::new(&r).is_none());
     /// ```
@@ -98,9 +98,9 @@ impl RayProbe {
     /// The ray the probe tests: the given origin, the direction rescaled by a power of two.
     ///
     /// ```
-    /// use kepler::boxtree::RayProbe;
+    /// use kepler::lab::boxtree::RayProbe;
     /// use kepler::geometry::{Point3, Vector3};
-    /// use kepler::queries::visp::Ray;
+    /// use kepler::geometry::ray::Ray;
     /// let p = RayProbe::new(&Ray { origin: Point3::origin(), direction: Vector3::new(0.0, 0.25, 0.0) }).unwrap();
     /// assert_eq!(p.ray().direction, Vector3::y());
     /// ```
@@ -112,9 +112,9 @@ impl RayProbe {
     /// [`TriboxBounds::DIRECTIONS`](crate::bounds::tribox::TriboxBounds::DIRECTIONS)).
     ///
     /// ```
-    /// use kepler::boxtree::RayProbe;
+    /// use kepler::lab::boxtree::RayProbe;
     /// use kepler::geometry::{Point3, Vector3};
-    /// use kepler::queries::visp::Ray;
+    /// use kepler::geometry::ray::Ray;
     /// let p = RayProbe::new(&Ray { origin: Point3::new(1.0, 0.0, 0.0), direction: Vector3::y() }).unwrap();
     /// let [t0, t1] = p.fixed(3).interval(2.0, 3.0); // x + y from 2 to 3
     /// assert!(t0 <= 1.0 && t0 > 0.999 && t1 >= 2.0 && t1 < 2.001);
@@ -126,9 +126,9 @@ impl RayProbe {
     /// The projection on an arbitrary direction `a`.
     ///
     /// ```
-    /// use kepler::boxtree::RayProbe;
+    /// use kepler::lab::boxtree::RayProbe;
     /// use kepler::geometry::{Point3, Vector3};
-    /// use kepler::queries::visp::Ray;
+    /// use kepler::geometry::ray::Ray;
     /// let p = RayProbe::new(&Ray { origin: Point3::origin(), direction: Vector3::x() }).unwrap();
     /// // Parallel to the slab 1 ≤ y ≤ 2 and outside it: never inside.
     /// let [t0, t1] = p.along(&Vector3::y()).interval(1.0, 2.0);
@@ -144,9 +144,9 @@ impl RayProbe {
 /// or possibly zero), so that a slab costs two rounded subtractions and two products.
 ///
 /// ```
-/// use kepler::boxtree::RayProbe;
+/// use kepler::lab::boxtree::RayProbe;
 /// use kepler::geometry::{Point3, Vector3};
-/// use kepler::queries::visp::Ray;
+/// use kepler::geometry::ray::Ray;
 /// let p = RayProbe::new(&Ray { origin: Point3::origin(), direction: Vector3::new(1.0, 1.0, 0.0) }).unwrap();
 /// let [t0, t1] = p.along(&Vector3::new(0.6, 0.8, 0.0)).interval(1.4, 2.8);
 /// assert!(t0 <= 1.0 && t1 >= 2.0);
@@ -244,9 +244,9 @@ impl Projection {
     /// is, the whole line when the ray may be parallel to the slab and inside it.
     ///
     /// ```
-    /// use kepler::boxtree::RayProbe;
+    /// use kepler::lab::boxtree::RayProbe;
     /// use kepler::geometry::{Point3, Vector3};
-    /// use kepler::queries::visp::Ray;
+    /// use kepler::geometry::ray::Ray;
     /// let p = RayProbe::new(&Ray { origin: Point3::origin(), direction: -Vector3::x() }).unwrap();
     /// let [t0, t1] = p.fixed(0).interval(-3.0, -1.0);
     /// assert!(t0 <= 1.0 && 1.0 - t0 < 1e-14 && t1 >= 3.0 && t1 - 3.0 < 1e-14);

@@ -13,7 +13,7 @@
 //! clearing two surfaces that do not meet costs.
 //!
 //! ```
-//! use kepler::boxtree::{Merge, Shape, sphere_experiment};
+//! use kepler::lab::boxtree::{Merge, Shape, sphere_experiment};
 //! let rows = sphere_experiment(&[556], 0.01, 1, Merge::Volume).unwrap();
 //! assert_eq!(rows.len(), 5);
 //! assert!(rows.iter().all(|r| r.facets == 556 && r.tests > 0));
@@ -33,7 +33,7 @@ use serde::Serialize;
 /// The facet counts of the paper's three sphere pairs.
 ///
 /// ```
-/// assert_eq!(kepler::boxtree::spheres::PAPER_FACETS, [556, 1996, 9996]);
+/// assert_eq!(kepler::lab::boxtree::spheres::PAPER_FACETS, [556, 1996, 9996]);
 /// ```
 pub const PAPER_FACETS: [usize; 3] = [556, 1996, 9996];
 
@@ -44,7 +44,7 @@ pub const PAPER_FACETS: [usize; 3] = [556, 1996, 9996];
 /// sphere by about the square of their size.)
 ///
 /// ```
-/// use kepler::boxtree::{Merge, spheres::DEFAULT_GAP, sphere_experiment};
+/// use kepler::lab::boxtree::{Merge, spheres::DEFAULT_GAP, sphere_experiment};
 /// let rows = sphere_experiment(&[556], DEFAULT_GAP, 1, Merge::Volume).unwrap();
 /// assert!(rows.iter().all(|r| r.intersecting_pairs == 0));
 /// ```
@@ -53,7 +53,7 @@ pub const DEFAULT_GAP: f64 = 0.05;
 /// One row of the experiment: a pair of spheres, a node shape, and the work of the search.
 ///
 /// ```
-/// use kepler::boxtree::{Row, Shape};
+/// use kepler::lab::boxtree::{Row, Shape};
 /// let r = Row { facets: 556, shape: Shape::PcaMin, tests: 7000, triangle_tests: 300,
 ///     intersecting_pairs: 0, paper: Some(7_721) };
 /// assert_eq!(serde_json::to_value(&r).unwrap()["shape"], "pca-min");
@@ -81,7 +81,7 @@ pub struct Row {
 /// tribox and for rows the paper does not give.
 ///
 /// ```
-/// use kepler::boxtree::{Shape, paper_tests};
+/// use kepler::lab::boxtree::{Shape, paper_tests};
 /// assert_eq!(paper_tests(1996, Shape::PcaMin), Some(22_627));
 /// assert_eq!(paper_tests(9996, Shape::PcaMax), None);
 /// assert_eq!(paper_tests(556, Shape::Tribox), None);
@@ -104,7 +104,7 @@ pub fn paper_tests(facets: usize, shape: Shape) -> Option<u64> {
 /// not build, by facets: for comparison only.
 ///
 /// ```
-/// assert_eq!(kepler::boxtree::spheres::paper_pie_slice_tests(1996), Some(6_179));
+/// assert_eq!(kepler::lab::boxtree::spheres::paper_pie_slice_tests(1996), Some(6_179));
 /// ```
 pub fn paper_pie_slice_tests(facets: usize) -> Option<u64> {
     match facets {
@@ -125,12 +125,12 @@ pub fn paper_pie_slice_tests(facets: usize) -> Option<u64> {
 /// `1e6`.
 ///
 /// ```
-/// let (inner, outer) = kepler::boxtree::sphere_pair(556, 0.01, 7).unwrap();
+/// let (inner, outer) = kepler::lab::boxtree::sphere_pair(556, 0.01, 7).unwrap();
 /// assert_eq!((inner.triangles().len(), outer.triangles().len()), (556, 556));
 /// assert_eq!(inner.vertices().len(), 280);
 /// assert!(inner.is_solid() && outer.is_solid());
 /// assert!(outer.vertices().iter().all(|v| (v.coords.norm() - 1.01).abs() < 1e-12));
-/// let e = kepler::boxtree::sphere_pair(556, -1.0, 7).unwrap_err();
+/// let e = kepler::lab::boxtree::sphere_pair(556, -1.0, 7).unwrap_err();
 /// assert_eq!(e.to_string(), "sphere pair: gap must be a finite number with 1 + gap between 1e-6 and 1e6, got -1");
 /// ```
 pub fn sphere_pair(facets: usize, gap: f64, seed: u64) -> Result<(Mesh, Mesh), SolidError> {
@@ -168,7 +168,7 @@ pub fn sphere_pair(facets: usize, gap: f64, seed: u64) -> Result<(Mesh, Mesh), S
 /// paper's count.
 ///
 /// ```
-/// use kepler::boxtree::{Merge, sphere_experiment};
+/// use kepler::lab::boxtree::{Merge, sphere_experiment};
 /// let rows = sphere_experiment(&[100], 0.2, 3, Merge::Area).unwrap();
 /// assert!(rows.iter().all(|r| r.intersecting_pairs == 0 && r.paper.is_none()));
 /// assert!(sphere_experiment(&[2], 0.2, 3, Merge::Area).is_err());
@@ -253,7 +253,7 @@ fn random_sphere(n: usize, radius: f64, rng: &mut SplitMix64) -> Result<Mesh, So
 /// state. Written by hand because the library has no random-number dependency.
 ///
 /// ```
-/// use kepler::boxtree::spheres::SplitMix64;
+/// use kepler::lab::boxtree::spheres::SplitMix64;
 /// let mut a = SplitMix64(7);
 /// let x = a.unit();
 /// assert!((0.0..1.0).contains(&x));

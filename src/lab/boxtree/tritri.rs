@@ -24,7 +24,7 @@
 //! segments, are the usual `orient3d` tests.
 //!
 //! ```
-//! use kepler::boxtree::tritri::triangles_meet;
+//! use kepler::lab::boxtree::tritri::triangles_meet;
 //! use kepler::geometry::Point3;
 //! let p = |x, y, z| Point3::new(x, y, z);
 //! let floor = [p(0.0, 0.0, 0.0), p(4.0, 0.0, 0.0), p(0.0, 4.0, 0.0)];
@@ -44,7 +44,7 @@ use std::cmp::Ordering;
 /// Whether the closed triangles `a` and `b` share a point, exactly.
 ///
 /// ```
-/// use kepler::boxtree::tritri::triangles_meet;
+/// use kepler::lab::boxtree::tritri::triangles_meet;
 /// use kepler::geometry::Point3;
 /// let p = |x, y, z| Point3::new(x, y, z);
 /// let t = [p(0.0, 0.0, 0.0), p(2.0, 0.0, 0.0), p(0.0, 2.0, 0.0)];

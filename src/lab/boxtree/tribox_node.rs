@@ -12,7 +12,7 @@
 //! measures are those of the exact boundary ([`TriboxBounds::boundary`]).
 //!
 //! ```
-//! use kepler::boxtree::NodeShape;
+//! use kepler::lab::boxtree::NodeShape;
 //! use kepler::bounds::tribox::TriboxBounds;
 //! use kepler::geometry::Point3;
 //! let t = [Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0)];

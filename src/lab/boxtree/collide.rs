@@ -10,7 +10,7 @@
 //! between hierarchy elements", the number its Table 1 reports.
 //!
 //! ```
-//! use kepler::boxtree::{BoxTree, Merge};
+//! use kepler::lab::boxtree::{BoxTree, Merge};
 //! use kepler::geometry::{Aabb, Vector3};
 //! let a = kepler::solids::cube(2.0).unwrap();
 //! let b = a.transformed(&nalgebra::Matrix4::new_translation(&Vector3::new(1.5, 0.5, 0.5))).unwrap();
@@ -30,7 +30,7 @@ use serde::Serialize;
 /// The answer of a collision query and its work.
 ///
 /// ```
-/// use kepler::boxtree::Collision;
+/// use kepler::lab::boxtree::Collision;
 /// let c = Collision::default();
 /// assert!(c.pair.is_none() && c.tests == 0);
 /// ```
@@ -50,7 +50,7 @@ impl<S: NodeShape> BoxTree<S> {
     /// stopping at the first meeting pair found.
     ///
     /// ```
-    /// use kepler::boxtree::{BoxTree, Merge};
+    /// use kepler::lab::boxtree::{BoxTree, Merge};
     /// use kepler::bounds::tribox::TriboxBounds;
     /// let a = kepler::solids::cube(2.0).unwrap();
     /// let t: BoxTree<TriboxBounds> = BoxTree::build(&a, Merge::Area);
@@ -75,7 +75,7 @@ impl<S: NodeShape> BoxTree<S> {
     /// meet, like the paper's concentric spheres, cost this much to clear).
     ///
     /// ```
-    /// use kepler::boxtree::{BoxTree, Merge};
+    /// use kepler::lab::boxtree::{BoxTree, Merge};
     /// use kepler::geometry::Aabb;
     /// let a = kepler::solids::tetrahedron(1.0).unwrap();
     /// let t: BoxTree<Aabb> = BoxTree::build(&a, Merge::Area);

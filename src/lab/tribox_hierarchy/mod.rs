@@ -19,7 +19,7 @@
 //! its size, compression, volume and area excess and a bounded Hausdorff distance.
 //!
 //! ```
-//! use kepler::triboxes::{Hierarchy, Options};
+//! use kepler::lab::tribox_hierarchy::{Hierarchy, Options};
 //! use kepler::geometry::Point3;
 //! // An L-shaped wall: one tribox covers the notch; two fit the L much better.
 //! use geo::polygon;
@@ -49,7 +49,7 @@ use serde::Serialize;
 /// Why a hierarchy cannot be built.
 ///
 /// ```
-/// use kepler::triboxes::{Hierarchy, Options, TriboxesError};
+/// use kepler::lab::tribox_hierarchy::{Hierarchy, Options, TriboxesError};
 /// let cube = kepler::solids::cube(1.0).unwrap();
 /// let bad = Options { gain: 1.0, ..Options::default() };
 /// assert!(matches!(Hierarchy::build(&cube, &bad), Err(TriboxesError::Option(_))));
@@ -73,7 +73,7 @@ pub enum TriboxesError {
 /// corners, which lowers the area sum a little and the volume not at all.
 ///
 /// ```
-/// use kepler::triboxes::{Hierarchy, Options, SplitRule};
+/// use kepler::lab::tribox_hierarchy::{Hierarchy, Options, SplitRule};
 /// use geo::polygon;
 /// let l = polygon![(x: 0.0, y: 0.0), (x: 6.0, y: 0.0), (x: 6.0, y: 1.0),
 ///     (x: 1.0, y: 1.0), (x: 1.0, y: 4.0), (x: 0.0, y: 4.0)];
@@ -100,14 +100,14 @@ pub enum SplitRule {
 /// The most planes through vertices tried per direction by [`SplitRule::Features`].
 ///
 /// ```
-/// assert_eq!(kepler::triboxes::FEATURE_PLANES, 4);
+/// assert_eq!(kepler::lab::tribox_hierarchy::FEATURE_PLANES, 4);
 /// ```
 pub const FEATURE_PLANES: usize = 4;
 
 /// The options of [`Hierarchy::build`].
 ///
 /// ```
-/// let o = kepler::triboxes::Options::default();
+/// let o = kepler::lab::tribox_hierarchy::Options::default();
 /// assert_eq!((o.gain, o.max_depth), (0.05, 8));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -141,7 +141,7 @@ impl Default for Options {
 /// relative to the root tribox's diagonal: rounding slivers go, real faces stay.
 ///
 /// ```
-/// assert_eq!(kepler::triboxes::SIMPLIFY, 1e-9);
+/// assert_eq!(kepler::lab::tribox_hierarchy::SIMPLIFY, 1e-9);
 /// ```
 pub const SIMPLIFY: f64 = 1e-9;
 
@@ -149,7 +149,7 @@ pub const SIMPLIFY: f64 = 1e-9;
 /// [`TriboxBounds::DIRECTIONS`].
 ///
 /// ```
-/// let p = kepler::triboxes::Plane { direction: 3, offset: 1.5 }; // x + y = 1.5
+/// let p = kepler::lab::tribox_hierarchy::Plane { direction: 3, offset: 1.5 }; // x + y = 1.5
 /// assert_eq!(kepler::bounds::tribox::TriboxBounds::DIRECTIONS[p.direction], [1.0, 1.0, 0.0]);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -163,7 +163,7 @@ pub struct Plane {
 /// A node of the hierarchy: a cell `S ∩ region` and its tribox.
 ///
 /// ```
-/// use kepler::triboxes::{Hierarchy, Options};
+/// use kepler::lab::tribox_hierarchy::{Hierarchy, Options};
 /// let h = Hierarchy::build(&kepler::solids::cube(2.0).unwrap(), &Options::default()).unwrap();
 /// let root = &h.nodes()[0];
 /// assert_eq!((root.depth, root.children, root.faces, root.volume), (0, None, 6, 8.0));
@@ -200,7 +200,7 @@ pub struct Node {
 /// The binary tree of hierarchical triboxes of one closed object.
 ///
 /// ```
-/// use kepler::triboxes::{Hierarchy, Options};
+/// use kepler::lab::tribox_hierarchy::{Hierarchy, Options};
 /// // A torus: every bisecting plane cuts the ring, and the two halves' triboxes have more
 /// // area than the whole one, so the paper's rule keeps a single tribox.
 /// let torus = kepler::solids::torus(2.0, 0.5, 24, 12).unwrap();
@@ -223,7 +223,7 @@ impl Hierarchy {
     /// of a level in parallel).
     ///
     /// ```
-    /// use kepler::triboxes::{Hierarchy, Options, TriboxesError};
+    /// use kepler::lab::tribox_hierarchy::{Hierarchy, Options, TriboxesError};
     /// let open = kepler::mesh::Mesh::from_polygons(
     ///     vec![[0.0, 0.0, 0.0].into(), [1.0, 0.0, 0.0].into(), [0.0, 1.0, 0.0].into()],
     ///     vec![vec![0, 1, 2]],
@@ -300,7 +300,7 @@ impl Hierarchy {
     /// The nodes, the root first; children follow their parents.
     ///
     /// ```
-    /// use kepler::triboxes::{Hierarchy, Options};
+    /// use kepler::lab::tribox_hierarchy::{Hierarchy, Options};
     /// let h = Hierarchy::build(&kepler::solids::cube(1.0).unwrap(), &Options::default()).unwrap();
     /// assert_eq!(h.nodes().len(), 1); // no split makes a cube's tribox smaller
     /// ```
@@ -311,7 +311,7 @@ impl Hierarchy {
     /// The depth of the deepest node.
     ///
     /// ```
-    /// use kepler::triboxes::{Hierarchy, Options};
+    /// use kepler::lab::tribox_hierarchy::{Hierarchy, Options};
     /// let h = Hierarchy::build(&kepler::solids::cube(1.0).unwrap(), &Options::default()).unwrap();
     /// assert_eq!(h.depth(), 0);
     /// ```
@@ -324,7 +324,7 @@ impl Hierarchy {
     ///
     /// ```
     /// use geo::polygon;
-    /// use kepler::triboxes::{Hierarchy, Options};
+    /// use kepler::lab::tribox_hierarchy::{Hierarchy, Options};
     /// // A U-shaped prism: no single cut lowers the total area, so allow it to rise by 20%.
     /// let u = polygon![(x: 0.0, y: 0.0), (x: 5.0, y: 0.0), (x: 5.0, y: 5.0), (x: 4.0, y: 5.0),
     ///     (x: 4.0, y: 1.0), (x: 1.0, y: 1.0), (x: 1.0, y: 5.0), (x: 0.0, y: 5.0)];
@@ -346,7 +346,7 @@ impl Hierarchy {
     /// The leaves.
     ///
     /// ```
-    /// use kepler::triboxes::{Hierarchy, Options};
+    /// use kepler::lab::tribox_hierarchy::{Hierarchy, Options};
     /// let h = Hierarchy::build(&kepler::solids::cube(1.0).unwrap(), &Options::default()).unwrap();
     /// assert_eq!(h.leaves(), vec![0]);
     /// ```
@@ -360,7 +360,7 @@ impl Hierarchy {
     /// tribox's diagonal), for [`tribox_mesh`].
     ///
     /// ```
-    /// use kepler::triboxes::{Hierarchy, Options};
+    /// use kepler::lab::tribox_hierarchy::{Hierarchy, Options};
     /// let h = Hierarchy::build(&kepler::solids::cube(1.0).unwrap(), &Options::default()).unwrap();
     /// assert_eq!(h.simplify_tolerance(), 1e-9 * 3f64.sqrt());
     /// ```
@@ -372,7 +372,7 @@ impl Hierarchy {
     /// tree), computed in parallel.
     ///
     /// ```
-    /// use kepler::triboxes::{Hierarchy, Options};
+    /// use kepler::lab::tribox_hierarchy::{Hierarchy, Options};
     /// let h = Hierarchy::build(&kepler::solids::cube(1.0).unwrap(), &Options::default()).unwrap();
     /// let l = &h.levels(3)[0];
     /// assert_eq!((l.triboxes, l.faces, l.volume_excess, l.hausdorff_lower), (1, 6, 0.0, 0.0));
@@ -398,7 +398,7 @@ impl Hierarchy {
 /// use kepler::geometry::Point3;
 /// let b = TriboxBounds::from_points(&[Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 2.0, 3.0),
 ///     Point3::new(1.0, 0.0, 0.0), Point3::new(0.0, 2.0, 3.0)]);
-/// let m = kepler::triboxes::tribox_mesh(&b, 0.0).unwrap();
+/// let m = kepler::lab::tribox_hierarchy::tribox_mesh(&b, 0.0).unwrap();
 /// assert!(m.is_solid());
 /// assert!((m.volume() - b.boundary().cleaned().volume()).abs() < 1e-12);
 /// ```

@@ -21,10 +21,10 @@
 //! ([`pierces`], [`compare_hits`]).
 //!
 //! ```
-//! use kepler::boxtree::{BoxTree, Merge};
+//! use kepler::lab::boxtree::{BoxTree, Merge};
 //! use kepler::bounds::tribox::TriboxBounds;
 //! use kepler::geometry::{Point3, Vector3};
-//! use kepler::queries::visp::Ray;
+//! use kepler::geometry::ray::Ray;
 //! let torus = kepler::solids::torus(2.0, 0.5, 48, 24).unwrap();
 //! let tree: BoxTree<TriboxBounds> = BoxTree::build(&torus, Merge::Area);
 //! let through_hole = Ray { origin: Point3::new(0.0, 0.0, 5.0), direction: -Vector3::z() };
@@ -39,14 +39,14 @@
 use super::tree::Link;
 use super::{BoxTree, NodeShape, RayProbe};
 use crate::geometry::exact::accurate_sum;
+use crate::geometry::ray::{Ray, compare_hits, hit_point, pierces};
 use crate::geometry::{Point3, Vector3};
-use crate::queries::visp::{Ray, compare_hits, hit_point, pierces};
 use std::cmp::Ordering;
 
 /// Where a ray first meets a triangle.
 ///
 /// ```
-/// use kepler::boxtree::RayHit;
+/// use kepler::lab::boxtree::RayHit;
 /// use kepler::geometry::Point3;
 /// let h = RayHit { triangle: 3, point: Point3::origin() };
 /// assert_eq!(h.triangle, 3);
@@ -63,7 +63,7 @@ pub struct RayHit {
 /// The answer of a ray shot and its work.
 ///
 /// ```
-/// use kepler::boxtree::RayShot;
+/// use kepler::lab::boxtree::RayShot;
 /// let s = RayShot::default();
 /// assert!(s.hit.is_none() && s.visited == 0);
 /// ```
@@ -84,16 +84,16 @@ impl<S: NodeShape> BoxTree<S> {
     /// documentation). A zero or non-finite direction meets nothing.
     ///
     /// ```
-    /// use kepler::boxtree::{BoxTree, Merge, pca::PcaMin};
+    /// use kepler::lab::boxtree::{BoxTree, Merge, pca::PcaMin};
     /// use kepler::geometry::{Point3, Vector3};
-    /// use kepler::queries::visp::Ray;
+    /// use kepler::geometry::ray::Ray;
     /// let cube = kepler::solids::cube(2.0).unwrap();
     /// let tree: BoxTree<PcaMin> = BoxTree::build(&cube, Merge::Area);
     /// // Through the corner (1, 1, 1): three faces meet there, the lowest triangle wins.
     /// let ray = Ray { origin: Point3::new(3.0, 3.0, 3.0), direction: Vector3::new(-1.0, -1.0, -1.0) };
     /// let hit = tree.first_hit(&ray).hit.unwrap();
     /// assert_eq!(hit.point, Point3::new(1.0, 1.0, 1.0));
-    /// assert_eq!(Some(hit), kepler::boxtree::ray::first_hit_brute_force(tree.triangles(), &ray));
+    /// assert_eq!(Some(hit), kepler::lab::boxtree::ray::first_hit_brute_force(tree.triangles(), &ray));
     /// ```
     pub fn first_hit(&self, ray: &Ray) -> RayShot {
         let mut shot = RayShot::default();
@@ -172,9 +172,9 @@ impl<S: NodeShape> BoxTree<S> {
     /// found by descending into every node met.
     ///
     /// ```
-    /// use kepler::boxtree::{BoxTree, Merge};
+    /// use kepler::lab::boxtree::{BoxTree, Merge};
     /// use kepler::geometry::{Aabb, Point3, Vector3};
-    /// use kepler::queries::visp::Ray;
+    /// use kepler::geometry::ray::Ray;
     /// let cube = kepler::solids::cube(2.0).unwrap();
     /// let tree: BoxTree<Aabb> = BoxTree::build(&cube, Merge::Area);
     /// let away = Ray { origin: Point3::new(5.0, 0.0, 0.0), direction: Vector3::x() };
@@ -209,9 +209,9 @@ impl<S: NodeShape> BoxTree<S> {
 /// the hierarchy must agree with).
 ///
 /// ```
-/// use kepler::boxtree::ray::first_hit_brute_force;
+/// use kepler::lab::boxtree::ray::first_hit_brute_force;
 /// use kepler::geometry::{Point3, Vector3};
-/// use kepler::queries::visp::Ray;
+/// use kepler::geometry::ray::Ray;
 /// let t = [Point3::new(0.0, 0.0, 1.0), Point3::new(4.0, 0.0, 1.0), Point3::new(0.0, 4.0, 1.0)];
 /// let u = [Point3::new(0.0, 0.0, 2.0), Point3::new(4.0, 0.0, 2.0), Point3::new(0.0, 4.0, 2.0)];
 /// let ray = Ray { origin: Point3::new(1.0, 1.0, 5.0), direction: -Vector3::z() };
@@ -267,7 +267,7 @@ fn parameter_bounds(ray: &Ray, t: &[Point3; 3]) -> Option<[f64; 2]> {
 /// An upper bound of the (positive) exact parameter of a pierced triangle: the quotient of the
 /// correctly rounded numerator and denominator is within three roundings of it.
 fn parameter_upper_bound(ray: &Ray, t: &[Point3; 3]) -> f64 {
-    let (n, d) = crate::queries::visp::parameter(ray, t);
+    let (n, d) = crate::geometry::ray::parameter(ray, t);
     let q = accurate_sum(&n) / accurate_sum(&d);
     q + q.abs() * 4.0 * f64::EPSILON + f64::MIN_POSITIVE
 }

@@ -19,7 +19,7 @@
 //! exact `orient2d` signs on the rounded pictures; touching pictures count as overlapping.
 //!
 //! ```
-//! use kepler::{culling::cull, scene::Scene, views::View};
+//! use kepler::{lab::culling::cull, scene::Scene, views::View};
 //! use nalgebra::{Matrix4, Vector3};
 //! let mut scene = Scene::new();
 //! let cube = kepler::solids::cube(1.0).unwrap();
@@ -32,7 +32,6 @@
 //! ```
 
 use crate::Result;
-use crate::bounds::projected_area::projected_area_aabb;
 use crate::geometry::Point3;
 use crate::geometry::polygon::bounding_box;
 use crate::geometry::predicates::orient2d;
@@ -47,7 +46,7 @@ use std::cmp::Ordering;
 /// What one filter decided.
 ///
 /// ```
-/// let f = kepler::culling::FilterRow { name: "cbox", decided: 3, triangle_pairs_saved: 144 };
+/// let f = kepler::lab::culling::FilterRow { name: "cbox", decided: 3, triangle_pairs_saved: 144 };
 /// assert_eq!(f.decided, 3);
 /// ```
 #[derive(Debug, Clone, PartialEq, Eq, serde::Serialize)]
@@ -63,7 +62,7 @@ pub struct FilterRow {
 /// The answer of [`cull`] for one view.
 ///
 /// ```
-/// use kepler::{culling::cull, scene::Scene, views::View};
+/// use kepler::{lab::culling::cull, scene::Scene, views::View};
 /// let mut scene = Scene::new();
 /// scene.add_mesh(None, "a", kepler::solids::cube(1.0).unwrap()).unwrap();
 /// let r = cull(&scene, &View::standard()).unwrap();
@@ -89,7 +88,7 @@ pub struct CullReport {
 /// a perspective view has geometry not in front of the eye (as for drawings).
 ///
 /// ```
-/// use kepler::{culling::cull, scene::Scene, views::View};
+/// use kepler::{lab::culling::cull, scene::Scene, views::View};
 /// let mut scene = Scene::new();
 /// let cube = kepler::solids::cube(1.0).unwrap();
 /// scene.add_mesh(None, "a", cube.clone()).unwrap();
@@ -286,89 +285,4 @@ fn separated_by_an_edge_of(a: &Convex, b: &Convex) -> bool {
                 .iter()
                 .all(|&r| orient2d(p, q, r) == inside.reverse())
     })
-}
-
-/// What to do with an object whose picture is too small to draw: Franklin's ideographs.
-///
-/// ```
-/// assert_ne!(kepler::culling::Ideograph::Bound, kepler::culling::Ideograph::Omit);
-/// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Ideograph {
-    /// Draw its CBOX instead (a box, with its hidden lines removed like any object).
-    Bound,
-    /// Leave it out.
-    Omit,
-}
-
-/// The scene to draw once the small objects are replaced by their ideographs, and how many.
-///
-/// ```
-/// let i = kepler::culling::Ideographs {
-///     scene: kepler::scene::Scene::new(), culled: 0, triangles_culled: 0, triangles_added: 0,
-/// };
-/// assert_eq!(i.culled, 0);
-/// ```
-#[derive(Debug)]
-pub struct Ideographs {
-    /// Every mesh object of the input as a top-level object named by its path, the small
-    /// ones replaced by their CBOX or left out.
-    pub scene: Scene,
-    /// How many objects were replaced or left out.
-    pub culled: u64,
-    /// Their triangles.
-    pub triangles_culled: u64,
-    /// The triangles of the boxes drawn instead.
-    pub triangles_added: u64,
-}
-
-/// Replaces every mesh object whose CBOX's picture has an area below `min_area` (in picture
-/// units squared: scene units for an orthographic view; see [`Picture`]) by its ideograph.
-/// The areas are Schmalstieg and Tobler's exact projected areas
-/// ([`crate::bounds::projected_area`]); a box the eye is inside is never small. An error if a
-/// perspective view has geometry not in front of the eye.
-///
-/// ```
-/// use kepler::{culling::{Ideograph, ideographs}, scene::Scene, views::View};
-/// let mut scene = Scene::new();
-/// scene.add_mesh(None, "big", kepler::solids::cube(10.0).unwrap()).unwrap();
-/// scene.add_mesh(None, "speck", kepler::solids::icosahedron(0.01).unwrap()).unwrap();
-/// let small = ideographs(&scene, &View::standard(), 1.0, Ideograph::Bound).unwrap();
-/// assert_eq!((small.culled, small.triangles_culled, small.triangles_added), (1, 20, 12));
-/// let gone = ideographs(&scene, &View::standard(), 1.0, Ideograph::Omit).unwrap();
-/// assert_eq!(gone.scene.roots().len(), 1);
-/// ```
-pub fn ideographs(
-    scene: &Scene,
-    view: &View,
-    min_area: f64,
-    mode: Ideograph,
-) -> Result<Ideographs> {
-    let picture = Picture::of(view);
-    let meshes = picture.mesh_objects_in_front(scene)?;
-    let mut out = Ideographs {
-        scene: Scene::new(),
-        culled: 0,
-        triangles_culled: 0,
-        triangles_added: 0,
-    };
-    for (id, mesh) in meshes {
-        let cbox = scene.cbox(id);
-        let name = scene.path(id);
-        if projected_area_aabb(&cbox, view) >= min_area {
-            out.scene.add_mesh(None, name, mesh.clone())?;
-            continue;
-        }
-        out.culled += 1;
-        out.triangles_culled += mesh.triangles().len() as u64;
-        if mode == Ideograph::Bound {
-            // A flat or degenerate box has no solid to draw: its picture is below the
-            // threshold anyway, so it is left out.
-            if let Ok(b) = crate::solids::box_between(cbox.min, cbox.max) {
-                out.triangles_added += b.triangles().len() as u64;
-                out.scene.add_mesh(None, name, b)?;
-            }
-        }
-    }
-    Ok(out)
 }

@@ -7,13 +7,17 @@
 //! ([`classify`]) indexes a table of the silhouette ("hull polygon") of the box seen from that
 //! region ([`HULL`]), and the area is a contour integral over the projected silhouette
 //! vertices. Only four or six corners are projected, against eight for the usual estimate, the
-//! 2-D bounding box of the projected corners ([`bounding_rect_area`]): "The total number of
+//! 2-D bounding box of the projected corners (the lab's
+//! [`bounding_rect_area`](crate::lab::projected_area::bounding_rect_area)): "The total number of
 //! operations is 159 for Case 2 and 3 (six vertices), and 115 for case 1 (four vertices). The
 //! number of operations required to compute a simple two-dimensional box area is 163." The
 //! benchmark `benches/projected_area.rs` measures both on the same boxes.
 //!
-//! Here the classification is exact (comparisons, or exact signs of dot products for an
-//! oriented box), and the corners are projected by the drawing's own map,
+//! This is the engine's part, used for Franklin's ideographs ([`super::ideographs`]): the
+//! table and the area of an axis-aligned box. The lab ([`crate::lab::projected_area`]) adds
+//! oriented boxes and triboxes.
+//!
+//! Here the classification is exact (comparisons), and the corners are projected by the drawing's own map,
 //! [`Picture::point`], each coordinate rounded once from its exact value (dearer than the
 //! paper's 18-operation projection, so projecting fewer corners saves more). An area is in
 //! the picture coordinates of [`Picture::of`]: for a perspective view the area on the
@@ -57,32 +61,24 @@
 //!   `!(num = …)`, and the Pascal `:=`).
 //!
 //! ```
-//! use kepler::bounds::projected_area::{bounding_rect_area, projected_area};
-//! use kepler::bounds::oriented::OrientedBox;
+//! use kepler::views::projected_area::projected_area_aabb;
 //! use kepler::geometry::{Aabb, Vector3};
 //! use kepler::views::View;
-//! // The unit cube seen along its diagonal: a regular hexagon of area √3; its bounding
-//! // rectangle is 4/3 of it.
-//! let cube = OrientedBox::from_aabb(&Aabb { min: [0.0; 3], max: [1.0; 3] });
+//! // The unit cube seen along its diagonal: a regular hexagon of area √3.
+//! let cube = Aabb { min: [0.0; 3], max: [1.0; 3] };
 //! let view = View::orthographic(Vector3::new(-1.0, -1.0, -1.0), Vector3::z()).unwrap();
-//! assert!((projected_area(&cube, &view) - 3f64.sqrt()).abs() < 1e-15);
-//! assert!((bounding_rect_area(&cube, &view) - 4.0 / 3f64.sqrt()).abs() < 1e-15);
+//! assert!((projected_area_aabb(&cube, &view) - 3f64.sqrt()).abs() < 1e-15);
 //! ```
 
-use crate::bounds::oriented::OrientedBox;
-use crate::bounds::tribox::Tribox;
-use crate::geometry::exact::{sum_sign, two_product};
-use crate::geometry::polygon::bounding_box;
-use crate::geometry::{Aabb, Point3, Vector3};
+use crate::geometry::{Aabb, Point3};
 use crate::views::{Eye, Picture, View};
-use geo::{Area, ConvexHull, MultiPoint, Point};
 use std::cmp::Ordering;
 
 /// The corners in the paper's numbering: corner `k` is on the maximum side along axis `i`
 /// when `CORNERS[k][i]` is 1, on the minimum side when it is 0.
 ///
 /// ```
-/// use kepler::bounds::projected_area::CORNERS;
+/// use kepler::views::projected_area::CORNERS;
 /// assert_eq!(CORNERS[0], [0, 0, 0]); // left, bottom, front
 /// assert_eq!(CORNERS[6], [1, 1, 1]); // right, top, back
 /// ```
@@ -112,7 +108,7 @@ pub const CORNERS: [[u8; 3]; 8] = [
 /// `tests/projected_area.rs` checks the table against the hulls of projected corners.
 ///
 /// ```
-/// use kepler::bounds::projected_area::HULL;
+/// use kepler::views::projected_area::HULL;
 /// assert_eq!(HULL[1], [4, 0, 4, 7, 3, 0, 0]); // left: the face x = min
 /// assert_eq!(HULL[5], [6, 0, 1, 5, 4, 7, 3]); // left, bottom (misprinted in the paper)
 /// assert_eq!(HULL[3], [0; 7]); // left and right at once: invalid
@@ -210,7 +206,7 @@ const fn det(a: [i64; 3], b: [i64; 3], c: [i64; 3]) -> i64 {
 /// with both bits of an axis set.
 ///
 /// ```
-/// use kepler::bounds::projected_area::classify;
+/// use kepler::views::projected_area::classify;
 /// use kepler::geometry::{Aabb, Point3, Vector3};
 /// use kepler::views::Eye;
 /// let b = Aabb { min: [0.0; 3], max: [1.0; 3] };
@@ -228,7 +224,7 @@ pub fn classify(b: &Aabb, eye: &Eye) -> u8 {
 }
 
 /// The code of an eye at infinity whose direction has the sign `sign(i)` along axis `i`.
-fn direction_code(sign: impl Fn(usize) -> Option<Ordering>) -> u8 {
+pub fn direction_code(sign: impl Fn(usize) -> Option<Ordering>) -> u8 {
     (0..3).fold(0, |code, i| match sign(i) {
         Some(Ordering::Less) => code | 1 << (2 * i),
         Some(Ordering::Greater) => code | 1 << (2 * i + 1),
@@ -236,36 +232,12 @@ fn direction_code(sign: impl Fn(usize) -> Option<Ordering>) -> u8 {
     })
 }
 
-/// The code of `eye` against an oriented box, in the box's frame as the paper does ("transform
-/// the viewpoint in the local coordinate system of the OBB"), but with the exact sign of
-/// `axis · eye − bound` (as [`OrientedBox::contains_point`] decides), or of `axis · direction`.
-fn classify_oriented(b: &OrientedBox, eye: &Eye) -> u8 {
-    match eye {
-        Eye::Point(e) => (0..3).fold(0, |code, k| {
-            let below = dot_minus_sign(&b.axes[k], &e.coords, b.min[k]) == Ordering::Less;
-            let above = dot_minus_sign(&b.axes[k], &e.coords, b.max[k]) == Ordering::Greater;
-            code | u8::from(below) << (2 * k) | u8::from(above) << (2 * k + 1)
-        }),
-        Eye::Infinity(u) => direction_code(|k| Some(dot_minus_sign(&b.axes[k], u, 0.0))),
-    }
-}
-
-/// The exact sign of `a · v − c`: the six exact products and `−c`, summed exactly.
-fn dot_minus_sign(a: &Vector3, v: &Vector3, c: f64) -> Ordering {
-    let mut terms = [0.0; 7];
-    for i in 0..3 {
-        (terms[2 * i], terms[2 * i + 1]) = two_product(a[i], v[i]);
-    }
-    terms[6] = -c;
-    sum_sign(&terms)
-}
-
 /// The area of the picture of an axis-aligned box in `view` (units and the values for an eye
 /// inside or a box not in front of the eye: see the [module documentation](self)); 0 for an
 /// empty box.
 ///
 /// ```
-/// use kepler::bounds::projected_area::projected_area_aabb;
+/// use kepler::views::projected_area::projected_area_aabb;
 /// use kepler::geometry::{Aabb, Point3, Vector3};
 /// use kepler::views::View;
 /// let b = Aabb { min: [-1.0; 3], max: [1.0; 3] };
@@ -292,37 +264,9 @@ pub fn projected_area_aabb(b: &Aabb, view: &View) -> f64 {
     silhouette_area(code, corner, view)
 }
 
-/// The area of the picture of an oriented box in `view`, its corners as
-/// [`OrientedBox::corners`] gives them (units and the values for an eye inside or a box not in
-/// front of the eye: see the [module documentation](self)); 0 for an empty box. The eye is
-/// classified in the box's frame, exactly.
-///
-/// ```
-/// use kepler::bounds::{oriented::OrientedBox, projected_area::projected_area};
-/// use kepler::geometry::{Point3, Vector3};
-/// use kepler::views::View;
-/// // A unit square turned 45° about z, seen from above.
-/// let s = 0.5f64.sqrt();
-/// let axes = [Vector3::new(s, s, 0.0), Vector3::new(-s, s, 0.0), Vector3::z()];
-/// let b = OrientedBox { axes, min: [0.0; 3], max: [1.0; 3] };
-/// assert!((projected_area(&b, &View::standard()) - 1.0).abs() < 1e-15);
-/// ```
-pub fn projected_area(b: &OrientedBox, view: &View) -> f64 {
-    if b.is_empty() {
-        return 0.0;
-    }
-    let code = classify_oriented(b, view.eye());
-    let corners = b.corners();
-    let corner = |k: u8| {
-        let [x, y, z] = CORNERS[usize::from(k)];
-        corners[usize::from(x | y << 1 | z << 2)]
-    };
-    silhouette_area(code, corner, view)
-}
-
 /// The area of the silhouette of [`HULL`]`[code]` with the given corners: the paper's contour
 /// integral, `Σ (x_i − x_(i+1)) (y_i + y_(i+1)) / 2` over the projected silhouette.
-fn silhouette_area(code: u8, corner: impl Fn(u8) -> Point3, view: &View) -> f64 {
+pub fn silhouette_area(code: u8, corner: impl Fn(u8) -> Point3, view: &View) -> f64 {
     let Some(row) = HULL.get(usize::from(code)) else {
         return 0.0;
     };
@@ -365,84 +309,4 @@ fn silhouette_area(code: u8, corner: impl Fn(u8) -> Point3, view: &View) -> f64 
     }
     // Counter-clockwise, so positive but for rounding on a box seen edge-on.
     (0.5 * sum).max(0.0)
-}
-
-/// The paper's comparison: the area of the 2-D bounding box of the pictures of the eight
-/// corners (as [`OrientedBox::corners`] gives them), an overestimate of
-/// [`projected_area`]. A perspective view needs the corners in front of the eye, and gives 0
-/// when none is and `f64::INFINITY` when only some are (the eye in the box included); 0 for an
-/// empty box.
-///
-/// ```
-/// use kepler::bounds::{oriented::OrientedBox, projected_area::bounding_rect_area};
-/// use kepler::geometry::{Aabb, Vector3};
-/// use kepler::views::View;
-/// // A unit square turned 45° about z, seen from above: its bounding square has area 2.
-/// let s = 0.5f64.sqrt();
-/// let axes = [Vector3::new(s, s, 0.0), Vector3::new(-s, s, 0.0), Vector3::z()];
-/// let b = OrientedBox { axes, min: [0.0; 3], max: [1.0; 3] };
-/// assert!((bounding_rect_area(&b, &kepler::views::View::standard()) - 2.0).abs() < 1e-15);
-/// ```
-pub fn bounding_rect_area(b: &OrientedBox, view: &View) -> f64 {
-    if b.is_empty() {
-        return 0.0;
-    }
-    let picture = Picture::of(view);
-    let corners = b.corners();
-    if picture.is_perspective() {
-        let in_front = corners.iter().filter(|p| picture.in_front(p)).count();
-        if in_front == 0 {
-            return 0.0;
-        }
-        if in_front < corners.len() {
-            return f64::INFINITY;
-        }
-    }
-    let [lo, hi] = bounding_box(corners.iter().map(|p| picture.point(p)));
-    (hi[0] - lo[0]) * (hi[1] - lo[1])
-}
-
-/// The area of the picture of a tribox in `view`: the area of the 2-D convex hull of its
-/// projected vertices (geo's `ConvexHull` and `Area`), which is the picture of a convex
-/// polytope in front of the eye. No paper gives a table for the tribox's up to 18 faces, so
-/// the silhouette is not walked. As for boxes: `f64::INFINITY` for the eye in the closed
-/// tribox (decided exactly) or a tribox reaching across the plane through a perspective eye
-/// across the view direction, 0 for one wholly at or behind it, and 0 for an empty tribox.
-///
-/// ```
-/// use kepler::bounds::projected_area::projected_area_tribox;
-/// use kepler::bounds::tribox::TriboxBounds;
-/// use kepler::geometry::Point3;
-/// use kepler::views::View;
-/// // The tribox of four corners of the unit cube lies in the cube and holds the corners, so
-/// // from above its picture is the unit square.
-/// let p = [[0.0, 0.0, 0.0], [1.0, 1.0, 0.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]];
-/// let t = TriboxBounds::from_points(&p.map(Point3::from)).boundary();
-/// assert_eq!(projected_area_tribox(&t, &View::standard()), 1.0);
-/// ```
-pub fn projected_area_tribox(t: &Tribox, view: &View) -> f64 {
-    if t.is_empty() {
-        return 0.0;
-    }
-    if let Eye::Point(e) = view.eye()
-        && t.bounds().contains_point(e)
-    {
-        return f64::INFINITY;
-    }
-    let picture = Picture::of(view);
-    let vertices = t.vertices();
-    if picture.is_perspective() {
-        let in_front = vertices.iter().filter(|p| picture.in_front(p)).count();
-        if in_front == 0 {
-            return 0.0;
-        }
-        if in_front < vertices.len() {
-            return f64::INFINITY;
-        }
-    }
-    let points: MultiPoint<f64> = vertices
-        .iter()
-        .map(|p| Point::from(picture.point(p)))
-        .collect();
-    points.convex_hull().unsigned_area()
 }
