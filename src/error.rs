@@ -1,79 +1,60 @@
-//! Errors, each naming the file and line, or the object, at fault.
+//! kepler's error: every layer's error, wrapped, each message naming the file and line, or the
+//! object, at fault.
+//!
+//! Each layer has its own typed error ([`FileError`] for files, [`MeshError`] for meshes,
+//! [`SceneError`] for scenes, [`ViewError`] for views, [`QueryError`] for INCLUDE,
+//! [`DrawError`] for drawings, [`SurfacesError`] for visible surfaces); [`Error`] wraps any of
+//! them with `?`, keeping its message, for callers that use several layers.
 //!
 //! ```
-//! use kepler::Error;
-//! let e = Error::at_line("scenes/a.obj", 12, "expected 3 coordinates");
+//! use kepler::{Error, io::FileError};
+//! let e: Error = FileError::at_line("scenes/a.obj", 12, "expected 3 coordinates").into();
 //! assert_eq!(e.to_string(), "scenes/a.obj:12: expected 3 coordinates");
 //! ```
 
+use crate::hidden::DrawError;
+use crate::io::FileError;
 use crate::mesh::MeshError;
+use crate::queries::QueryError;
+use crate::scene::SceneError;
+use crate::solids::SolidError;
+use crate::surfaces::SurfacesError;
+use crate::views::ViewError;
 
-/// Everything that can go wrong in kepler.
+/// Everything that can go wrong in kepler's engine: one variant per layer.
+///
+/// ```
+/// use kepler::{Error, scene::file::load};
+/// let e: Error = load("missing.toml".as_ref()).unwrap_err().into();
+/// assert!(matches!(e, Error::Scene(_)));
+/// assert!(e.to_string().starts_with("missing.toml: "));
+/// ```
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
-    /// A file could not be read.
-    #[error("{path}: {source}")]
-    Io {
-        /// The file.
-        path: String,
-        /// What the operating system said.
-        #[source]
-        source: std::io::Error,
-    },
-    /// Bad input at a place in a file: `at` is a line number, or a record such as
-    /// `triangle 7` for binary files.
-    #[error("{path}:{at}: {message}")]
-    Input {
-        /// The file.
-        path: String,
-        /// Where in the file (a 1-based line number, or a record name).
-        at: String,
-        /// What is wrong.
-        message: String,
-    },
-    /// A problem with a named object of a scene.
-    #[error("object '{object}': {message}")]
-    Object {
-        /// The object's name.
-        object: String,
-        /// What is wrong.
-        message: String,
-    },
-    /// A view that cannot be built (a zero direction, an up vector along it, ...).
-    #[error("invalid view: {0}")]
-    View(#[from] crate::views::ViewError),
-    /// An invalid mesh built by the library (a built-in solid with bad parameters, say).
+    /// A file could not be read, or holds bad input.
+    #[error(transparent)]
+    File(#[from] FileError),
+    /// An invalid mesh built by the library.
     #[error(transparent)]
     Mesh(#[from] MeshError),
-}
-
-impl Error {
-    /// An [`Error::Input`] at a 1-based line of a file.
-    ///
-    /// ```
-    /// let e = kepler::Error::at_line("x.off", 3, "bad");
-    /// assert_eq!(e.to_string(), "x.off:3: bad");
-    /// ```
-    pub fn at_line(path: impl Into<String>, line: usize, message: impl Into<String>) -> Error {
-        Error::Input {
-            path: path.into(),
-            at: line.to_string(),
-            message: message.into(),
-        }
-    }
-
-    /// An [`Error::Io`] for a file.
-    ///
-    /// ```
-    /// let e = kepler::Error::io("missing.obj", std::io::Error::from(std::io::ErrorKind::NotFound));
-    /// assert!(e.to_string().starts_with("missing.obj: "));
-    /// ```
-    pub fn io(path: impl Into<String>, source: std::io::Error) -> Error {
-        Error::Io {
-            path: path.into(),
-            source,
-        }
-    }
+    /// A built-in solid with bad parameters.
+    #[error(transparent)]
+    Solid(#[from] SolidError),
+    /// A scene that cannot be built or read.
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+    /// A view that cannot be built, or a scene it cannot picture.
+    #[error(transparent)]
+    View(#[from] ViewError),
+    /// A query that cannot be answered.
+    #[error(transparent)]
+    Query(#[from] QueryError),
+    /// A drawing that cannot be made.
+    #[error(transparent)]
+    Draw(#[from] DrawError),
+    /// Visible surfaces that cannot be computed.
+    #[error(transparent)]
+    Surfaces(#[from] SurfacesError),
 }
 
 /// `Result` with kepler's [`Error`].

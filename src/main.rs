@@ -8,6 +8,7 @@ use kepler::bounds::tribox::Tribox;
 use kepler::geometry::polygon::bounding_box;
 use kepler::geometry::{Point3, Vector3};
 use kepler::grid::{intersecting_pairs, random_segments};
+use kepler::hidden::ideographs::{Ideograph, ideographs};
 use kepler::hidden::{self, Drawing, EdgeClass, EdgeSelection};
 use kepler::io::points::{read_points, read_segments};
 use kepler::lab::boxtree::spheres::{DEFAULT_GAP, PAPER_FACETS};
@@ -26,7 +27,6 @@ use kepler::queries::include::{IncludeIndex, Inclusion};
 use kepler::queries::visp::{Visibility, VisibilityIndex};
 use kepler::scene::{Scene, file, report::BoundsReport};
 use kepler::surfaces::{visible_surfaces, visobj};
-use kepler::views::ideographs::{Ideograph, ideographs};
 use kepler::views::{Picture, View, ViewOptions};
 use std::fmt::Write as _;
 use std::io::IsTerminal;
@@ -865,11 +865,11 @@ fn write_file(
         write(&mut out).and_then(|()| out.flush())?;
         return Ok(());
     }
-    let file = std::fs::File::create(path).map_err(|e| kepler::Error::io(&name, e))?;
+    let file = std::fs::File::create(path).map_err(|e| kepler::io::FileError::io(&name, e))?;
     let mut out = std::io::BufWriter::new(file);
     write(&mut out)
         .and_then(|()| out.flush())
-        .map_err(|e| kepler::Error::io(&name, e))?;
+        .map_err(|e| kepler::io::FileError::io(&name, e))?;
     Ok(())
 }
 

@@ -188,8 +188,8 @@ fn random_scenes_agree_with_independent_references() {
 
 #[test]
 fn ideographs_replace_objects_by_their_exact_projected_area() {
+    use kepler::hidden::ideographs::{Ideograph, ideographs};
     use kepler::hidden::{Options, draw};
-    use kepler::views::ideographs::{Ideograph, ideographs};
     // Cubes of side 1, 2 and 3 seen from above have pictures of area 1, 4 and 9 exactly.
     let cubes: Vec<Mesh> = [1.0, 2.0, 3.0]
         .iter()

@@ -1,9 +1,9 @@
 //! The mesh-file readers: OBJ, STL (ASCII and binary), OFF, and `read_mesh`.
 
 use kepler::geometry::Point3;
+use kepler::io::FileError;
 use kepler::io::{obj, off, read_mesh, stl};
 use kepler::mesh::Mesh;
-use kepler::{Error, Result};
 use std::path::{Path, PathBuf};
 
 /// The unit cube's corners, index `x + 2y + 4z`.
@@ -46,10 +46,11 @@ fn assert_unit_cube(mesh: &Mesh, faces: usize) {
     assert_eq!(mesh.volume(), 1.0);
 }
 
-/// The message of an error, which must be an `Error::Input`.
-fn input_error(result: Result<Mesh>) -> String {
+/// The message of an error, which must be about the input: bad text, or a mesh the text
+/// describes that is not valid (`FileError::Input` or `FileError::Mesh`).
+fn input_error(result: Result<Mesh, FileError>) -> String {
     match result {
-        Err(e @ Error::Input { .. }) => e.to_string(),
+        Err(e @ (FileError::Input { .. } | FileError::Mesh { .. })) => e.to_string(),
         Err(e) => panic!("expected an input error, got {e:?}"),
         Ok(_) => panic!("expected an error, got a mesh"),
     }
@@ -534,9 +535,9 @@ fn stl_binary_errors_name_the_triangle() {
     let mut triangles = cube_f32();
     triangles[4] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]];
     match stl::parse(&binary_stl(&triangles), "t.stl") {
-        Err(Error::Input { path, at, message }) => {
+        Err(FileError::Mesh { path, at, source }) => {
             assert_eq!((path.as_str(), at.as_str()), ("t.stl", "triangle 5"));
-            assert_eq!(message, "face 5 has zero area");
+            assert_eq!(source, kepler::mesh::MeshError::ZeroArea { face: 4 });
         }
         other => panic!("expected an input error, got {other:?}"),
     }
@@ -803,7 +804,7 @@ fn read_mesh_unknown_extension() {
 fn read_mesh_missing_file() {
     let path = data("missing.obj");
     match read_mesh(&path) {
-        Err(e @ Error::Io { .. }) => {
+        Err(e @ FileError::Io { .. }) => {
             let message = e.to_string();
             assert!(
                 message.starts_with(&format!("{}: ", path.display())),

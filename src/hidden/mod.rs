@@ -51,10 +51,10 @@ mod chain;
 mod cover;
 mod drawing;
 mod edges;
+pub mod ideographs;
 
 pub use drawing::{Drawing, EdgeClass, Polyline, StageReport};
 
-use crate::Result;
 use crate::geometry::Point3;
 use crate::geometry::predicates::orient3d;
 use crate::grid::SegmentGrid;
@@ -64,8 +64,8 @@ use crate::queries::along::{Form, cut_point, hides_along};
 use crate::queries::intersections;
 use crate::queries::own_solid::turned_away;
 use crate::queries::visp::Visibility;
-use crate::scene::{ObjectId, Scene};
-use crate::views::{Eye, Picture, View};
+use crate::scene::{ObjectId, Scene, SceneError};
+use crate::views::{Eye, Picture, View, ViewError};
 use chain::{Piece, chain};
 use cover::Occluders;
 use geo::{Line as GeoLine, coord};
@@ -76,6 +76,28 @@ use std::cmp::Ordering;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicU64, Ordering as Atomic};
 use std::time::Instant;
+
+/// Why a drawing could not be made: the hidden-line layer's error.
+///
+/// ```
+/// use kepler::{geometry::{Point3, Vector3}, hidden::{DrawError, Options, draw}, scene::Scene, views::View};
+/// let mut scene = Scene::new();
+/// scene.add_mesh(None, "cube", kepler::solids::cube(2.0).unwrap()).unwrap();
+/// let inside = View::perspective(Point3::origin(), Point3::new(1.0, 0.0, 0.0), Vector3::z(), 40.0).unwrap();
+/// assert!(matches!(draw(&scene, &inside, &Options::default()), Err(DrawError::View(_))));
+/// ```
+#[derive(Debug, thiserror::Error)]
+pub enum DrawError {
+    /// The scene cannot be pictured in the view.
+    #[error(transparent)]
+    View(#[from] ViewError),
+    /// The scene to draw could not be built (see [`ideographs`]).
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+}
+
+/// `Result` with the hidden-line layer's [`DrawError`].
+pub type Result<T, E = DrawError> = std::result::Result<T, E>;
 
 /// Which edges a drawing shows.
 ///

@@ -25,9 +25,84 @@ pub mod off;
 pub mod points;
 pub mod stl;
 
-use crate::error::{Error, Result};
 use crate::mesh::{Mesh, MeshError};
 use std::path::Path;
+
+/// What went wrong reading a file, naming the file and the place in it: the io layer's error.
+///
+/// ```
+/// use kepler::io::FileError;
+/// let e = FileError::at_line("scenes/a.obj", 12, "expected 3 coordinates");
+/// assert_eq!(e.to_string(), "scenes/a.obj:12: expected 3 coordinates");
+/// ```
+#[derive(Debug, thiserror::Error)]
+pub enum FileError {
+    /// A file could not be read (or written).
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// What the operating system said.
+        #[source]
+        source: std::io::Error,
+    },
+    /// Bad input at a place in a file: `at` is a line number, or a record such as
+    /// `triangle 7` for binary files.
+    #[error("{path}:{at}: {message}")]
+    Input {
+        /// The file.
+        path: String,
+        /// Where in the file (a 1-based line number, or a record name).
+        at: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// A face or vertex of a mesh file that [`Mesh::from_polygons`] refuses, at its place in
+    /// the file (`mesh` when no single line is at fault).
+    #[error("{path}:{at}: {source}")]
+    Mesh {
+        /// The file.
+        path: String,
+        /// Where in the file.
+        at: String,
+        /// What is wrong with the mesh.
+        #[source]
+        source: MeshError,
+    },
+}
+
+impl FileError {
+    /// A [`FileError::Input`] at a 1-based line of a file.
+    ///
+    /// ```
+    /// let e = kepler::io::FileError::at_line("x.off", 3, "bad");
+    /// assert_eq!(e.to_string(), "x.off:3: bad");
+    /// ```
+    pub fn at_line(path: impl Into<String>, line: usize, message: impl Into<String>) -> FileError {
+        FileError::Input {
+            path: path.into(),
+            at: line.to_string(),
+            message: message.into(),
+        }
+    }
+
+    /// A [`FileError::Io`] for a file.
+    ///
+    /// ```
+    /// use kepler::io::FileError;
+    /// let e = FileError::io("missing.obj", std::io::Error::from(std::io::ErrorKind::NotFound));
+    /// assert!(e.to_string().starts_with("missing.obj: "));
+    /// ```
+    pub fn io(path: impl Into<String>, source: std::io::Error) -> FileError {
+        FileError::Io {
+            path: path.into(),
+            source,
+        }
+    }
+}
+
+/// `Result` with the io layer's [`FileError`].
+type Result<T, E = FileError> = std::result::Result<T, E>;
 
 /// Reads a mesh file, choosing the format from its extension: `obj`, `stl` or `off`, in any
 /// letter case. An unknown extension, a file that cannot be read, a file without faces and
@@ -60,20 +135,20 @@ pub fn read_mesh(path: &Path) -> Result<Mesh> {
         Some(f @ ("obj" | "stl" | "off")) => f,
         _ => {
             let message = "unknown mesh format: the extension must be .obj, .stl or .off";
-            return Err(Error::io(
+            return Err(FileError::io(
                 name,
                 std::io::Error::new(std::io::ErrorKind::InvalidInput, message),
             ));
         }
     };
-    let bytes = std::fs::read(path).map_err(|e| Error::io(&name, e))?;
+    let bytes = std::fs::read(path).map_err(|e| FileError::io(&name, e))?;
     let mesh = match format {
         "stl" => stl::parse(&bytes, &name),
         "obj" => obj::parse(&String::from_utf8_lossy(&bytes), &name),
         _ => off::parse(&String::from_utf8_lossy(&bytes), &name),
     }?;
     if mesh.faces().is_empty() {
-        return Err(Error::Input {
+        return Err(FileError::Input {
             path: name,
             at: "1".into(),
             message: "the file has no faces".into(),
@@ -113,14 +188,14 @@ fn last_line(text: &str) -> usize {
     text.lines().count().max(1)
 }
 
-/// Turns an error of [`Mesh::from_polygons`] into an [`Error::Input`] at the place of the
+/// Turns an error of [`Mesh::from_polygons`] into a [`FileError::Mesh`] at the place of the
 /// offending vertex or face, given by `vertex_at` and `face_at` (0-based index to place).
 fn located(
     path: &str,
     err: MeshError,
     vertex_at: impl Fn(usize) -> Option<String>,
     face_at: impl Fn(usize) -> Option<String>,
-) -> Error {
+) -> FileError {
     let at = match err {
         MeshError::NonFinite { vertex } | MeshError::OutOfRange { vertex } => vertex_at(vertex),
         MeshError::TooFewVertices { face, .. }
@@ -131,10 +206,10 @@ fn located(
         | MeshError::NotSimple { face } => face_at(face),
         MeshError::SingularTransform => None,
     };
-    Error::Input {
+    FileError::Mesh {
         path: path.to_owned(),
         at: at.unwrap_or_else(|| "mesh".to_owned()),
-        message: err.to_string(),
+        source: err,
     }
 }
 
@@ -144,7 +219,7 @@ fn located_at_lines(
     err: MeshError,
     vertex_lines: &[usize],
     face_lines: &[usize],
-) -> Error {
+) -> FileError {
     let line = |lines: &[usize], i: usize| lines.get(i).map(usize::to_string);
     located(
         path,

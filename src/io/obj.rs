@@ -23,8 +23,8 @@
 //! assert_eq!(mesh.face_points(0).count(), 4);
 //! ```
 
+use super::{FileError, Result};
 use super::{finite, located_at_lines, strip_bom, strip_comment};
-use crate::error::{Error, Result};
 use crate::geometry::Point3;
 use crate::mesh::Mesh;
 use std::borrow::Cow;
@@ -53,7 +53,7 @@ pub fn parse(text: &str, path: &str) -> Result<Mesh> {
         let Some(keyword) = tokens.next() else {
             continue;
         };
-        let at_line = |message: String| Error::at_line(path, line, message);
+        let at_line = |message: String| FileError::at_line(path, line, message);
         match keyword {
             "v" => {
                 vertices.push(vertex(tokens).map_err(at_line)?);

@@ -21,8 +21,8 @@
 //! assert_eq!(mesh.faces().len(), 1);
 //! ```
 
+use super::{FileError, Result};
 use super::{finite, last_line, located_at_lines, strip_bom, strip_comment};
-use crate::error::{Error, Result};
 use crate::geometry::Point3;
 use crate::mesh::Mesh;
 
@@ -54,14 +54,14 @@ pub fn parse(text: &str, path: &str) -> Result<Mesh> {
             )
         })
         .filter(|(_, tokens)| !tokens.is_empty());
-    let end = |message: String| Error::at_line(path, last_line(text), message);
+    let end = |message: String| FileError::at_line(path, last_line(text), message);
 
     let Some((header_line, header)) = records.next() else {
         return Err(end(
             "empty file: expected the header 'OFF' or the counts".into()
         ));
     };
-    let at_header = |message: String| Error::at_line(path, header_line, message);
+    let at_header = |message: String| FileError::at_line(path, header_line, message);
     let (variant, counts_on_header) = match header.split_first() {
         Some((keyword, rest)) if keyword.parse::<f64>().is_err() => {
             (Variant::of(keyword).map_err(at_header)?, rest.to_vec())
@@ -75,7 +75,7 @@ pub fn parse(text: &str, path: &str) -> Result<Mesh> {
     } else {
         (header_line, counts_on_header)
     };
-    let (nv, nf) = parse_counts(&counts).map_err(|m| Error::at_line(path, counts_line, m))?;
+    let (nv, nf) = parse_counts(&counts).map_err(|m| FileError::at_line(path, counts_line, m))?;
 
     let mut vertices = Vec::new();
     let mut vertex_lines = Vec::new();
@@ -88,7 +88,7 @@ pub fn parse(text: &str, path: &str) -> Result<Mesh> {
         };
         let p = variant.vertex(&tokens).map_err(|m| {
             let k = vertices.len() + 1;
-            Error::at_line(
+            FileError::at_line(
                 path,
                 line,
                 format!("{m} (vertex {k} of the {nv} announced on line {counts_line})"),
@@ -106,11 +106,11 @@ pub fn parse(text: &str, path: &str) -> Result<Mesh> {
                 faces.len()
             )));
         };
-        faces.push(face(&tokens, nv).map_err(|m| Error::at_line(path, line, m))?);
+        faces.push(face(&tokens, nv).map_err(|m| FileError::at_line(path, line, m))?);
         face_lines.push(line);
     }
     if let Some((line, _)) = records.next() {
-        return Err(Error::at_line(
+        return Err(FileError::at_line(
             path,
             line,
             format!(

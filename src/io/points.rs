@@ -15,8 +15,8 @@
 //! assert_eq!(err.to_string(), "p.txt:2: expected 3 coordinates (x y z), found 2");
 //! ```
 
+use super::{FileError, Result};
 use super::{finite, strip_bom, strip_comment};
-use crate::error::{Error, Result};
 use crate::geometry::Point3;
 use crate::geometry::predicates::MAX_COORDINATE;
 use geo::{Coord, Line};
@@ -77,7 +77,7 @@ fn parse_rows<const N: usize>(
         } else {
             line.split_whitespace().collect()
         };
-        let at = |message: String| Error::at_line(name, i + 1, message);
+        let at = |message: String| FileError::at_line(name, i + 1, message);
         if found.iter().any(|f| f.is_empty()) {
             return Err(at("empty coordinate between commas".into()));
         }
@@ -141,14 +141,14 @@ fn read_text(path: &Path) -> Result<(String, String)> {
         std::io::stdin()
             .lock()
             .read_to_end(&mut bytes)
-            .map_err(|e| Error::io(&name, e))?;
+            .map_err(|e| FileError::io(&name, e))?;
     } else {
-        bytes = std::fs::read(path).map_err(|e| Error::io(&name, e))?;
+        bytes = std::fs::read(path).map_err(|e| FileError::io(&name, e))?;
     }
     let text = String::from_utf8(bytes).map_err(|e| {
         let valid = &e.as_bytes()[..e.utf8_error().valid_up_to()];
         let line = 1 + valid.iter().filter(|&&b| b == b'\n').count();
-        Error::at_line(&name, line, "the text is not UTF-8")
+        FileError::at_line(&name, line, "the text is not UTF-8")
     })?;
     Ok((text, name))
 }

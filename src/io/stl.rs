@@ -30,8 +30,8 @@
 //! assert_eq!(mesh.triangles().len(), 1);
 //! ```
 
+use super::{FileError, Result};
 use super::{finite, last_line, located, located_at_lines, strip_bom};
-use crate::error::{Error, Result};
 use crate::geometry::Point3;
 use crate::mesh::Mesh;
 use std::iter::Peekable;
@@ -76,7 +76,7 @@ pub fn parse(bytes: &[u8], path: &str) -> Result<Mesh> {
     } else {
         "it does not start with 'solid'"
     };
-    Err(Error::Input {
+    Err(FileError::Input {
         path: path.to_owned(),
         at: "header".to_owned(),
         message: format!(
@@ -119,7 +119,7 @@ fn binary(records: &[[u8; 50]], path: &str) -> Result<Mesh> {
     let mut vertices = Vec::new();
     let mut faces = Vec::new();
     for (t, record) in records.iter().enumerate() {
-        let error = |message: String| Error::Input {
+        let error = |message: String| FileError::Input {
             path: path.to_owned(),
             at: at_triangle(t),
             message,
@@ -196,7 +196,7 @@ fn ascii(text: &str, path: &str) -> Result<Mesh> {
             break;
         }
         if !token.eq_ignore_ascii_case("facet") {
-            return Err(Error::at_line(
+            return Err(FileError::at_line(
                 path,
                 line,
                 format!("expected 'facet' or 'endsolid', found '{token}'"),
@@ -209,7 +209,7 @@ fn ascii(text: &str, path: &str) -> Result<Mesh> {
         tokens.keyword("outer")?;
         tokens.keyword("loop")?;
         let face = triangle(vertices.len()).ok_or_else(|| {
-            Error::at_line(path, line, "more vertices than the 2^32 kepler supports")
+            FileError::at_line(path, line, "more vertices than the 2^32 kepler supports")
         })?;
         for _ in 0..3 {
             vertex_lines.push(tokens.keyword("vertex")?);
@@ -224,7 +224,7 @@ fn ascii(text: &str, path: &str) -> Result<Mesh> {
         face_lines.push(line);
     }
     if let Some((line, token)) = tokens.iter.next() {
-        return Err(Error::at_line(
+        return Err(FileError::at_line(
             path,
             line,
             format!("unexpected '{token}' after 'endsolid'"),
@@ -245,7 +245,7 @@ impl<'a, I: Iterator<Item = (usize, &'a str)>> Tokens<'a, I> {
     /// The next token, or an error at the end of the file saying what was `expected`.
     fn next(&mut self, expected: &str) -> Result<(usize, &'a str)> {
         self.iter.next().ok_or_else(|| {
-            Error::at_line(
+            FileError::at_line(
                 self.path,
                 self.last_line,
                 format!("unexpected end of file: expected {expected}"),
@@ -259,7 +259,7 @@ impl<'a, I: Iterator<Item = (usize, &'a str)>> Tokens<'a, I> {
         if token.eq_ignore_ascii_case(keyword) {
             Ok(line)
         } else {
-            Err(Error::at_line(
+            Err(FileError::at_line(
                 self.path,
                 line,
                 format!("expected '{keyword}', found '{token}'"),
@@ -270,7 +270,7 @@ impl<'a, I: Iterator<Item = (usize, &'a str)>> Tokens<'a, I> {
     /// Consumes a finite number; `what` names it in errors.
     fn number(&mut self, what: &str) -> Result<f64> {
         let (line, token) = self.next(what)?;
-        finite(token, what).map_err(|m| Error::at_line(self.path, line, m))
+        finite(token, what).map_err(|m| FileError::at_line(self.path, line, m))
     }
 
     /// Skips the rest of the tokens on `line` (the name after `solid` or `endsolid`).

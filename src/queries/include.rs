@@ -28,8 +28,7 @@
 //! ```
 
 use super::projection_grid::ProjectionGrid;
-use super::{Counters, Stage, in_parallel};
-use crate::error::{Error, Result};
+use super::{Counters, QueryError, Stage, in_parallel};
 use crate::geometry::{Aabb, Point3};
 use crate::mesh::{Containment, Mesh, classify_point_brute_force};
 use crate::scene::{Content, ObjectId, Scene};
@@ -85,7 +84,7 @@ impl From<Containment> for Inclusion {
 /// assert_eq!(include(&s, g, &Point3::new(5.0, 0.0, 0.0)).unwrap(), (Inclusion::Out, Stage::Cbox));
 /// assert!(include(&s, t, &Point3::origin()).unwrap_err().to_string().contains("open"));
 /// ```
-pub fn include(scene: &Scene, id: ObjectId, p: &Point3) -> Result<(Inclusion, Stage)> {
+pub fn include(scene: &Scene, id: ObjectId, p: &Point3) -> Result<(Inclusion, Stage), QueryError> {
     check_closed(scene, id)?;
     Ok(descend(scene, id, p, &|_, mesh| {
         classify_point_brute_force(mesh, p)
@@ -118,7 +117,7 @@ impl<'s> IncludeIndex<'s> {
     /// let c = s.add_mesh(None, "cube", kepler::solids::cube(1.0).unwrap()).unwrap();
     /// assert!(IncludeIndex::new(&s, &[c]).is_ok());
     /// ```
-    pub fn new(scene: &'s Scene, objects: &[ObjectId]) -> Result<IncludeIndex<'s>> {
+    pub fn new(scene: &'s Scene, objects: &[ObjectId]) -> Result<IncludeIndex<'s>, QueryError> {
         for &id in objects {
             check_closed(scene, id)?;
         }
@@ -143,7 +142,7 @@ impl<'s> IncludeIndex<'s> {
     /// let s = kepler::scene::file::load(std::path::Path::new("scenes/cube.toml")).unwrap();
     /// assert!(kepler::queries::include::IncludeIndex::whole_scene(&s).is_ok());
     /// ```
-    pub fn whole_scene(scene: &'s Scene) -> Result<IncludeIndex<'s>> {
+    pub fn whole_scene(scene: &'s Scene) -> Result<IncludeIndex<'s>, QueryError> {
         IncludeIndex::new(scene, scene.roots())
     }
 
@@ -183,18 +182,15 @@ impl<'s> IncludeIndex<'s> {
 }
 
 /// An error naming the first open mesh in the subtree of `id`.
-fn check_closed(scene: &Scene, id: ObjectId) -> Result<()> {
+fn check_closed(scene: &Scene, id: ObjectId) -> Result<(), QueryError> {
     for o in scene.subtree(id) {
         if let Some(mesh) = scene[o].mesh() {
             let topology = mesh.topology();
             if topology.odd_edges > 0 {
-                return Err(Error::Object {
+                return Err(QueryError::NotClosed {
                     object: scene.path(o),
-                    message: format!(
-                        "is an open mesh ({} boundary edges, {} edges on an odd number of \
-                         faces) and has no inside: INCLUDE needs closed meshes",
-                        topology.boundary_edges, topology.odd_edges
-                    ),
+                    boundary_edges: topology.boundary_edges,
+                    odd_edges: topology.odd_edges,
                 });
             }
         }

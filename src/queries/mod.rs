@@ -28,6 +28,32 @@ use crate::geometry::Point3;
 use rayon::prelude::*;
 use serde::Serialize;
 
+/// Why a query cannot be answered: the queries layer's error.
+///
+/// ```
+/// use kepler::{geometry::Point3, queries::{QueryError, include::include}, scene::Scene};
+/// let mut s = Scene::new();
+/// let tent = kepler::io::read_mesh(std::path::Path::new("scenes/meshes/tent.stl")).unwrap();
+/// let t = s.add_mesh(None, "tent", tent).unwrap();
+/// assert!(matches!(include(&s, t, &Point3::origin()), Err(QueryError::NotClosed { .. })));
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum QueryError {
+    /// INCLUDE asked of an object with an open mesh, which has no inside.
+    #[error(
+        "object '{object}': is an open mesh ({boundary_edges} boundary edges, {odd_edges} edges \
+         on an odd number of faces) and has no inside: INCLUDE needs closed meshes"
+    )]
+    NotClosed {
+        /// The path of the open mesh's object.
+        object: String,
+        /// Its edges on one face.
+        boundary_edges: usize,
+        /// Its edges on an odd number of faces.
+        odd_edges: usize,
+    },
+}
+
 /// What decided a query's answer, from the cheapest to the dearest.
 ///
 /// ```

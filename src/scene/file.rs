@@ -42,8 +42,8 @@
 //! Unknown keys, parameters that do not apply to the solid, and missing ones are errors
 //! that name the file and line.
 
-use super::{Camera, ObjectId, Projection, Scene, Transform};
-use crate::error::{Error, Result};
+use super::{Camera, ObjectId, Projection, Result, Scene, SceneError, Transform};
+use crate::io::FileError;
 use crate::mesh::Mesh;
 use crate::solids::{self, Polyhedron};
 use nalgebra::{Matrix4, Vector3};
@@ -66,8 +66,8 @@ pub fn load(path: &Path) -> Result<Scene> {
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
     if ext.as_deref() == Some("toml") {
-        let text =
-            std::fs::read_to_string(path).map_err(|e| Error::io(path.display().to_string(), e))?;
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| FileError::io(path.display().to_string(), e))?;
         return parse(&text, path);
     }
     let mesh = crate::io::read_mesh(path)?;
@@ -93,7 +93,7 @@ pub fn load(path: &Path) -> Result<Scene> {
 pub fn parse(text: &str, path: &Path) -> Result<Scene> {
     let name = path.display().to_string();
     let line_of = |offset: usize| text[..offset.min(text.len())].matches('\n').count() + 1;
-    let spec: FileSpec = toml::from_str(text).map_err(|e| Error::Input {
+    let spec: FileSpec = toml::from_str(text).map_err(|e| FileError::Input {
         path: name.clone(),
         at: e
             .span()
@@ -126,17 +126,17 @@ pub fn parse(text: &str, path: &Path) -> Result<Scene> {
         .iter()
         .fold(0u64, |n, p| n.saturating_add(p.object_count()));
     if total > MAX_OBJECTS {
-        return Err(Error::Input {
+        return Err(FileError::Input {
             path: b.path.clone(),
             at: "1".into(),
             message: format!(
                 "the scene would place {total} objects; at most {MAX_OBJECTS} are allowed"
             ),
-        });
+        }
+        .into());
     }
     for (o, proto) in spec.object.iter().zip(&protos) {
-        place(&mut scene, proto, None, &Matrix4::identity())
-            .map_err(|e| b.err(o, e.to_string()))?;
+        place(&mut scene, proto, None, &Matrix4::identity()).map_err(|e| b.at(o, e))?;
     }
     Ok(scene)
 }
@@ -337,9 +337,9 @@ fn place(
             let mesh = if m == Matrix4::identity() {
                 (**mesh).clone()
             } else {
-                mesh.transformed(&m).map_err(|e| Error::Object {
+                mesh.transformed(&m).map_err(|e| SceneError::Object {
                     object: name.clone(),
-                    message: e.to_string(),
+                    problem: super::ObjectProblem::Mesh(e),
                 })?
             };
             (scene.add_mesh(parent, name.clone(), mesh)?, instance_of)
@@ -371,8 +371,18 @@ struct Builder<'a> {
 }
 
 impl Builder<'_> {
-    fn err<T>(&self, at: &Spanned<T>, message: impl Into<String>) -> Error {
-        Error::at_line(self.path.clone(), (self.line_of)(at.span().start), message)
+    /// Bad input at the line of `at`.
+    fn err<T>(&self, at: &Spanned<T>, message: impl Into<String>) -> SceneError {
+        FileError::at_line(self.path.clone(), (self.line_of)(at.span().start), message).into()
+    }
+
+    /// An error caused by what the line of `at` asks for.
+    fn at<T>(&self, at: &Spanned<T>, source: impl Into<SceneError>) -> SceneError {
+        SceneError::AtLine {
+            path: self.path.clone(),
+            line: (self.line_of)(at.span().start),
+            source: Box::new(source.into()),
+        }
     }
 
     fn camera(&self, c: &Spanned<CameraSpec>) -> Result<Camera> {
@@ -581,8 +591,7 @@ impl Builder<'_> {
         let mesh = match self.meshes.get(&path) {
             Some(m) => m.clone(),
             None => {
-                let m =
-                    Arc::new(crate::io::read_mesh(&path).map_err(|e| self.err(o, e.to_string()))?);
+                let m = Arc::new(crate::io::read_mesh(&path).map_err(|e| self.at(o, e))?);
                 self.meshes.insert(path.clone(), m.clone());
                 m
             }
@@ -671,7 +680,7 @@ impl Builder<'_> {
                 None => return Err(self.err(o, format!("unknown solid `{solid}`"))),
             },
         };
-        let mesh = mesh.map_err(|e| self.err(o, e.to_string()))?;
+        let mesh = mesh.map_err(|e| self.at(o, e))?;
         Ok(Proto::Leaf {
             name: key,
             mesh: Arc::new(mesh),

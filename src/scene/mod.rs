@@ -29,11 +29,85 @@ pub use transform::Transform;
 
 use crate::bounds::tribox::TriboxBounds;
 use crate::bounds::{Aabb, Inbox, InboxMethod, inbox};
-use crate::error::{Error, Result};
 use crate::geometry::Point3;
-use crate::mesh::Mesh;
+use crate::io::FileError;
+use crate::mesh::{Mesh, MeshError};
+use crate::solids::SolidError;
 use slotmap::SlotMap;
 use std::sync::OnceLock;
+
+/// What went wrong building or reading a scene: the scene layer's error.
+///
+/// ```
+/// use kepler::scene::{ObjectProblem, Scene, SceneError};
+/// let mut scene = Scene::new();
+/// let cube = scene.add_mesh(None, "cube", kepler::solids::cube(1.0).unwrap()).unwrap();
+/// let e = scene.add_group(Some(cube), "inner").unwrap_err();
+/// assert!(matches!(e, SceneError::Object { problem: ObjectProblem::HasFaces, .. }));
+/// assert_eq!(e.to_string(), "object 'cube': it has faces, so it cannot also have subobjects");
+/// ```
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    /// The scene file, or a mesh file, could not be read or holds bad input.
+    #[error(transparent)]
+    File(#[from] FileError),
+    /// An error caused at a line of a scene file: by a mesh file or a solid it names, or by an
+    /// object it places.
+    #[error("{path}:{line}: {source}")]
+    AtLine {
+        /// The scene file.
+        path: String,
+        /// The 1-based line.
+        line: usize,
+        /// What went wrong there.
+        #[source]
+        source: Box<SceneError>,
+    },
+    /// A built-in solid with bad parameters.
+    #[error(transparent)]
+    Solid(#[from] SolidError),
+    /// A problem with a named object.
+    #[error("object '{object}': {problem}")]
+    Object {
+        /// The object's name (or path).
+        object: String,
+        /// What is wrong with it.
+        problem: ObjectProblem,
+    },
+}
+
+/// What is wrong with an object of a scene (see [`SceneError::Object`]).
+///
+/// ```
+/// assert_eq!(
+///     kepler::scene::ObjectProblem::SingularTransform.to_string(),
+///     "the transform is singular or not finite"
+/// );
+/// ```
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ObjectProblem {
+    /// Its parent is not in the scene.
+    #[error("its parent is not in this scene")]
+    ParentMissing,
+    /// It is a mesh object, which cannot have subobjects.
+    #[error("it has faces, so it cannot also have subobjects")]
+    HasFaces,
+    /// Its transform is singular or not finite.
+    #[error("the transform is singular or not finite")]
+    SingularTransform,
+    /// The object to instance is not in the scene.
+    #[error("the object to instance is not in this scene")]
+    SourceMissing,
+    /// Its mesh, transformed, is not a valid mesh.
+    #[error(transparent)]
+    Mesh(MeshError),
+    /// Its meshes, joined into one, are not a valid mesh.
+    #[error("flattening: {0}")]
+    Flatten(MeshError),
+}
+
+/// `Result` with the scene layer's [`SceneError`].
+pub type Result<T, E = SceneError> = std::result::Result<T, E>;
 
 slotmap::new_key_type! {
     /// The key of an object in a [`Scene`].
@@ -206,15 +280,15 @@ impl Scene {
     ) -> Result<ObjectId> {
         if let Some(p) = parent {
             let Some(po) = self.objects.get(p) else {
-                return Err(Error::Object {
+                return Err(SceneError::Object {
                     object: name,
-                    message: "its parent is not in this scene".into(),
+                    problem: ObjectProblem::ParentMissing,
                 });
             };
             if let Content::Mesh(_) = po.content {
-                return Err(Error::Object {
+                return Err(SceneError::Object {
                     object: po.name.clone(),
-                    message: "it has faces, so it cannot also have subobjects".into(),
+                    problem: ObjectProblem::HasFaces,
                 });
             }
         }
@@ -319,9 +393,9 @@ impl Scene {
     ) -> Result<ObjectId> {
         let det = m.fixed_view::<3, 3>(0, 0).determinant();
         if m.iter().any(|x| !x.is_finite()) || !det.is_finite() || det == 0.0 {
-            return Err(Error::Object {
+            return Err(SceneError::Object {
                 object: name,
-                message: "the transform is singular or not finite".into(),
+                problem: ObjectProblem::SingularTransform,
             });
         }
         let mut root = None;
@@ -346,17 +420,17 @@ impl Scene {
         root: &mut Option<ObjectId>,
     ) -> Result<ObjectId> {
         let Some(src) = self.objects.get(source) else {
-            return Err(Error::Object {
+            return Err(SceneError::Object {
                 object: name,
-                message: "the object to instance is not in this scene".into(),
+                problem: ObjectProblem::SourceMissing,
             });
         };
         let source_name = src.name.clone();
         let content = match &src.content {
             Content::Mesh(mesh) => {
-                Content::Mesh(mesh.transformed(m).map_err(|e| Error::Object {
+                Content::Mesh(mesh.transformed(m).map_err(|e| SceneError::Object {
                     object: name.clone(),
-                    message: e.to_string(),
+                    problem: ObjectProblem::Mesh(e),
                 })?)
             }
             Content::Subobjects(_) => Content::Subobjects(Vec::new()),
@@ -723,9 +797,9 @@ impl Scene {
     /// assert_eq!((flat.faces().len(), flat.vertices().len()), (12, 12));
     /// ```
     pub fn flatten(&self, id: ObjectId) -> Result<Mesh> {
-        concatenate(self.meshes(id)).map_err(|e| Error::Object {
+        concatenate(self.meshes(id)).map_err(|e| SceneError::Object {
             object: self.path(id),
-            message: format!("flattening: {e}"),
+            problem: ObjectProblem::Flatten(e),
         })
     }
 
@@ -743,16 +817,16 @@ impl Scene {
     /// ```
     pub fn flatten_all(&self) -> Result<Mesh> {
         let meshes = self.roots().iter().flat_map(|&r| self.meshes(r)).collect();
-        concatenate(meshes).map_err(|e| Error::Object {
+        concatenate(meshes).map_err(|e| SceneError::Object {
             object: "(all objects)".to_string(),
-            message: format!("flattening: {e}"),
+            problem: ObjectProblem::Flatten(e),
         })
     }
 }
 
 /// The meshes' vertex lists appended and their faces renumbered, as one mesh (equal vertices
 /// merged by [`Mesh::from_polygons`]).
-fn concatenate(meshes: Vec<&Mesh>) -> std::result::Result<Mesh, crate::mesh::MeshError> {
+fn concatenate(meshes: Vec<&Mesh>) -> Result<Mesh, MeshError> {
     let mut vertices: Vec<Point3> = Vec::new();
     let mut faces: Vec<Vec<u32>> = Vec::new();
     for mesh in meshes {

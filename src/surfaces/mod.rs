@@ -58,14 +58,51 @@ use crate::queries::along::cut_point_on_plane;
 use crate::queries::own_solid::hidden_by_own_solid;
 use crate::queries::sight::Sight;
 use crate::scene::{Content, ObjectId, Scene};
-use crate::views::{Eye, Picture, View};
-use crate::{Error, Result};
+use crate::views::{Eye, Picture, View, ViewError};
 use geo::{Coord, LineString, MultiPolygon, Polygon};
 use rayon::prelude::*;
 use slotmap::SecondaryMap;
 use std::cmp::Ordering;
 
 mod overlap;
+
+/// Why visible surfaces could not be computed: the surfaces layer's error.
+///
+/// ```
+/// use kepler::{scene::Scene, surfaces::{SurfacesError, visfac}, views::View};
+/// let mut scene = Scene::new();
+/// let cube = scene.add_mesh(None, "cube", kepler::solids::cube(1.0).unwrap()).unwrap();
+/// let e = visfac(&scene, cube, &View::standard(), cube, 6).unwrap_err();
+/// assert!(matches!(e, SurfacesError::NoFace { face: 6, faces: 6, .. }));
+/// ```
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SurfacesError {
+    /// The scene cannot be pictured in the view.
+    #[error(transparent)]
+    View(#[from] ViewError),
+    /// VISFAC asked of an object without faces.
+    #[error("object '{object}': VISFAC needs a face of a mesh object")]
+    NotMesh {
+        /// The object's path.
+        object: String,
+    },
+    /// VISFAC asked of a face the mesh does not have.
+    #[error("object '{object}': no face {face} (it has {faces})")]
+    NoFace {
+        /// The object's path.
+        object: String,
+        /// The face asked for (0-based).
+        face: usize,
+        /// How many faces the mesh has.
+        faces: usize,
+    },
+    /// A picture too large or not finite to clip.
+    #[error("object 'picture': {0}")]
+    Clip(#[from] clip::ClipError),
+}
+
+/// `Result` with the surfaces layer's [`SurfacesError`].
+pub type Result<T, E = SurfacesError> = std::result::Result<T, E>;
 
 /// How much of a face an object leaves visible.
 ///
@@ -320,14 +357,14 @@ fn visfac_among(
     face: usize,
     grids: Option<&SecondaryMap<ObjectId, FaceGrid>>,
 ) -> Result<VisibleFace> {
-    let mesh = scene[owner].mesh().ok_or_else(|| Error::Object {
+    let mesh = scene[owner].mesh().ok_or_else(|| SurfacesError::NotMesh {
         object: scene.path(owner),
-        message: "VISFAC needs a face of a mesh object".into(),
     })?;
     if face >= mesh.faces().len() {
-        return Err(Error::Object {
+        return Err(SurfacesError::NoFace {
             object: scene.path(owner),
-            message: format!("no face {face} (it has {})", mesh.faces().len()),
+            face,
+            faces: mesh.faces().len(),
         });
     }
     let target = Target::new(mesh, face, view);
@@ -380,7 +417,7 @@ fn visfac_among(
     } else if pieces.is_empty() {
         (Status::Visible, whole)
     } else {
-        let vtp = clip::difference_of_union(&whole, &pieces).map_err(clip_error)?;
+        let vtp = clip::difference_of_union(&whole, &pieces)?;
         let status = if vtp.0.is_empty() {
             Status::Hidden
         } else {
@@ -689,12 +726,4 @@ fn visfac2(
         }
     }
     Ok(false)
-}
-
-/// A clipping error as kepler's error (only non-finite or huge pictures cause one).
-fn clip_error(e: clip::ClipError) -> Error {
-    Error::Object {
-        object: "picture".into(),
-        message: e.to_string(),
-    }
 }

@@ -26,39 +26,53 @@ use crate::scene::{Camera, Projection};
 use nalgebra::Matrix4;
 use std::cmp::Ordering;
 
-pub mod ideographs;
 mod picture;
 pub mod projected_area;
 pub use picture::Picture;
 
-/// A view that cannot be built, and why.
+/// A view that cannot be built, or a scene it cannot picture: the views layer's error.
 ///
 /// ```
 /// use kepler::views::{View, ViewError};
 /// use kepler::geometry::Vector3;
 /// let e = View::orthographic(Vector3::zeros(), Vector3::z()).unwrap_err();
 /// assert_eq!(e, ViewError::ZeroDirection);
+/// assert_eq!(e.to_string(), "invalid view: the view direction is zero");
 /// ```
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ViewError {
     /// The view direction is the zero vector.
-    #[error("the view direction is zero")]
+    #[error("invalid view: the view direction is zero")]
     ZeroDirection,
     /// The up vector is zero or parallel to the view direction.
-    #[error("the up vector is zero or parallel to the view direction")]
+    #[error("invalid view: the up vector is zero or parallel to the view direction")]
     UpParallel,
     /// The eye and the target coincide.
-    #[error("the eye and the target are the same point")]
+    #[error("invalid view: the eye and the target are the same point")]
     EyeAtTarget,
     /// The field of view is not strictly between 0 and 180 degrees.
-    #[error("the field of view must be between 0 and 180 degrees, not {0}")]
+    #[error("invalid view: the field of view must be between 0 and 180 degrees, not {0}")]
     FieldOfView(f64),
     /// A coordinate is NaN or infinite.
-    #[error("view coordinates must be finite numbers")]
+    #[error("invalid view: view coordinates must be finite numbers")]
     NotFinite,
     /// View options that do not go together.
-    #[error("{0}")]
+    #[error("invalid view: {0}")]
     Options(&'static str),
+    /// A vertex of an object is not in front of a perspective eye, so the picture would be
+    /// meaningless.
+    #[error(
+        "object '{object}': vertex {vertex} ({point:?}) is not in front of the eye; a \
+         perspective picture needs the whole scene in front of it"
+    )]
+    NotInFront {
+        /// The object's path.
+        object: String,
+        /// The vertex (0-based).
+        vertex: usize,
+        /// Its coordinates.
+        point: Point3,
+    },
 }
 
 /// Where the viewer is: a point (perspective) or a point at infinity (orthographic).

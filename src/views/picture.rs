@@ -1,12 +1,11 @@
 //! The picture map: from world coordinates to the 2-D coordinates of a drawing, exactly
 //! rounded.
 
-use super::{Eye, View};
+use super::{Eye, View, ViewError};
 use crate::geometry::exact::{accurate_sum, expansion, two_product, two_sum};
 use crate::geometry::{Point3, Vector3};
 use crate::mesh::Mesh;
 use crate::scene::{ObjectId, Scene};
-use crate::{Error, Result};
 
 /// The map from world points to picture coordinates (`x` right, `y` up), as three affine
 /// forms `row·(p - origin)`: for an orthographic view `x = right·p`, `y = up·p` (scene units);
@@ -188,18 +187,17 @@ impl Picture {
     /// let e = Picture::of(&inside).mesh_objects_in_front(&scene).unwrap_err();
     /// assert!(e.to_string().starts_with("object 'cube': vertex"));
     /// ```
-    pub fn mesh_objects_in_front<'s>(&self, scene: &'s Scene) -> Result<Vec<(ObjectId, &'s Mesh)>> {
+    pub fn mesh_objects_in_front<'s>(
+        &self,
+        scene: &'s Scene,
+    ) -> Result<Vec<(ObjectId, &'s Mesh)>, ViewError> {
         let meshes = scene.mesh_objects(scene.roots());
         for &(id, mesh) in &meshes {
             if let Some(i) = mesh.vertices().iter().position(|p| !self.in_front(p)) {
-                return Err(Error::Object {
+                return Err(ViewError::NotInFront {
                     object: scene.path(id),
-                    message: format!(
-                        "vertex {} ({:?}) is not in front of the eye; a perspective picture \
-                         needs the whole scene in front of it",
-                        i,
-                        mesh.vertices()[i]
-                    ),
+                    vertex: i,
+                    point: mesh.vertices()[i],
                 });
             }
         }

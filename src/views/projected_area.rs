@@ -7,14 +7,13 @@
 //! ([`classify`]) indexes a table of the silhouette ("hull polygon") of the box seen from that
 //! region ([`HULL`]), and the area is a contour integral over the projected silhouette
 //! vertices. Only four or six corners are projected, against eight for the usual estimate, the
-//! 2-D bounding box of the projected corners (the lab's
-//! [`bounding_rect_area`](crate::lab::projected_area::bounding_rect_area)): "The total number of
+//! 2-D bounding box of the projected corners (the lab's `bounding_rect_area`): "The total number of
 //! operations is 159 for Case 2 and 3 (six vertices), and 115 for case 1 (four vertices). The
 //! number of operations required to compute a simple two-dimensional box area is 163." The
 //! benchmark `benches/projected_area.rs` measures both on the same boxes.
 //!
-//! This is the engine's part, used for Franklin's ideographs ([`super::ideographs`]): the
-//! table and the area of an axis-aligned box. The lab ([`crate::lab::projected_area`]) adds
+//! This is the engine's part, used for Franklin's ideographs (`kepler::hidden::ideographs`): the
+//! table and the area of an axis-aligned box. The lab (`kepler::lab::projected_area`) adds
 //! oriented boxes and triboxes.
 //!
 //! Here the classification is exact (comparisons), and the corners are projected by the drawing's own map,

@@ -2,24 +2,24 @@
 //! CBOX, or left out, before the hidden-line pass. Franklin: "It is possible for a subobject
 //! to have an ideograph, or a simpler representation that replaces it when the object after
 //! scaling is too small." Smallness is the exact projected area of the CBOX
-//! ([`super::projected_area`]), in picture units.
+//! ([`crate::views::projected_area`]), in picture units.
 //!
 //! ```
-//! use kepler::views::{ideographs::{Ideograph, ideographs}, View};
+//! use kepler::{hidden::ideographs::{Ideograph, ideographs}, views::View};
 //! let mut scene = kepler::scene::Scene::new();
 //! scene.add_mesh(None, "speck", kepler::solids::icosahedron(0.01).unwrap()).unwrap();
 //! assert_eq!(ideographs(&scene, &View::standard(), 1.0, Ideograph::Omit).unwrap().culled, 1);
 //! ```
 
-use super::projected_area::projected_area_aabb;
-use super::{Picture, View};
-use crate::Result;
+use super::Result;
 use crate::scene::Scene;
+use crate::views::projected_area::projected_area_aabb;
+use crate::views::{Picture, View};
 
 /// What to do with an object whose picture is too small to draw: Franklin's ideographs.
 ///
 /// ```
-/// assert_ne!(kepler::views::ideographs::Ideograph::Bound, kepler::views::ideographs::Ideograph::Omit);
+/// assert_ne!(kepler::hidden::ideographs::Ideograph::Bound, kepler::hidden::ideographs::Ideograph::Omit);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Ideograph {
@@ -32,7 +32,7 @@ pub enum Ideograph {
 /// The scene to draw once the small objects are replaced by their ideographs, and how many.
 ///
 /// ```
-/// let i = kepler::views::ideographs::Ideographs {
+/// let i = kepler::hidden::ideographs::Ideographs {
 ///     scene: kepler::scene::Scene::new(), culled: 0, triangles_culled: 0, triangles_added: 0,
 /// };
 /// assert_eq!(i.culled, 0);
@@ -57,7 +57,7 @@ pub struct Ideographs {
 /// perspective view has geometry not in front of the eye.
 ///
 /// ```
-/// use kepler::{views::ideographs::{Ideograph, ideographs}, scene::Scene, views::View};
+/// use kepler::{hidden::ideographs::{Ideograph, ideographs}, scene::Scene, views::View};
 /// let mut scene = Scene::new();
 /// scene.add_mesh(None, "big", kepler::solids::cube(10.0).unwrap()).unwrap();
 /// scene.add_mesh(None, "speck", kepler::solids::icosahedron(0.01).unwrap()).unwrap();
