@@ -15,7 +15,7 @@ use std::time::Duration;
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use geo::polygon;
 use kepler::bounds::tribox::TriboxBounds;
-use kepler::lab::tribox_hierarchy::{Hierarchy, Options, SplitRule};
+use kepler::lab::tribox_hierarchy::{Hierarchy, HierarchyOptions, SplitRule};
 use kepler::mesh::Mesh;
 
 const RULES: [(&str, SplitRule); 3] = [
@@ -24,12 +24,12 @@ const RULES: [(&str, SplitRule); 3] = [
     ("features", SplitRule::Features),
 ];
 
-fn options(split: SplitRule) -> Options {
-    Options {
+fn options(split: SplitRule) -> HierarchyOptions {
+    HierarchyOptions {
         gain: -0.5,
         max_depth: 3,
         split,
-        ..Options::default()
+        ..HierarchyOptions::default()
     }
 }
 

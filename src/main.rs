@@ -15,7 +15,7 @@ use kepler::lab::boxtree::spheres::{DEFAULT_GAP, PAPER_FACETS};
 use kepler::lab::boxtree::{Merge, sphere_experiment};
 use kepler::lab::culling::{CullReport, cull};
 use kepler::lab::tribox_hierarchy::{
-    Hierarchy, Level, Options as TriboxOptions, SplitRule, TriboxesError, tribox_mesh,
+    Hierarchy, HierarchyOptions as TriboxOptions, Level, SplitRule, TriboxesError, tribox_mesh,
 };
 use kepler::mesh::Mesh;
 use kepler::output::{

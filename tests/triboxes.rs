@@ -9,7 +9,7 @@ use geo::polygon;
 use kepler::bounds::tribox::{Tribox, TriboxBounds};
 use kepler::geometry::{Point3, Vector3};
 use kepler::lab::tribox_hierarchy::{
-    Hierarchy, Options, SplitRule, hausdorff, tribox_mesh, union_area,
+    Hierarchy, HierarchyOptions, SplitRule, hausdorff, tribox_mesh, union_area,
 };
 use kepler::mesh::{Containment, Mesh, TriangleTree, classify_point};
 use proptest::prelude::*;
@@ -38,13 +38,13 @@ fn torus() -> Mesh {
     kepler::solids::torus(2.0, 0.7, 16, 10).unwrap()
 }
 
-/// Options that split every cell down to `depth` (a negative gain accepts any split).
-fn deep(depth: usize, split: SplitRule) -> Options {
-    Options {
+/// HierarchyOptions that split every cell down to `depth` (a negative gain accepts any split).
+fn deep(depth: usize, split: SplitRule) -> HierarchyOptions {
+    HierarchyOptions {
         gain: -10.0,
         max_depth: depth,
         split,
-        ..Options::default()
+        ..HierarchyOptions::default()
     }
 }
 
@@ -130,7 +130,7 @@ fn centre(b: &TriboxBounds) -> Point3 {
 
 /// The leaves' cells partition the object, and every node's cell has volume, at most its
 /// tribox's.
-fn check_partition(mesh: &Mesh, options: &Options) {
+fn check_partition(mesh: &Mesh, options: &HierarchyOptions) {
     let h = Hierarchy::build(mesh, options).unwrap();
     let o = centre(&h.nodes()[0].region);
     let leaves = h.leaves();
@@ -164,7 +164,7 @@ fn cells_partition_the_object() {
         ] {
             check_partition(&mesh, &deep(3, split));
         }
-        check_partition(&mesh, &Options::default());
+        check_partition(&mesh, &HierarchyOptions::default());
     }
 }
 
@@ -193,7 +193,7 @@ fn within(inner: &TriboxBounds, outer: &TriboxBounds) -> bool {
 
 /// Children's regions are the parent's cut by its plane; triboxes lie in their regions and
 /// in their parents' triboxes; splits obey the area rule.
-fn check_tree(mesh: &Mesh, options: &Options) {
+fn check_tree(mesh: &Mesh, options: &HierarchyOptions) {
     let h = Hierarchy::build(mesh, options).unwrap();
     let nodes = h.nodes();
     assert_eq!(nodes[0].region, nodes[0].tribox);
@@ -236,13 +236,13 @@ fn the_tree_nests() {
         check_tree(&mesh, &deep(4, SplitRule::Bisectors));
         check_tree(&mesh, &deep(3, SplitRule::Features));
         check_tree(&mesh, &deep(4, SplitRule::Thickest));
-        check_tree(&mesh, &Options::default());
+        check_tree(&mesh, &HierarchyOptions::default());
     }
 }
 
 #[test]
 fn the_paper_rule_splits_the_l_wall_once_and_keeps_a_cube_whole() {
-    let h = Hierarchy::build(&l_wall(), &Options::default()).unwrap();
+    let h = Hierarchy::build(&l_wall(), &HierarchyOptions::default()).unwrap();
     assert_eq!(h.nodes().len(), 3);
     let split = h.nodes()[0].split.unwrap();
     // The L is cut across x at 3: the bisector of its slab [0, 6].
@@ -252,7 +252,11 @@ fn the_paper_rule_splits_the_l_wall_once_and_keeps_a_cube_whole() {
     assert_eq!(h.nodes()[a].tribox.max()[3], 5.0);
     assert_eq!(h.nodes()[b].tribox.max()[1], 1.0);
     assert_eq!(h.nodes()[b].volume, 9.0);
-    let cube = Hierarchy::build(&kepler::solids::cube(1.0).unwrap(), &Options::default()).unwrap();
+    let cube = Hierarchy::build(
+        &kepler::solids::cube(1.0).unwrap(),
+        &HierarchyOptions::default(),
+    )
+    .unwrap();
     assert_eq!(cube.nodes().len(), 1);
 }
 
@@ -260,15 +264,15 @@ fn the_paper_rule_splits_the_l_wall_once_and_keeps_a_cube_whole() {
 fn bad_options_and_open_meshes_are_errors() {
     let wall = l_wall();
     for gain in [1.0, f64::NAN, f64::NEG_INFINITY] {
-        let o = Options {
+        let o = HierarchyOptions {
             gain,
-            ..Options::default()
+            ..HierarchyOptions::default()
         };
         assert!(Hierarchy::build(&wall, &o).is_err(), "gain {gain}");
     }
-    let o = Options {
+    let o = HierarchyOptions {
         hausdorff_tolerance: 0.0,
-        ..Options::default()
+        ..HierarchyOptions::default()
     };
     assert!(Hierarchy::build(&wall, &o).is_err());
     let open = Mesh::from_polygons(
@@ -281,7 +285,7 @@ fn bad_options_and_open_meshes_are_errors() {
         vec![vec![0, 2, 1], vec![0, 1, 3], vec![1, 2, 3]],
     )
     .unwrap();
-    assert!(Hierarchy::build(&open, &Options::default()).is_err());
+    assert!(Hierarchy::build(&open, &HierarchyOptions::default()).is_err());
 }
 
 // ---------------------------------------------------------------------------------------
@@ -320,7 +324,7 @@ fn level_figures_agree_with_direct_computations() {
 fn union_area_removes_shared_faces() {
     // The L wall's halves meet on x = 3: the left face there is 2 × 3, the right one 1 × 3,
     // so the union loses twice the 3 of their overlap.
-    let h = Hierarchy::build(&l_wall(), &Options::default()).unwrap();
+    let h = Hierarchy::build(&l_wall(), &HierarchyOptions::default()).unwrap();
     let level = h.levels(2)[1];
     let [a, b] = h.nodes()[0].children.unwrap();
     let sum = h.nodes()[a].area + h.nodes()[b].area;

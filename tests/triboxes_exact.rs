@@ -37,7 +37,7 @@
 use geo::{Coord, LineString, Polygon, polygon};
 use kepler::bounds::tribox::{Tribox, TriboxBounds};
 use kepler::geometry::Point3;
-use kepler::lab::tribox_hierarchy::{Hierarchy, Options, SplitRule};
+use kepler::lab::tribox_hierarchy::{Hierarchy, HierarchyOptions, SplitRule};
 use kepler::mesh::Mesh;
 use nalgebra::{Rotation3, Unit, Vector3};
 use num_bigint::{BigInt, Sign};
@@ -722,12 +722,12 @@ fn check_hierarchy(
 
 /// The forced-split options (negative gain, depth 3) with every split rule, then the
 /// defaults.
-fn configurations() -> Vec<(&'static str, Options, bool)> {
-    let forced = |split| Options {
+fn configurations() -> Vec<(&'static str, HierarchyOptions, bool)> {
+    let forced = |split| HierarchyOptions {
         gain: -1.0,
         max_depth: 3,
         split,
-        ..Options::default()
+        ..HierarchyOptions::default()
     };
     vec![
         ("forced/thickest", forced(SplitRule::Thickest), true),
@@ -735,13 +735,13 @@ fn configurations() -> Vec<(&'static str, Options, bool)> {
         ("forced/features", forced(SplitRule::Features), true),
         (
             "deep/features",
-            Options {
+            HierarchyOptions {
                 max_depth: 5,
                 ..forced(SplitRule::Features)
             },
             true,
         ),
-        ("default", Options::default(), false),
+        ("default", HierarchyOptions::default(), false),
     ]
 }
 
@@ -881,10 +881,10 @@ fn reference_rejects_wrong_triboxes() {
         kepler::solids::torus(2.0, 0.7, 12, 8).unwrap(),
     ] {
         let solid = Solid::new(&mesh);
-        let options = Options {
+        let options = HierarchyOptions {
             gain: -1.0,
             max_depth: 2,
-            ..Options::default()
+            ..HierarchyOptions::default()
         };
         let h = Hierarchy::build(&mesh, &options).unwrap();
         let tol = tolerance(&h);
@@ -935,12 +935,12 @@ fn reference_rejects_wrong_triboxes() {
 // the cells' vertices; the bisector rules passed the same hunts).
 
 /// The forced-split options of the regressions below.
-fn features(gain: f64, max_depth: usize) -> Options {
-    Options {
+fn features(gain: f64, max_depth: usize) -> HierarchyOptions {
+    HierarchyOptions {
         gain,
         max_depth,
         split: SplitRule::Features,
-        ..Options::default()
+        ..HierarchyOptions::default()
     }
 }
 
@@ -1095,12 +1095,12 @@ proptest! {
         let frame = Frame::new();
         let solid = Solid::new(&mesh);
         let split = [SplitRule::Thickest, SplitRule::Bisectors, SplitRule::Features][rule];
-        let options = Options { gain: -1.0, max_depth: 3, split, ..Options::default() };
+        let options = HierarchyOptions { gain: -1.0, max_depth: 3, split, ..HierarchyOptions::default() };
         let h = Hierarchy::build(&mesh, &options).expect("hierarchy");
         let what = format!("prism of {outline:?} height {height} [{split:?}]");
         let n = check_hierarchy(&frame, &solid, &h, &what).map_err(TestCaseError::fail)?;
         prop_assert!(n >= 7, "{what}: only {n} nodes");
-        let h = Hierarchy::build(&mesh, &Options::default()).expect("hierarchy");
+        let h = Hierarchy::build(&mesh, &HierarchyOptions::default()).expect("hierarchy");
         check_hierarchy(&frame, &solid, &h, &format!("{what} [default]"))
             .map_err(TestCaseError::fail)?;
     }

@@ -990,20 +990,20 @@ fn positive_cancelled(terms: [f64; 10]) -> bool {
 
 /// A tight bound as a linear form in the 18 offsets, in half-units: `Σ_k coef_k β_k / 2`.
 #[derive(Clone, Copy)]
-struct Form<'a> {
+struct OffsetForm<'a> {
     coef: [i32; 18],
     beta: &'a [f64; 18],
 }
 
-impl Form<'_> {
+impl OffsetForm<'_> {
     fn combine(forms: &[Self]) -> [i32; 18] {
         std::array::from_fn(|k| forms.iter().map(|f| f.coef[k]).sum())
     }
 }
 
-impl LocalBound for Form<'_> {
+impl LocalBound for OffsetForm<'_> {
     fn neg(self) -> Self {
-        Form {
+        OffsetForm {
             coef: self.coef.map(|c| -c),
             beta: self.beta,
         }
@@ -1012,13 +1012,13 @@ impl LocalBound for Form<'_> {
         eval_form(&self.coef, self.beta) * 0.5
     }
     fn sum2(a: Self, b: Self) -> f64 {
-        eval_form(&Form::combine(&[a, b]), a.beta) * 0.5
+        eval_form(&OffsetForm::combine(&[a, b]), a.beta) * 0.5
     }
     fn sum3(a: Self, b: Self, c: Self) -> f64 {
-        eval_form(&Form::combine(&[a, b, c]), a.beta) * 0.5
+        eval_form(&OffsetForm::combine(&[a, b, c]), a.beta) * 0.5
     }
     fn positive5(a: Self, b: Self, c: Self, d: Self, e: Self) -> bool {
-        sign_of_form(&Form::combine(&[a, b, c, d, e]), a.beta) == Ordering::Greater
+        sign_of_form(&OffsetForm::combine(&[a, b, c, d, e]), a.beta) == Ordering::Greater
     }
 }
 
@@ -1455,7 +1455,7 @@ impl Tribox {
         } else {
             Tribox::from_corners(&self.bounds, |c| {
                 let planes = CORNER_PLANES[c];
-                corner(std::array::from_fn(|k| Form {
+                corner(std::array::from_fn(|k| OffsetForm {
                     coef: tight[planes[k] as usize],
                     beta: &beta,
                 }))

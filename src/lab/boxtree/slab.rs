@@ -52,7 +52,7 @@ const EMPTY: [f64; 2] = [f64::INFINITY, f64::NEG_INFINITY];
 #[derive(Debug, Clone, Copy)]
 pub struct RayProbe {
     ray: Ray,
-    fixed: [Projection; 9],
+    fixed: [SlabProjection; 9],
 }
 
 impl RayProbe {
@@ -91,7 +91,7 @@ impl RayProbe {
             origin: ray.origin,
             direction,
         };
-        let fixed = std::array::from_fn(|d| Projection::fixed(d, &ray));
+        let fixed = std::array::from_fn(|d| SlabProjection::fixed(d, &ray));
         Some(RayProbe { ray, fixed })
     }
 
@@ -119,7 +119,7 @@ impl RayProbe {
     /// let [t0, t1] = p.fixed(3).interval(2.0, 3.0); // x + y from 2 to 3
     /// assert!(t0 <= 1.0 && t0 > 0.999 && t1 >= 2.0 && t1 < 2.001);
     /// ```
-    pub fn fixed(&self, d: usize) -> &Projection {
+    pub fn fixed(&self, d: usize) -> &SlabProjection {
         &self.fixed[d % 9]
     }
 
@@ -134,8 +134,8 @@ impl RayProbe {
     /// let [t0, t1] = p.along(&Vector3::y()).interval(1.0, 2.0);
     /// assert!(t0 > t1);
     /// ```
-    pub fn along(&self, a: &Vector3) -> Projection {
-        Projection::along(a, &self.ray)
+    pub fn along(&self, a: &Vector3) -> SlabProjection {
+        SlabProjection::along(a, &self.ray)
     }
 }
 
@@ -152,7 +152,7 @@ impl RayProbe {
 /// assert!(t0 <= 1.0 && t1 >= 2.0);
 /// ```
 #[derive(Debug, Clone, Copy)]
-pub struct Projection {
+pub struct SlabProjection {
     s: f64,
     es: f64,
     slope: Slope,
@@ -171,10 +171,10 @@ enum Slope {
     Unknown,
 }
 
-impl Projection {
+impl SlabProjection {
     /// From `s`, `w` and bounds on their errors; `w_zero` says whether `w` is exactly zero
     /// (consulted only when `|w| ≤ ew`).
-    fn new(s: f64, es: f64, w: f64, ew: f64, w_zero: impl FnOnce() -> bool) -> Projection {
+    fn new(s: f64, es: f64, w: f64, ew: f64, w_zero: impl FnOnce() -> bool) -> SlabProjection {
         let slope = if ![s, es, w, ew].iter().all(|v| v.is_finite()) {
             Slope::Unknown
         } else if w.abs() <= ew {
@@ -194,15 +194,15 @@ impl Projection {
                 Slope::Backward(r)
             }
         };
-        Projection { s, es, slope }
+        SlabProjection { s, es, slope }
     }
 
     /// Along a fixed tribox direction: exact for the axes; for the diagonals the sums' exact
     /// errors (TwoSum) are the bounds, and a rounded `w` is zero only when the exact one is.
-    fn fixed(d: usize, ray: &Ray) -> Projection {
+    fn fixed(d: usize, ray: &Ray) -> SlabProjection {
         let (o, u) = (&ray.origin, &ray.direction);
         if d < 3 {
-            return Projection::new(o[d], 0.0, u[d], 0.0, || u[d] == 0.0);
+            return SlabProjection::new(o[d], 0.0, u[d], 0.0, || u[d] == 0.0);
         }
         let dir = crate::bounds::tribox::TriboxBounds::DIRECTIONS[d];
         let (i, j) = match d {
@@ -216,13 +216,13 @@ impl Projection {
         // The direction is e_i + dir[j] e_j (dir[i] = 1 for every diagonal).
         let (s, es) = two_sum(o[i], dir[j] * o[j]);
         let (w, ew) = two_sum(u[i], dir[j] * u[j]);
-        Projection::new(s, es.abs(), w, ew.abs(), || w == 0.0 && ew == 0.0)
+        SlabProjection::new(s, es.abs(), w, ew.abs(), || w == 0.0 && ew == 0.0)
     }
 
     /// Along any direction: rounded dot products with the bound `γ₃ Σ|aᵢ vᵢ|` (plus the
     /// smallest normal double for underflow); `w` is tested exactly only when that bound cannot
     /// tell it from zero.
-    fn along(a: &Vector3, ray: &Ray) -> Projection {
+    fn along(a: &Vector3, ray: &Ray) -> SlabProjection {
         let dot = |v: &Vector3| {
             let value = a.dot(v);
             let magnitude = a.abs().dot(&v.abs());
@@ -230,7 +230,7 @@ impl Projection {
         };
         let (s, es) = dot(&ray.origin.coords);
         let (w, ew) = dot(&ray.direction);
-        Projection::new(s, es, w, ew, || {
+        SlabProjection::new(s, es, w, ew, || {
             let mut terms = Vec::with_capacity(6);
             for i in 0..3 {
                 product_terms(&[a[i]], &[ray.direction[i]], &mut terms);
@@ -257,7 +257,7 @@ impl Projection {
         if matches!(lo.partial_cmp(&hi), None | Some(Ordering::Greater)) {
             return EMPTY;
         }
-        let Projection { s, es, slope } = *self;
+        let SlabProjection { s, es, slope } = *self;
         // With w > 0, t runs from (lo - s)/w to (hi - s)/w; with w < 0, from (s - hi)/|w| to
         // (s - lo)/|w|. Each numerator is widened over every s within es and over the rounding
         // of its subtraction: a rounded difference x is within u|x| of the exact one, and the

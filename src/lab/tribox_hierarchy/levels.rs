@@ -10,8 +10,8 @@ use serde::Serialize;
 /// One level of detail, compared with the object (the paper's Table 1 and more).
 ///
 /// ```
-/// use kepler::lab::tribox_hierarchy::{Hierarchy, Options};
-/// let h = Hierarchy::build(&kepler::solids::cube(1.0).unwrap(), &Options::default()).unwrap();
+/// use kepler::lab::tribox_hierarchy::{Hierarchy, HierarchyOptions};
+/// let h = Hierarchy::build(&kepler::solids::cube(1.0).unwrap(), &HierarchyOptions::default()).unwrap();
 /// let l = &h.levels(1)[0];
 /// assert_eq!((l.depth, l.triboxes, l.faces, l.compression), (0, 1, 6, 1.0));
 /// assert_eq!((l.volume_excess, l.area_excess), (0.0, 0.0));

@@ -8,9 +8,9 @@
 //! thickest slab ([`SplitRule::Thickest`]); by default all nine bisectors are candidates
 //! ([`SplitRule::Bisectors`]), and [`SplitRule::Features`] adds planes through the object's
 //! vertices in the cell. A candidate is admissible when the two triboxes' total area is at
-//! most `1 − gain` times the cell's ([`Options::gain`], the paper's stopping rule); of those,
+//! most `1 − gain` times the cell's ([`HierarchyOptions::gain`], the paper's stopping rule); of those,
 //! the one with the least total volume is taken. A cell stays a leaf when no candidate is
-//! admissible, or at [`Options::max_depth`].
+//! admissible, or at [`HierarchyOptions::max_depth`].
 //!
 //! The cells' vertices are computed exactly as the paper lists them, incrementally from the
 //! parent cell (see the `cell` module): every tribox contains its exact cell. A level of
@@ -19,14 +19,14 @@
 //! its size, compression, volume and area excess and a bounded Hausdorff distance.
 //!
 //! ```
-//! use kepler::lab::tribox_hierarchy::{Hierarchy, Options};
+//! use kepler::lab::tribox_hierarchy::{Hierarchy, HierarchyOptions};
 //! use kepler::geometry::Point3;
 //! // An L-shaped wall: one tribox covers the notch; two fit the L much better.
 //! use geo::polygon;
 //! let outline = polygon![(x: 0.0, y: 0.0), (x: 6.0, y: 0.0), (x: 6.0, y: 1.0),
 //!     (x: 1.0, y: 1.0), (x: 1.0, y: 4.0), (x: 0.0, y: 4.0)];
 //! let wall = kepler::solids::prism(&outline, 3.0).unwrap();
-//! let h = Hierarchy::build(&wall, &Options::default()).unwrap();
+//! let h = Hierarchy::build(&wall, &HierarchyOptions::default()).unwrap();
 //! let levels = h.levels(2);
 //! assert_eq!(levels[0].triboxes, 1);
 //! assert!(levels[1].triboxes >= 2 && levels[1].volume_excess < levels[0].volume_excess);
@@ -49,9 +49,9 @@ use serde::Serialize;
 /// Why a hierarchy cannot be built.
 ///
 /// ```
-/// use kepler::lab::tribox_hierarchy::{Hierarchy, Options, TriboxesError};
+/// use kepler::lab::tribox_hierarchy::{Hierarchy, HierarchyOptions, TriboxesError};
 /// let cube = kepler::solids::cube(1.0).unwrap();
-/// let bad = Options { gain: 1.0, ..Options::default() };
+/// let bad = HierarchyOptions { gain: 1.0, ..HierarchyOptions::default() };
 /// assert!(matches!(Hierarchy::build(&cube, &bad), Err(TriboxesError::Option(_))));
 /// ```
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -68,18 +68,18 @@ pub enum TriboxesError {
 }
 
 /// Which planes are candidates to split a cell. Of those that lower the total tribox area
-/// enough ([`Options::gain`], the paper's rule), the one whose two triboxes have the least
+/// enough ([`HierarchyOptions::gain`], the paper's rule), the one whose two triboxes have the least
 /// total volume is taken: the paper's greedy choice by area alone favours shaving off thin
 /// corners, which lowers the area sum a little and the volume not at all.
 ///
 /// ```
-/// use kepler::lab::tribox_hierarchy::{Hierarchy, Options, SplitRule};
+/// use kepler::lab::tribox_hierarchy::{Hierarchy, HierarchyOptions, SplitRule};
 /// use geo::polygon;
 /// let l = polygon![(x: 0.0, y: 0.0), (x: 6.0, y: 0.0), (x: 6.0, y: 1.0),
 ///     (x: 1.0, y: 1.0), (x: 1.0, y: 4.0), (x: 0.0, y: 4.0)];
 /// let wall = kepler::solids::prism(&l, 3.0).unwrap();
 /// // A plane through the notch's corner cuts the L into its two arms exactly.
-/// let o = Options { split: SplitRule::Features, ..Options::default() };
+/// let o = HierarchyOptions { split: SplitRule::Features, ..HierarchyOptions::default() };
 /// let level = Hierarchy::build(&wall, &o).unwrap().levels(2)[1];
 /// assert_eq!((level.triboxes, level.volume), (2, 27.0));
 /// ```
@@ -107,11 +107,11 @@ pub const FEATURE_PLANES: usize = 4;
 /// The options of [`Hierarchy::build`].
 ///
 /// ```
-/// let o = kepler::lab::tribox_hierarchy::Options::default();
+/// let o = kepler::lab::tribox_hierarchy::HierarchyOptions::default();
 /// assert_eq!((o.gain, o.max_depth), (0.05, 8));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Options {
+pub struct HierarchyOptions {
     /// A cell is split only when its children's triboxes have a total area at most
     /// `(1 − gain)` times its own tribox's area (the paper's rule, with `gain` below 1). A
     /// negative gain lets splits raise the area by up to `−gain` times, to build deeper levels
@@ -126,9 +126,9 @@ pub struct Options {
     pub hausdorff_tolerance: f64,
 }
 
-impl Default for Options {
-    fn default() -> Options {
-        Options {
+impl Default for HierarchyOptions {
+    fn default() -> HierarchyOptions {
+        HierarchyOptions {
             gain: 0.05,
             max_depth: 8,
             split: SplitRule::Bisectors,
@@ -137,7 +137,7 @@ impl Default for Options {
     }
 }
 
-/// The tolerance of the simplification of [`Node::faces`] and of the drawn triboxes,
+/// The tolerance of the simplification of [`HierarchyNode::faces`] and of the drawn triboxes,
 /// relative to the root tribox's diagonal: rounding slivers go, real faces stay.
 ///
 /// ```
@@ -149,11 +149,11 @@ pub const SIMPLIFY: f64 = 1e-9;
 /// [`TriboxBounds::DIRECTIONS`].
 ///
 /// ```
-/// let p = kepler::lab::tribox_hierarchy::Plane { direction: 3, offset: 1.5 }; // x + y = 1.5
+/// let p = kepler::lab::tribox_hierarchy::SplitPlane { direction: 3, offset: 1.5 }; // x + y = 1.5
 /// assert_eq!(kepler::bounds::tribox::TriboxBounds::DIRECTIONS[p.direction], [1.0, 1.0, 0.0]);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Plane {
+pub struct SplitPlane {
     /// The direction's index.
     pub direction: usize,
     /// The plane's value along the direction.
@@ -163,13 +163,13 @@ pub struct Plane {
 /// A node of the hierarchy: a cell `S ∩ region` and its tribox.
 ///
 /// ```
-/// use kepler::lab::tribox_hierarchy::{Hierarchy, Options};
-/// let h = Hierarchy::build(&kepler::solids::cube(2.0).unwrap(), &Options::default()).unwrap();
+/// use kepler::lab::tribox_hierarchy::{Hierarchy, HierarchyOptions};
+/// let h = Hierarchy::build(&kepler::solids::cube(2.0).unwrap(), &HierarchyOptions::default()).unwrap();
 /// let root = &h.nodes()[0];
 /// assert_eq!((root.depth, root.children, root.faces, root.volume), (0, None, 6, 8.0));
 /// ```
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Node {
+pub struct HierarchyNode {
     /// The tribox of the cell (contains the exact cell, and lies in the region and in the
     /// parent's tribox).
     pub tribox: TriboxBounds,
@@ -182,7 +182,7 @@ pub struct Node {
     /// The children's indices, below and above the split plane.
     pub children: Option<[usize; 2]>,
     /// The plane splitting the cell, if it is split.
-    pub split: Option<Plane>,
+    pub split: Option<SplitPlane>,
     /// The number of vertices kept for the cell.
     pub cell_vertices: usize,
     /// The number of the object's triangles that may meet the region.
@@ -200,16 +200,16 @@ pub struct Node {
 /// The binary tree of hierarchical triboxes of one closed object.
 ///
 /// ```
-/// use kepler::lab::tribox_hierarchy::{Hierarchy, Options};
+/// use kepler::lab::tribox_hierarchy::{Hierarchy, HierarchyOptions};
 /// // A torus: every bisecting plane cuts the ring, and the two halves' triboxes have more
 /// // area than the whole one, so the paper's rule keeps a single tribox.
 /// let torus = kepler::solids::torus(2.0, 0.5, 24, 12).unwrap();
-/// let h = Hierarchy::build(&torus, &Options::default()).unwrap();
+/// let h = Hierarchy::build(&torus, &HierarchyOptions::default()).unwrap();
 /// assert_eq!((h.depth(), h.cut(0)), (0, vec![0]));
 /// ```
 #[derive(Debug)]
 pub struct Hierarchy {
-    nodes: Vec<Node>,
+    nodes: Vec<HierarchyNode>,
     tree: TriangleTree,
     object_faces: usize,
     object_volume: f64,
@@ -223,14 +223,14 @@ impl Hierarchy {
     /// of a level in parallel).
     ///
     /// ```
-    /// use kepler::lab::tribox_hierarchy::{Hierarchy, Options, TriboxesError};
+    /// use kepler::lab::tribox_hierarchy::{Hierarchy, HierarchyOptions, TriboxesError};
     /// let open = kepler::mesh::Mesh::from_polygons(
     ///     vec![[0.0, 0.0, 0.0].into(), [1.0, 0.0, 0.0].into(), [0.0, 1.0, 0.0].into()],
     ///     vec![vec![0, 1, 2]],
     /// ).unwrap();
-    /// assert_eq!(Hierarchy::build(&open, &Options::default()).unwrap_err(), TriboxesError::NotSolid);
+    /// assert_eq!(Hierarchy::build(&open, &HierarchyOptions::default()).unwrap_err(), TriboxesError::NotSolid);
     /// ```
-    pub fn build(mesh: &Mesh, options: &Options) -> Result<Hierarchy, TriboxesError> {
+    pub fn build(mesh: &Mesh, options: &HierarchyOptions) -> Result<Hierarchy, TriboxesError> {
         if !(options.gain < 1.0 && options.gain.is_finite()) {
             return Err(TriboxesError::Option(format!(
                 "the gain must be a number below 1, not {}",
@@ -261,7 +261,7 @@ impl Hierarchy {
         let mut nodes = vec![node(&root, 0, None)];
         let mut level = vec![(0usize, root)];
         while !level.is_empty() {
-            let splits: Vec<Option<(Plane, [Cell; 2])>> = level
+            let splits: Vec<Option<(SplitPlane, [Cell; 2])>> = level
                 .par_iter()
                 .map(|(index, cell)| {
                     if nodes[*index].depth >= options.max_depth {
@@ -300,19 +300,19 @@ impl Hierarchy {
     /// The nodes, the root first; children follow their parents.
     ///
     /// ```
-    /// use kepler::lab::tribox_hierarchy::{Hierarchy, Options};
-    /// let h = Hierarchy::build(&kepler::solids::cube(1.0).unwrap(), &Options::default()).unwrap();
+    /// use kepler::lab::tribox_hierarchy::{Hierarchy, HierarchyOptions};
+    /// let h = Hierarchy::build(&kepler::solids::cube(1.0).unwrap(), &HierarchyOptions::default()).unwrap();
     /// assert_eq!(h.nodes().len(), 1); // no split makes a cube's tribox smaller
     /// ```
-    pub fn nodes(&self) -> &[Node] {
+    pub fn nodes(&self) -> &[HierarchyNode] {
         &self.nodes
     }
 
     /// The depth of the deepest node.
     ///
     /// ```
-    /// use kepler::lab::tribox_hierarchy::{Hierarchy, Options};
-    /// let h = Hierarchy::build(&kepler::solids::cube(1.0).unwrap(), &Options::default()).unwrap();
+    /// use kepler::lab::tribox_hierarchy::{Hierarchy, HierarchyOptions};
+    /// let h = Hierarchy::build(&kepler::solids::cube(1.0).unwrap(), &HierarchyOptions::default()).unwrap();
     /// assert_eq!(h.depth(), 0);
     /// ```
     pub fn depth(&self) -> usize {
@@ -324,11 +324,11 @@ impl Hierarchy {
     ///
     /// ```
     /// use geo::polygon;
-    /// use kepler::lab::tribox_hierarchy::{Hierarchy, Options};
+    /// use kepler::lab::tribox_hierarchy::{Hierarchy, HierarchyOptions};
     /// // A U-shaped prism: no single cut lowers the total area, so allow it to rise by 20%.
     /// let u = polygon![(x: 0.0, y: 0.0), (x: 5.0, y: 0.0), (x: 5.0, y: 5.0), (x: 4.0, y: 5.0),
     ///     (x: 4.0, y: 1.0), (x: 1.0, y: 1.0), (x: 1.0, y: 5.0), (x: 0.0, y: 5.0)];
-    /// let o = Options { gain: -0.2, max_depth: 3, ..Options::default() };
+    /// let o = HierarchyOptions { gain: -0.2, max_depth: 3, ..HierarchyOptions::default() };
     /// let h = Hierarchy::build(&kepler::solids::prism(&u, 1.0).unwrap(), &o).unwrap();
     /// assert_eq!(h.cut(1).len(), 2);
     /// assert_eq!(h.cut(h.depth() + 5), h.cut(h.depth()));
@@ -346,8 +346,8 @@ impl Hierarchy {
     /// The leaves.
     ///
     /// ```
-    /// use kepler::lab::tribox_hierarchy::{Hierarchy, Options};
-    /// let h = Hierarchy::build(&kepler::solids::cube(1.0).unwrap(), &Options::default()).unwrap();
+    /// use kepler::lab::tribox_hierarchy::{Hierarchy, HierarchyOptions};
+    /// let h = Hierarchy::build(&kepler::solids::cube(1.0).unwrap(), &HierarchyOptions::default()).unwrap();
     /// assert_eq!(h.leaves(), vec![0]);
     /// ```
     pub fn leaves(&self) -> Vec<usize> {
@@ -356,12 +356,12 @@ impl Hierarchy {
             .collect()
     }
 
-    /// The simplification tolerance of [`Node::faces`] ([`SIMPLIFY`] times the root
+    /// The simplification tolerance of [`HierarchyNode::faces`] ([`SIMPLIFY`] times the root
     /// tribox's diagonal), for [`tribox_mesh`].
     ///
     /// ```
-    /// use kepler::lab::tribox_hierarchy::{Hierarchy, Options};
-    /// let h = Hierarchy::build(&kepler::solids::cube(1.0).unwrap(), &Options::default()).unwrap();
+    /// use kepler::lab::tribox_hierarchy::{Hierarchy, HierarchyOptions};
+    /// let h = Hierarchy::build(&kepler::solids::cube(1.0).unwrap(), &HierarchyOptions::default()).unwrap();
     /// assert_eq!(h.simplify_tolerance(), 1e-9 * 3f64.sqrt());
     /// ```
     pub fn simplify_tolerance(&self) -> f64 {
@@ -372,8 +372,8 @@ impl Hierarchy {
     /// tree), computed in parallel.
     ///
     /// ```
-    /// use kepler::lab::tribox_hierarchy::{Hierarchy, Options};
-    /// let h = Hierarchy::build(&kepler::solids::cube(1.0).unwrap(), &Options::default()).unwrap();
+    /// use kepler::lab::tribox_hierarchy::{Hierarchy, HierarchyOptions};
+    /// let h = Hierarchy::build(&kepler::solids::cube(1.0).unwrap(), &HierarchyOptions::default()).unwrap();
     /// let l = &h.levels(3)[0];
     /// assert_eq!((l.triboxes, l.faces, l.volume_excess, l.hausdorff_lower), (1, 6, 0.0, 0.0));
     /// assert!(l.hausdorff < 0.01); // the tribox hugs the cube: the costly case, bounded
@@ -446,9 +446,9 @@ fn snapped_boundary(tribox: &TriboxBounds, tol: f64) -> (Vec<Point3>, Vec<Vec<u3
 }
 
 /// A node for a cell.
-fn node(cell: &Cell, depth: usize, parent: Option<usize>, simplify: f64) -> Node {
+fn node(cell: &Cell, depth: usize, parent: Option<usize>, simplify: f64) -> HierarchyNode {
     let boundary = Tribox::new(&cell.tribox).cleaned();
-    Node {
+    HierarchyNode {
         tribox: cell.tribox,
         region: cell.region,
         depth,
@@ -470,9 +470,9 @@ fn best_split(
     cell: &Cell,
     mesh: &Mesh,
     tree: &TriangleTree,
-    options: &Options,
+    options: &HierarchyOptions,
     area: f64,
-) -> Option<(Plane, [Cell; 2])> {
+) -> Option<(SplitPlane, [Cell; 2])> {
     let mut candidates: Vec<(usize, f64)> = match options.split {
         SplitRule::Thickest => (0..9)
             .filter(|&d| cell.bisector(d).is_some())
@@ -503,7 +503,7 @@ fn best_split(
             (area <= limit).then_some((
                 volume,
                 area,
-                Plane {
+                SplitPlane {
                     direction: d,
                     offset: h,
                 },
