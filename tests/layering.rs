@@ -134,7 +134,7 @@ fn violations(src: &Path) -> Vec<String> {
         for (n, line) in text.lines().enumerate() {
             let line_code = code(line);
             for name in crate_references(line_code, &mut group) {
-                let allowed = rank.get(name.as_str()).is_none_or(|&r| r < own || r == own);
+                let allowed = rank.get(name.as_str()).is_none_or(|&r| r <= own);
                 let is_module = rank.contains_key(name.as_str());
                 if is_module && !allowed {
                     out.push(format!("{}:{}: {first} -> {name}", path.display(), n + 1));
