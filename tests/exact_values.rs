@@ -10,13 +10,33 @@
 use kepler::geometry::exact::{
     estimate, expansion, expansion_product, expansion_sum, negated, scale_expansion,
 };
-use kepler::geometry::predicates::{
-    orient3d, orient3d_at_infinity, orient3d_at_infinity_estimate, orient3d_at_infinity_value,
-    orient3d_estimate, orient3d_value,
-};
+use kepler::geometry::kernel::Polynomial;
+use kepler::geometry::predicates::{Orient3d, Orient3dAtInfinity, orient3d, orient3d_at_infinity};
 use kepler::geometry::{Point3, Vector3};
 use num_bigint::BigInt;
 use num_traits::{Signed, Zero};
+
+/// The kernel's exact value of `orient3d(a, b, c, d)`, as an expansion.
+fn orient3d_value(a: &Point3, b: &Point3, c: &Point3, d: &Point3) -> Vec<f64> {
+    Orient3d([*a, *b, *c, *d]).expansion()
+}
+
+/// The kernel's estimate of `orient3d(a, b, c, d)`: value and error bound.
+fn orient3d_estimate(a: &Point3, b: &Point3, c: &Point3, d: &Point3) -> (f64, f64) {
+    let e = Orient3d([*a, *b, *c, *d]).estimate();
+    (e.value, e.bound)
+}
+
+/// The kernel's exact value of `orient3d_at_infinity(a, b, c, u)`, as an expansion.
+fn orient3d_at_infinity_value(a: &Point3, b: &Point3, c: &Point3, u: &Vector3) -> Vec<f64> {
+    Orient3dAtInfinity([*a, *b, *c], *u).expansion()
+}
+
+/// The kernel's estimate of `orient3d_at_infinity(a, b, c, u)`: value and error bound.
+fn orient3d_at_infinity_estimate(a: &Point3, b: &Point3, c: &Point3, u: &Vector3) -> (f64, f64) {
+    let e = Orient3dAtInfinity([*a, *b, *c], *u).estimate();
+    (e.value, e.bound)
+}
 
 mod common;
 use common::{Q, Rng, q, qcross, qdot, qsign, qsub, qv};

@@ -49,6 +49,7 @@ use rayon::prelude::*;
 use serde::{Serialize, Serializer};
 
 use crate::geometry::exact::{accurate_sum, filtered_sign, sum_sign, two_sum};
+use crate::geometry::kernel::sum_error_bound;
 use crate::geometry::{Point3, Vector3};
 
 /// The 9 directions, in the paper's order, as integer vectors.
@@ -874,16 +875,16 @@ impl LocalBound for f64 {
     fn positive5(a: Self, b: Self, c: Self, d: Self, e: Self) -> bool {
         sum_sign(&[a, b, c, d, e]) == Ordering::Greater
     }
-    /// The three tests share one static error bound: each rounded sum
-    /// ((±α_AB ± α_AC) ± α_BC) − 2α_X has at most three roundings, each below u·M with
-    /// M = |α_AB| + |α_AC| + |α_BC| + 2 max(|α_A|, |α_B|, |α_C|) (and M itself is computed with
-    /// a relative error below 5u), so 4u·M, padded to 8ε·M = 16u·M plus an underflow guard,
-    /// bounds the error. Only a sum within the bound (or NaN on overflow) goes to the exact test.
+    /// The three tests share one static error bound: each is a sum of five terms
+    /// (±α_AB, ±α_AC, ±α_BC, −2α_X counted twice), whose magnitudes sum to at most
+    /// M = |α_AB| + |α_AC| + |α_BC| + 2 max(|α_A|, |α_B|, |α_C|), so the kernel's
+    /// [`sum_error_bound`] of five terms over M bounds the error of each. Only a sum within the
+    /// bound (or NaN on overflow) goes to the exact test.
     #[inline]
     fn case_of(al: [Self; 6]) -> usize {
         let [a, b, c, ab, ac, bc] = al;
         let m = ab.abs() + ac.abs() + bc.abs() + 2.0 * a.abs().max(b.abs()).max(c.abs());
-        let bound = 8.0 * f64::EPSILON * m + f64::MIN_POSITIVE;
+        let bound = sum_error_bound(5, m);
         let positive = |d: f64, exact: &dyn Fn() -> bool| {
             if d > bound {
                 true
@@ -1749,7 +1750,7 @@ struct DualBasis {
 }
 
 impl DualBasis {
-    /// The value, rounded (error below 3 ε Σ |halves_i β_i| / 2).
+    /// The value, rounded (see [`support_without`] for its error).
     fn approx(&self, beta: &[f64; 18]) -> f64 {
         let [a, b, c] = self.planes;
         let [ha, hb, hc] = self.halves.map(f64::from);
@@ -1830,7 +1831,9 @@ fn support_without(j: usize, beta: &[f64; 18]) -> Option<&'static DualBasis> {
         .map(|c| c.approx(beta))
         .enumerate()
         .min_by(|a, b| a.1.total_cmp(&b.1))?;
-    // Each value has at most 3 roundings over terms of magnitude at most 4 m (halves ≤ 4).
+    // Each value is half a sum of three rounded products of magnitude at most 4 m (halves
+    // ≤ 4), so the kernel's bound of a sum of three terms over 6 m bounds its error; two
+    // values within twice that of each other may be in either order.
     let m = beta.iter().fold(0.0f64, |m, b| m.max(b.abs()));
     let slack = 2.0 * (24.0 * f64::EPSILON * m + f64::MIN_POSITIVE);
     for (i, c) in candidates.iter().enumerate() {

@@ -18,10 +18,8 @@
 //! assert_eq!(accurate_sum(&[1e20, 1.0, -1e20]), 1.0);
 //! ```
 
+use super::kernel::sum_error_bound;
 use std::cmp::Ordering;
-
-/// Unit roundoff of `f64`: half the gap between 1 and the next double.
-const UNIT_ROUNDOFF: f64 = f64::EPSILON / 2.0;
 
 /// Expansions of at most this many components are built on the stack.
 const STACK_TERMS: usize = 32;
@@ -340,10 +338,7 @@ pub fn filtered_sign(terms: &[f64]) -> Option<Ordering> {
         sum += t;
         magnitude += t.abs();
     }
-    // |sum - exact| <= gamma_(n-1) * (exact sum of |t|) <= (n-1) u / (1 - 2(n-1)u) * magnitude;
-    // the factor 2n absorbs the denominators and the rounding of the product, and adding
-    // MIN_POSITIVE covers a product that underflows.
-    let bound = (2 * terms.len()) as f64 * UNIT_ROUNDOFF * magnitude + f64::MIN_POSITIVE;
+    let bound = sum_error_bound(terms.len(), magnitude);
     if sum > bound {
         Some(Ordering::Greater)
     } else if sum < -bound {

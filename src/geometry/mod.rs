@@ -11,6 +11,7 @@
 
 pub mod aabb;
 pub mod exact;
+pub mod kernel;
 
 /// A point in 3-D space, in `f64`.
 pub type Point3 = nalgebra::Point3<f64>;

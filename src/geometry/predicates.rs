@@ -15,6 +15,7 @@
 use super::exact::{
     expansion_product, expansion_sum, negated, product_terms, scale_expansion, sum_sign, two_sum,
 };
+use super::kernel::{Estimate, Polynomial, UNIT_ROUNDOFF};
 use super::{Point3, Vector3};
 use robust::{Coord, Coord3D};
 use std::cmp::Ordering;
@@ -52,13 +53,13 @@ pub fn orient3d(a: &Point3, b: &Point3, c: &Point3, d: &Point3) -> Ordering {
 }
 
 /// Half the gap between 1 and the next double (Shewchuk's ε).
-const EPS: f64 = f64::EPSILON / 2.0;
+const EPS: f64 = UNIT_ROUNDOFF;
 
-/// Relative error bound of [`orient3d_estimate`]: `(8 + 256ε)ε`, to multiply by its computed
+/// Relative error bound of the estimate of [`Orient3d`]: `(8 + 256ε)ε`, to multiply by its computed
 /// permanent. See the derivation there.
 const ORIENT3D_ERROR_BOUND: f64 = (8.0 + 256.0 * EPS) * EPS;
 
-/// Relative error bound of [`orient3d_at_infinity_estimate`]: `(7 + 224ε)ε`, to multiply by
+/// Relative error bound of the estimate of [`Orient3dAtInfinity`]: `(7 + 224ε)ε`, to multiply by
 /// its computed permanent (one rounding fewer per term than [`ORIENT3D_ERROR_BOUND`]: `u` is
 /// not a difference).
 const ORIENT3D_AT_INFINITY_ERROR_BOUND: f64 = (7.0 + 224.0 * EPS) * EPS;
@@ -74,56 +75,27 @@ fn minor(p: &[f64], q: &[f64], r: &[f64], s: &[f64]) -> Vec<f64> {
     expansion_sum(&expansion_product(p, q), &negated(&expansion_product(r, s)))
 }
 
-/// The exact value, as an expansion (see [`exact`](super::exact)), of the determinant whose
-/// sign [`orient3d`] returns: `det[a - d, b - d, c - d]`, positive when `d` lies below the
-/// plane through `a`, `b`, `c` (so `estimate(&orient3d_value(..)).partial_cmp(&0.0)` is
-/// exactly `orient3d(..)`), empty when the four points are coplanar.
+/// The determinant whose sign [`orient3d`] returns, `det[a − d, b − d, c − d]` for
+/// `Orient3d([a, b, c, d])`, as a [`Polynomial`]: positive when `d` lies below the plane through
+/// `a`, `b`, `c`.
 ///
-/// The differences are formed exactly as two-component expansions, the 2×2 minors and the
-/// products with expansion arithmetic, so the result has at most 192 components (a handful
-/// when the differences are exact). It is exact for coordinates up to
-/// [`MAX_COORDINATE`] whose nonzero values are at least about `1e-90` in magnitude (then every
-/// intermediate product is a multiple of `2^-1074` and no bit is lost to underflow). A slow
-/// fallback: try [`orient3d_estimate`] first.
+/// Its [`expansion`](Polynomial::expansion) forms the differences exactly as two-component
+/// expansions, the 2×2 minors and the products with expansion arithmetic, so it has at most
+/// 192 components (a handful when the differences are exact); it is exact for coordinates up
+/// to [`MAX_COORDINATE`] whose nonzero values are at least about `1e-90` in magnitude (then
+/// every intermediate product is a multiple of `2^-1074` and no bit is lost to underflow).
 ///
-/// ```
-/// use kepler::geometry::{Point3, exact::estimate, predicates::orient3d_value};
-/// let o = Point3::origin();
-/// let (x, y) = (Point3::new(1.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0));
-/// assert_eq!(orient3d_value(&o, &x, &y, &Point3::new(0.0, 0.0, 2.0)), vec![-2.0]);
-/// // Far from the origin, on and just below the plane z = 1e15 (doubles are 1/8 apart there).
-/// let (a, b, c) = (Point3::new(1e15, 0.0, 1e15), Point3::new(1e15 + 1.0, 0.0, 1e15), Point3::new(1e15, 1.0, 1e15));
-/// assert!(orient3d_value(&a, &b, &c, &Point3::new(-7.0, 1e15, 1e15)).is_empty());
-/// let d = Point3::new(3.0, 5.0, 1e15 - 0.125);
-/// assert_eq!(estimate(&orient3d_value(&a, &b, &c, &d)), 0.125);
-/// ```
-pub fn orient3d_value(a: &Point3, b: &Point3, c: &Point3, d: &Point3) -> Vec<f64> {
-    let [adx, ady, adz] = [0, 1, 2].map(|i| difference(a[i], d[i]));
-    let [bdx, bdy, bdz] = [0, 1, 2].map(|i| difference(b[i], d[i]));
-    let [cdx, cdy, cdz] = [0, 1, 2].map(|i| difference(c[i], d[i]));
-    // det = adz (bdx cdy - cdx bdy) + bdz (cdx ady - adx cdy) + cdz (adx bdy - bdx ady).
-    let t1 = expansion_product(&adz, &minor(&bdx, &cdy, &cdx, &bdy));
-    let t2 = expansion_product(&bdz, &minor(&cdx, &ady, &adx, &cdy));
-    let t3 = expansion_product(&cdz, &minor(&adx, &bdy, &bdx, &ady));
-    expansion_sum(&expansion_sum(&t1, &t2), &t3)
-}
-
-/// A floating-point value of the determinant of [`orient3d_value`] (same sign convention as
-/// [`orient3d`]) and a certified bound on its error: `|exact - value| <= bound` for finite
-/// inputs whose products do not overflow (coordinates up to [`MAX_COORDINATE`]), underflow
-/// included. When `|value| > bound` its sign is `orient3d`'s. No allocation.
-///
-/// The value is Shewchuk's `det = adz (bdx cdy - cdx bdy) + bdz (cdx ady - adx cdy) +
-/// cdz (adx bdy - bdx ady)` on the rounded differences `adx = fl(a.x - d.x)`, ...
-///
-/// The bound: each of the six monomials of the exact determinant reaches `det` through at
-/// most 8 roundings (3 differences, the inner product, the subtraction, the outer product,
-/// 2 additions), each a factor `1 + δ` with `|δ| <= ε = 2^-53`, so
-/// `|det - exact| <= γ8 · P` with `γ8 = 8ε / (1 - 8ε)` and `P` the exact sum of the
+/// Its [`estimate`](Polynomial::estimate) is Shewchuk's `det = adz (bdx cdy − cdx bdy) +
+/// bdz (cdx ady − adx cdy) + cdz (adx bdy − bdx ady)` on the rounded differences
+/// `adx = fl(a.x − d.x)`, ..., with a certified bound for finite inputs whose products do not
+/// overflow, underflow included. Each of the six monomials of the exact determinant reaches
+/// `det` through at most 8 roundings (3 differences, the inner product, the subtraction, the
+/// outer product, 2 additions), each a factor `1 + δ` with `|δ| <= ε = 2^-53`, so
+/// `|det − exact| <= γ8 · P` with `γ8 = 8ε / (1 − 8ε)` and `P` the exact sum of the
 /// monomials' magnitudes. The computed permanent `P̂` (the same expression on magnitudes,
 /// reusing the rounded products) passes through the same 8 roundings, so
-/// `P <= P̂ / (1 - ε)^8`; with the two roundings of `bound` itself it suffices that
-/// `c (1 - ε)^2 >= 8ε / ((1 - 8ε)(1 - ε)^8)`, i.e. `c >= 8ε (1 + 18ε + O(ε²))`: we use
+/// `P <= P̂ / (1 − ε)^8`; with the two roundings of `bound` itself it suffices that
+/// `c (1 − ε)^2 >= 8ε / ((1 − 8ε)(1 − ε)^8)`, i.e. `c >= 8ε (1 + 18ε + O(ε²))`: we use
 /// `c = (8 + 256ε)ε`. (Shewchuk's `o3derrboundA = (7 + 56ε)ε` is smaller because a sign
 /// filter need not count the last addition, which cannot change the sign.) Underflow adds
 /// an absolute error of at most `2^-1075` per product, propagated through at most the outer
@@ -131,102 +103,177 @@ pub fn orient3d_value(a: &Point3, b: &Point3, c: &Point3, d: &Point3) -> Vec<f64
 /// `2^-1073 (|adz| + |bdz| + |cdz| + 2)` on `det` and likewise on `P̂`, which
 /// `MIN_POSITIVE · (1 + |adz| + |bdz| + |cdz|)` covers many times over.
 ///
+/// Its [`sign`](Polynomial::sign) is [`orient3d`], `robust`'s adaptive predicate.
+///
 /// ```
-/// use kepler::geometry::{Point3, predicates::orient3d_estimate};
+/// use kepler::geometry::{Point3, exact::estimate, kernel::Polynomial, predicates::Orient3d};
 /// let o = Point3::origin();
 /// let (x, y) = (Point3::new(1.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0));
-/// let (value, bound) = orient3d_estimate(&o, &x, &y, &Point3::new(0.0, 0.0, 2.0));
-/// assert_eq!(value, -2.0);
-/// assert!(bound > 0.0 && bound < 1e-14);
+/// let det = Orient3d([o, x, y, Point3::new(0.0, 0.0, 2.0)]);
+/// assert_eq!(det.expansion(), vec![-2.0]);
+/// assert_eq!(det.estimate().value, -2.0);
+/// assert!(det.estimate().bound > 0.0 && det.estimate().bound < 1e-14);
+/// // Far from the origin, on and just below the plane z = 1e15 (doubles are 1/8 apart there).
+/// let (a, b, c) = (Point3::new(1e15, 0.0, 1e15), Point3::new(1e15 + 1.0, 0.0, 1e15), Point3::new(1e15, 1.0, 1e15));
+/// assert!(Orient3d([a, b, c, Point3::new(-7.0, 1e15, 1e15)]).expansion().is_empty());
+/// let d = Point3::new(3.0, 5.0, 1e15 - 0.125);
+/// assert_eq!(estimate(&Orient3d([a, b, c, d]).expansion()), 0.125);
 /// ```
-#[inline]
-pub fn orient3d_estimate(a: &Point3, b: &Point3, c: &Point3, d: &Point3) -> (f64, f64) {
-    let (adx, ady, adz) = (a.x - d.x, a.y - d.y, a.z - d.z);
-    let (bdx, bdy, bdz) = (b.x - d.x, b.y - d.y, b.z - d.z);
-    let (cdx, cdy, cdz) = (c.x - d.x, c.y - d.y, c.z - d.z);
-    let (bdxcdy, cdxbdy) = (bdx * cdy, cdx * bdy);
-    let (cdxady, adxcdy) = (cdx * ady, adx * cdy);
-    let (adxbdy, bdxady) = (adx * bdy, bdx * ady);
-    let det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
-    let permanent = (bdxcdy.abs() + cdxbdy.abs()) * adz.abs()
-        + (cdxady.abs() + adxcdy.abs()) * bdz.abs()
-        + (adxbdy.abs() + bdxady.abs()) * cdz.abs();
-    let outer = adz.abs() + bdz.abs() + cdz.abs();
-    let bound = ORIENT3D_ERROR_BOUND * permanent + f64::MIN_POSITIVE * (1.0 + outer);
-    (det, bound)
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Orient3d(pub [Point3; 4]);
+
+impl Polynomial for Orient3d {
+    #[inline]
+    fn estimate(&self) -> Estimate {
+        let [a, b, c, d] = &self.0;
+        let (adx, ady, adz) = (a.x - d.x, a.y - d.y, a.z - d.z);
+        let (bdx, bdy, bdz) = (b.x - d.x, b.y - d.y, b.z - d.z);
+        let (cdx, cdy, cdz) = (c.x - d.x, c.y - d.y, c.z - d.z);
+        let (bdxcdy, cdxbdy) = (bdx * cdy, cdx * bdy);
+        let (cdxady, adxcdy) = (cdx * ady, adx * cdy);
+        let (adxbdy, bdxady) = (adx * bdy, bdx * ady);
+        let det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
+        let permanent = (bdxcdy.abs() + cdxbdy.abs()) * adz.abs()
+            + (cdxady.abs() + adxcdy.abs()) * bdz.abs()
+            + (adxbdy.abs() + bdxady.abs()) * cdz.abs();
+        let outer = adz.abs() + bdz.abs() + cdz.abs();
+        let bound = ORIENT3D_ERROR_BOUND * permanent + f64::MIN_POSITIVE * (1.0 + outer);
+        Estimate { value: det, bound }
+    }
+
+    fn expansion(&self) -> Vec<f64> {
+        let [a, b, c, d] = &self.0;
+        let [adx, ady, adz] = [0, 1, 2].map(|i| difference(a[i], d[i]));
+        let [bdx, bdy, bdz] = [0, 1, 2].map(|i| difference(b[i], d[i]));
+        let [cdx, cdy, cdz] = [0, 1, 2].map(|i| difference(c[i], d[i]));
+        // det = adz (bdx cdy - cdx bdy) + bdz (cdx ady - adx cdy) + cdz (adx bdy - bdx ady).
+        let t1 = expansion_product(&adz, &minor(&bdx, &cdy, &cdx, &bdy));
+        let t2 = expansion_product(&bdz, &minor(&cdx, &ady, &adx, &cdy));
+        let t3 = expansion_product(&cdz, &minor(&adx, &bdy, &bdx, &ady));
+        expansion_sum(&expansion_sum(&t1, &t2), &t3)
+    }
+
+    #[inline]
+    fn sign(&self) -> Ordering {
+        let [a, b, c, d] = &self.0;
+        orient3d(a, b, c, d)
+    }
 }
 
-/// The exact value, as an expansion, of the determinant whose sign [`orient3d_at_infinity`]
-/// returns: `-det[a - c, b - c, u]` (the limit of `orient3d_value(a, b, c, c + λu) / λ`),
-/// empty when the plane through `a`, `b`, `c` is parallel to `u` (or degenerate).
+/// The determinant whose sign [`orient3d_at_infinity`] returns, `−det[a − c, b − c, u]` for
+/// `Orient3dAtInfinity([a, b, c], u)` (the limit of `Orient3d([a, b, c, c + λu])` divided by
+/// `λ`), as a [`Polynomial`]; zero when the plane through `a`, `b`, `c` is parallel to `u` (or
+/// degenerate).
 ///
-/// Built like [`orient3d_value`] (exact two-component differences, expansion products), with
-/// at most 96 components; exact under the same conditions, with the components of `u`
-/// counted as coordinates.
+/// Its expansion is built like [`Orient3d`]'s (exact two-component differences, expansion
+/// products), with at most 96 components, exact under the same conditions with the
+/// components of `u` counted as coordinates. Its estimate is `−det[r1, r2, u] =
+/// r1x (r2z uy − r2y uz) + r1y (r2x uz − r2z ux) + r1z (r2y ux − r2x uy)` on the rounded
+/// differences `r1 = fl(a − c)`, `r2 = fl(b − c)`, its bound derived as [`Orient3d`]'s with at
+/// most 7 roundings per monomial (2 differences, inner product, subtraction, outer product,
+/// 2 additions; the negation is exact): `c (1 − ε)^2 >= 7ε / ((1 − 7ε)(1 − ε)^7)`, i.e.
+/// `c >= 7ε (1 + 16ε + O(ε²))`, and we use `c = (7 + 224ε)ε` times the computed permanent, plus
+/// `MIN_POSITIVE · (1 + |r1x| + |r1y| + |r1z|)` for underflow. Its sign is
+/// [`orient3d_at_infinity`].
 ///
 /// ```
-/// use kepler::geometry::{Point3, Vector3, exact::estimate, predicates::orient3d_at_infinity_value};
+/// use kepler::geometry::{Point3, Vector3, exact::estimate, kernel::Polynomial, predicates::Orient3dAtInfinity};
 /// let (a, b, c) = (Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0));
-/// assert_eq!(orient3d_at_infinity_value(&a, &b, &c, &Vector3::new(0.1, 0.2, -1.0)), vec![1.0]);
-/// assert!(orient3d_at_infinity_value(&a, &b, &c, &Vector3::new(1.0, 1.0, 0.0)).is_empty());
-/// let v = orient3d_at_infinity_value(&a, &b, &c, &Vector3::new(0.0, 0.0, 0.1));
-/// assert_eq!(estimate(&v), -0.1);
+/// let det = |u| Orient3dAtInfinity([a, b, c], u);
+/// assert_eq!(det(Vector3::new(0.1, 0.2, -1.0)).expansion(), vec![1.0]);
+/// assert!(det(Vector3::new(1.0, 1.0, 0.0)).expansion().is_empty());
+/// assert_eq!(estimate(&det(Vector3::new(0.0, 0.0, 0.1)).expansion()), -0.1);
+/// let e = det(Vector3::new(0.1, 0.2, -1.0)).estimate();
+/// assert_eq!(e.value, 1.0);
+/// assert!(e.bound < 1e-15);
 /// ```
-pub fn orient3d_at_infinity_value(a: &Point3, b: &Point3, c: &Point3, u: &Vector3) -> Vec<f64> {
-    let r1 = [0, 1, 2].map(|i| difference(a[i], c[i]));
-    let r2 = [0, 1, 2].map(|i| difference(b[i], c[i]));
-    // -det[r1, r2, u] = r1x (r2z uy - r2y uz) + r1y (r2x uz - r2z ux) + r1z (r2y ux - r2x uy).
-    let minor = |i: usize, j: usize| {
-        expansion_sum(
-            &scale_expansion(&r2[i], u[j]),
-            &scale_expansion(&r2[j], -u[i]),
-        )
-    };
-    let t1 = expansion_product(&r1[0], &minor(2, 1));
-    let t2 = expansion_product(&r1[1], &minor(0, 2));
-    let t3 = expansion_product(&r1[2], &minor(1, 0));
-    expansion_sum(&expansion_sum(&t1, &t2), &t3)
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Orient3dAtInfinity(pub [Point3; 3], pub Vector3);
+
+impl Polynomial for Orient3dAtInfinity {
+    #[inline]
+    fn estimate(&self) -> Estimate {
+        let ([a, b, c], u) = (&self.0, &self.1);
+        let (r1x, r1y, r1z) = (a.x - c.x, a.y - c.y, a.z - c.z);
+        let (r2x, r2y, r2z) = (b.x - c.x, b.y - c.y, b.z - c.z);
+        let (r2zuy, r2yuz) = (r2z * u.y, r2y * u.z);
+        let (r2xuz, r2zux) = (r2x * u.z, r2z * u.x);
+        let (r2yux, r2xuy) = (r2y * u.x, r2x * u.y);
+        let value = r1x * (r2zuy - r2yuz) + r1y * (r2xuz - r2zux) + r1z * (r2yux - r2xuy);
+        let permanent = (r2zuy.abs() + r2yuz.abs()) * r1x.abs()
+            + (r2xuz.abs() + r2zux.abs()) * r1y.abs()
+            + (r2yux.abs() + r2xuy.abs()) * r1z.abs();
+        let outer = r1x.abs() + r1y.abs() + r1z.abs();
+        let bound =
+            ORIENT3D_AT_INFINITY_ERROR_BOUND * permanent + f64::MIN_POSITIVE * (1.0 + outer);
+        Estimate { value, bound }
+    }
+
+    fn expansion(&self) -> Vec<f64> {
+        let ([a, b, c], u) = (&self.0, &self.1);
+        let r1 = [0, 1, 2].map(|i| difference(a[i], c[i]));
+        let r2 = [0, 1, 2].map(|i| difference(b[i], c[i]));
+        // -det[r1, r2, u] = r1x (r2z uy - r2y uz) + r1y (r2x uz - r2z ux) + r1z (r2y ux - r2x uy).
+        let minor = |i: usize, j: usize| {
+            expansion_sum(
+                &scale_expansion(&r2[i], u[j]),
+                &scale_expansion(&r2[j], -u[i]),
+            )
+        };
+        let t1 = expansion_product(&r1[0], &minor(2, 1));
+        let t2 = expansion_product(&r1[1], &minor(0, 2));
+        let t3 = expansion_product(&r1[2], &minor(1, 0));
+        expansion_sum(&expansion_sum(&t1, &t2), &t3)
+    }
+
+    #[inline]
+    fn sign(&self) -> Ordering {
+        let ([a, b, c], u) = (&self.0, &self.1);
+        orient3d_at_infinity(a, b, c, u)
+    }
 }
 
-/// A floating-point value of the determinant of [`orient3d_at_infinity_value`] (same sign
-/// convention as [`orient3d_at_infinity`]) and a certified bound on its error:
-/// `|exact - value| <= bound` for finite inputs whose products do not overflow, underflow
-/// included. When `|value| > bound` its sign is `orient3d_at_infinity`'s. No allocation.
-///
-/// The value is `-det[r1, r2, u] = r1x (r2z uy - r2y uz) + r1y (r2x uz - r2z ux) +
-/// r1z (r2y ux - r2x uy)` on the rounded differences `r1 = fl(a - c)`, `r2 = fl(b - c)`.
-/// The bound is derived as in [`orient3d_estimate`], with at most 7 roundings per monomial
-/// (2 differences, inner product, subtraction, outer product, 2 additions; the negation is
-/// exact): `c (1 - ε)^2 >= 7ε / ((1 - 7ε)(1 - ε)^7)`, i.e. `c >= 7ε (1 + 16ε + O(ε²))`, and
-/// we use `c = (7 + 224ε)ε` times the computed permanent, plus
-/// `MIN_POSITIVE · (1 + |r1x| + |r1y| + |r1z|)` for underflow.
+/// The orientation of three points against a fourth that may be at infinity (the eye of a
+/// perspective or an orthographic view): [`Orient3d`] or [`Orient3dAtInfinity`].
 ///
 /// ```
-/// use kepler::geometry::{Point3, Vector3, predicates::orient3d_at_infinity_estimate};
-/// let (a, b, c) = (Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0));
-/// let (value, bound) = orient3d_at_infinity_estimate(&a, &b, &c, &Vector3::new(0.1, 0.2, -1.0));
-/// assert_eq!(value, 1.0);
-/// assert!(bound < 1e-15);
+/// use kepler::geometry::{Point3, Vector3, kernel::Polynomial, predicates::{Orient3d, Orientation}};
+/// use std::cmp::Ordering;
+/// let t = [Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0)];
+/// let above = Orientation::Point(Orient3d([t[0], t[1], t[2], Point3::new(0.0, 0.0, 1.0)]));
+/// assert_eq!(above.sign(), Ordering::Less);
 /// ```
-#[inline]
-pub fn orient3d_at_infinity_estimate(
-    a: &Point3,
-    b: &Point3,
-    c: &Point3,
-    u: &Vector3,
-) -> (f64, f64) {
-    let (r1x, r1y, r1z) = (a.x - c.x, a.y - c.y, a.z - c.z);
-    let (r2x, r2y, r2z) = (b.x - c.x, b.y - c.y, b.z - c.z);
-    let (r2zuy, r2yuz) = (r2z * u.y, r2y * u.z);
-    let (r2xuz, r2zux) = (r2x * u.z, r2z * u.x);
-    let (r2yux, r2xuy) = (r2y * u.x, r2x * u.y);
-    let value = r1x * (r2zuy - r2yuz) + r1y * (r2xuz - r2zux) + r1z * (r2yux - r2xuy);
-    let permanent = (r2zuy.abs() + r2yuz.abs()) * r1x.abs()
-        + (r2xuz.abs() + r2zux.abs()) * r1y.abs()
-        + (r2yux.abs() + r2xuy.abs()) * r1z.abs();
-    let outer = r1x.abs() + r1y.abs() + r1z.abs();
-    let bound = ORIENT3D_AT_INFINITY_ERROR_BOUND * permanent + f64::MIN_POSITIVE * (1.0 + outer);
-    (value, bound)
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Orientation {
+    /// Against a point.
+    Point(Orient3d),
+    /// Against a point at infinity.
+    Infinity(Orient3dAtInfinity),
+}
+
+impl Polynomial for Orientation {
+    #[inline]
+    fn estimate(&self) -> Estimate {
+        match self {
+            Orientation::Point(d) => d.estimate(),
+            Orientation::Infinity(d) => d.estimate(),
+        }
+    }
+
+    fn expansion(&self) -> Vec<f64> {
+        match self {
+            Orientation::Point(d) => d.expansion(),
+            Orientation::Infinity(d) => d.expansion(),
+        }
+    }
+
+    #[inline]
+    fn sign(&self) -> Ordering {
+        match self {
+            Orientation::Point(d) => d.sign(),
+            Orientation::Infinity(d) => d.sign(),
+        }
+    }
 }
 
 /// Exact sign of the 2-D orientation of `(a, b, c)`, each given as `[x, y]`: `Greater` when
@@ -241,6 +288,62 @@ pub fn orient3d_at_infinity_estimate(
 pub fn orient2d(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Ordering {
     let p = |q: [f64; 2]| Coord { x: q[0], y: q[1] };
     sign(robust::orient2d(p(a), p(b), p(c)))
+}
+
+/// The determinant whose sign [`orient2d`] returns, `(a − c) × (b − c)` for
+/// `Orient2d([a, b, c])`, as a [`Polynomial`]: positive when `a`, `b`, `c` turn
+/// counter-clockwise.
+///
+/// Its estimate is Shewchuk's: `det = (ax − cx)(by − cy) − (ay − cy)(bx − cx)` with the bound
+/// `(3 + 16ε)ε·(|left| + |right|)` of his `ccwerrboundA`, plus `MIN_POSITIVE` for underflow;
+/// its expansion is exact (two-component differences, exact products); its sign is
+/// [`orient2d`].
+///
+/// ```
+/// use kepler::geometry::{kernel::Polynomial, predicates::Orient2d};
+/// use std::cmp::Ordering;
+/// let ccw = Orient2d([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]);
+/// assert_eq!(ccw.estimate().value, 1.0);
+/// assert_eq!(ccw.expansion(), vec![1.0]);
+/// assert_eq!(Orient2d([[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]]).sign(), Ordering::Equal);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Orient2d(pub [[f64; 2]; 3]);
+
+/// Shewchuk's `ccwerrboundA`, `(3 + 16ε)ε`.
+const ORIENT2D_ERROR_BOUND: f64 = (3.0 + 16.0 * EPS) * EPS;
+
+impl Polynomial for Orient2d {
+    #[inline]
+    fn estimate(&self) -> Estimate {
+        let [a, b, c] = self.0;
+        let left = (a[0] - c[0]) * (b[1] - c[1]);
+        let right = (a[1] - c[1]) * (b[0] - c[0]);
+        Estimate {
+            value: left - right,
+            bound: ORIENT2D_ERROR_BOUND * (left.abs() + right.abs()) + f64::MIN_POSITIVE,
+        }
+    }
+
+    fn expansion(&self) -> Vec<f64> {
+        let [a, b, c] = self.0;
+        let diff = |p: [f64; 2], k: usize| {
+            let (s, e) = two_sum(p[k], -c[k]);
+            [s, e]
+        };
+        let mut terms = Vec::with_capacity(16);
+        product_terms(&diff(a, 0), &diff(b, 1), &mut terms);
+        let start = terms.len();
+        product_terms(&diff(a, 1), &diff(b, 0), &mut terms);
+        terms[start..].iter_mut().for_each(|t| *t = -*t);
+        super::exact::expansion(&terms)
+    }
+
+    #[inline]
+    fn sign(&self) -> Ordering {
+        let [a, b, c] = self.0;
+        orient2d(a, b, c)
+    }
 }
 
 /// The projection of `p` that drops coordinate `axis` (0, 1 or 2), keeping the other two in
@@ -282,19 +385,8 @@ pub fn orient3d_at_infinity(a: &Point3, b: &Point3, c: &Point3, u: &Vector3) -> 
         let o = orient2d(project(a, k), project(b, k), project(c, k));
         return if u[k] > 0.0 { o.reverse() } else { o };
     }
-    let r1 = a - c;
-    let r2 = b - c;
-    let value = r1.dot(&r2.cross(u));
-    let (p, q, w) = (r1.map(f64::abs), r2.map(f64::abs), u.map(f64::abs));
-    let permanent = p.x * (q.y * w.z + q.z * w.y)
-        + p.y * (q.x * w.z + q.z * w.x)
-        + p.z * (q.x * w.y + q.y * w.x);
-    let bound = 16.0 * (f64::EPSILON / 2.0) * permanent + f64::MIN_POSITIVE;
-    if value > bound {
-        return Ordering::Less;
-    }
-    if value < -bound {
-        return Ordering::Greater;
+    if let Some(sign) = Orient3dAtInfinity([*a, *b, *c], *u).estimate().sign() {
+        return sign;
     }
     exact_direction_det(a, b, c, u).reverse()
 }

@@ -32,8 +32,9 @@ mod cells;
 pub use cells::{CellLists, Cells};
 
 use crate::geometry::exact::{accurate_sum, product_terms, two_sum};
+use crate::geometry::kernel::Polynomial;
 use crate::geometry::polygon::segments_meet;
-use crate::geometry::predicates::orient2d;
+use crate::geometry::predicates::{Orient2d, orient2d};
 use geo::{Coord, Line};
 use rayon::prelude::*;
 use std::cmp::Ordering;
@@ -460,27 +461,12 @@ impl SegmentGrid {
 }
 
 /// Whether `c` and `d` lie strictly on the same side of the line through `a` and `b`, as
-/// certified by a floating-point filter (Shewchuk's orient2d error bound); `false` when the
-/// filter cannot tell, and the exact test decides. Most pairs in a cell are rejected here.
+/// certified by the kernel's floating-point filter of [`Orient2d`]; `false` when the filter
+/// cannot tell, and the exact test decides. Most pairs in a cell are rejected here.
 #[inline]
 fn apart(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
-    // (3 + 16ε)ε with ε = 2^-53, as in Shewchuk's ccwerrboundA.
-    const BOUND: f64 = (3.0 + 16.0 * f64::EPSILON / 2.0) * f64::EPSILON / 2.0;
-    let side = |p: [f64; 2]| {
-        let left = (a[0] - p[0]) * (b[1] - p[1]);
-        let right = (a[1] - p[1]) * (b[0] - p[0]);
-        let det = left - right;
-        let bound = BOUND * (left.abs() + right.abs()) + f64::MIN_POSITIVE;
-        if det > bound {
-            1
-        } else if det < -bound {
-            -1
-        } else {
-            0
-        }
-    };
-    let s = side(c);
-    s != 0 && s == side(d)
+    let side = |p: [f64; 2]| Orient2d([a, b, p]).estimate().sign();
+    matches!((side(c), side(d)), (Some(s), Some(t)) if s == t)
 }
 
 /// The bounding box of all endpoints and the largest coordinate magnitude.

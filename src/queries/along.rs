@@ -16,15 +16,11 @@
 //! `O(a) - O(b)`) are exact expansions rounded once: within 1.5 units in the last place.
 
 use crate::geometry::Point3;
-use crate::geometry::exact::{
-    estimate, expansion_product, expansion_sum, negated, scale_expansion,
-};
-use crate::geometry::predicates::{orient3d, orient3d_estimate, orient3d_value};
+use crate::geometry::exact::{estimate, expansion_product, expansion_sum, negated};
+use crate::geometry::kernel::{Between, Estimate, Polynomial};
+use crate::geometry::predicates::{Orient3d, Orientation};
 use crate::views::{Eye, Picture};
 use std::cmp::Ordering;
-
-/// Half the gap between 1 and the next double.
-const UNIT_ROUNDOFF: f64 = f64::EPSILON / 2.0;
 
 /// An affine function of a point whose zero set is a plane, evaluated exactly.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -37,16 +33,12 @@ pub(crate) enum Form {
 }
 
 impl Form {
-    /// The exact sign at `x`. A form through `x` (one of the points defining it) is zero
-    /// there: answered at once, as the exact determinant would take the slowest path.
+    /// The form at `x`, as a polynomial of the input coordinates.
     #[inline]
-    fn sign(&self, eye: &Eye, x: &Point3) -> Ordering {
-        if self.passes_through(x) {
-            return Ordering::Equal;
-        }
+    fn at(&self, eye: &Eye, x: &Point3) -> Orientation {
         match self {
-            Form::Plane([p, q, r]) => orient3d(p, q, r, x),
-            Form::Sight(p, q) => eye.orient3d(p, q, x),
+            Form::Plane([p, q, r]) => Orientation::Point(Orient3d([*p, *q, *r, *x])),
+            Form::Sight(p, q) => eye.determinant(p, q, x),
         }
     }
 
@@ -59,67 +51,67 @@ impl Form {
         }
     }
 
-    /// A floating-point value at `x` and a bound on its error.
-    #[inline]
-    pub(crate) fn estimate(&self, eye: &Eye, x: &Point3) -> (f64, f64) {
-        match self {
-            Form::Plane([p, q, r]) => orient3d_estimate(p, q, r, x),
-            Form::Sight(p, q) => eye.orient3d_estimate(p, q, x),
-        }
-    }
-
-    /// The exact value at `x`.
-    pub(crate) fn value(&self, eye: &Eye, x: &Point3) -> Vec<f64> {
-        match self {
-            Form::Plane([p, q, r]) => orient3d_value(p, q, r, x),
-            Form::Sight(p, q) => eye.orient3d_value(p, q, x),
-        }
-    }
-
-    /// The exact sign at `X(t) = a + t·(b - a)`, for `0 < t < 1`.
+    /// The exact sign at `X(t) = a + t·(b - a)`, for `0 < t < 1`: equal signs at `a` and `b`
+    /// decide at once, opposite ones through the kernel's [`Between`].
     pub(crate) fn sign_along(&self, eye: &Eye, a: &Point3, b: &Point3, t: f64) -> Ordering {
-        let (sa, sb) = (self.sign(eye, a), self.sign(eye, b));
-        if sa == sb || sb == Ordering::Equal {
-            return sa;
-        }
-        if sa == Ordering::Equal {
-            return sb;
-        }
-        // Opposite signs: (1 - t)·O(a) + t·O(b) = O(a) + t·(O(b) - O(a)). Each estimate is off
-        // by at most its bound, and the three roundings of the combination by at most
-        // 3u(|va| + |vb|) (as 0 < t < 1).
-        let ((va, ea), (vb, eb)) = (self.estimate(eye, a), self.estimate(eye, b));
-        let v = va + t * (vb - va);
-        let bound = ea + eb + 4.0 * UNIT_ROUNDOFF * (va.abs() + vb.abs()) + f64::MIN_POSITIVE;
-        if v > bound {
-            return Ordering::Greater;
-        }
-        if v < -bound {
-            return Ordering::Less;
-        }
-        let (xa, xb) = (self.value(eye, a), self.value(eye, b));
-        let exact = expansion_sum(&xa, &scale_expansion(&expansion_sum(&xb, &negated(&xa)), t));
-        exact.last().map_or(Ordering::Equal, |top| {
-            top.partial_cmp(&0.0).unwrap_or(Ordering::Equal)
-        })
+        let at = |x| FormAt { form: self, eye, x };
+        Between(at(a), at(b), t).sign()
     }
 
     /// The parameter `t` of the zero of the form on the edge `ab`, approximately (for ordering
     /// cuts; [`cut_point`] builds the point itself exactly). `None` when the form has the same
     /// strict sign at both ends or vanishes on the whole edge.
     pub(crate) fn zero_along(&self, eye: &Eye, a: &Point3, b: &Point3) -> Option<f64> {
-        let (sa, sb) = (self.sign(eye, a), self.sign(eye, b));
+        let (fa, fb) = (
+            FormAt {
+                form: self,
+                eye,
+                x: a,
+            },
+            FormAt {
+                form: self,
+                eye,
+                x: b,
+            },
+        );
+        let (sa, sb) = (fa.sign(), fb.sign());
         match (sa, sb) {
             (Ordering::Equal, Ordering::Equal) => None,
             (Ordering::Equal, _) => Some(0.0),
             (_, Ordering::Equal) => Some(1.0),
             _ if sa == sb => None,
             _ => {
-                let (va, _) = self.estimate(eye, a);
-                let (vb, _) = self.estimate(eye, b);
+                let (va, vb) = (fa.estimate().value, fb.estimate().value);
                 Some((va / (va - vb)).clamp(0.0, 1.0))
             }
         }
+    }
+}
+
+/// A [`Form`] at a point: a polynomial whose sign is answered at once when the form passes
+/// through the point (the exact determinant would take its slowest path to say zero).
+struct FormAt<'a> {
+    form: &'a Form,
+    eye: &'a Eye,
+    x: &'a Point3,
+}
+
+impl Polynomial for FormAt<'_> {
+    #[inline]
+    fn estimate(&self) -> Estimate {
+        self.form.at(self.eye, self.x).estimate()
+    }
+
+    fn expansion(&self) -> Vec<f64> {
+        self.form.at(self.eye, self.x).expansion()
+    }
+
+    #[inline]
+    fn sign(&self) -> Ordering {
+        if self.form.passes_through(self.x) {
+            return Ordering::Equal;
+        }
+        self.form.at(self.eye, self.x).sign()
     }
 }
 
@@ -156,7 +148,7 @@ pub(crate) fn cut_point(
     a: &Point3,
     b: &Point3,
 ) -> [f64; 2] {
-    let (oa, ob) = (form.value(eye, a), form.value(eye, b));
+    let (oa, ob) = (form.at(eye, a).expansion(), form.at(eye, b).expansion());
     let combine = |la: &[f64], lb: &[f64]| {
         estimate(&expansion_sum(
             &expansion_product(&oa, lb),

@@ -16,8 +16,8 @@
 //! the side of `t`'s vertices of `s`'s plane.
 
 use crate::geometry::Point3;
-use crate::geometry::exact::{expansion_product, negated, sum_sign};
-use crate::geometry::predicates::{orient3d, orient3d_estimate, orient3d_value};
+use crate::geometry::kernel::{Difference, Polynomial, Product};
+use crate::geometry::predicates::{Orient3d, orient3d};
 use crate::views::Eye;
 use std::cmp::Ordering;
 
@@ -85,8 +85,8 @@ pub(super) fn hides_area(
 ///
 /// With `O` the orientation against `f` and `E` the one against the sight plane (both affine),
 /// the crossing is `(O(a) b − O(b) a) / (O(a) − O(b))`, so `E` there has the sign of
-/// `O(a) · (O(a) E(b) − O(b) E(a))`: a filter on the floating-point estimates, then exact
-/// expansion products.
+/// `O(a) · (O(a) E(b) − O(b) E(a))`: a degree-two polynomial of the input, decided by the
+/// kernel.
 fn side_of_crossing(
     eye: &Eye,
     f: &[Point3; 3],
@@ -94,55 +94,14 @@ fn side_of_crossing(
     a: &Point3,
     b: &Point3,
 ) -> Ordering {
-    let (oa, oa_err) = orient3d_estimate(&f[0], &f[1], &f[2], a);
-    let (ob, ob_err) = orient3d_estimate(&f[0], &f[1], &f[2], b);
-    let (ea, ea_err) = eye.orient3d_estimate(edge[0], edge[1], a);
-    let (eb, eb_err) = eye.orient3d_estimate(edge[0], edge[1], b);
-    let a_sign = orient3d(&f[0], &f[1], &f[2], a);
-    // |x̂ŷ − xy| ≤ |x̂|·e_y + |ŷ|·e_x + e_x·e_y, and each product and the difference round once:
-    // a relative allowance of 2⁻⁵⁰ covers those roundings many times over.
-    let (p, q) = (oa * eb, ob * ea);
-    let err = oa.abs() * eb_err
-        + eb.abs() * oa_err
-        + oa_err * eb_err
-        + ob.abs() * ea_err
-        + ea.abs() * ob_err
-        + ob_err * ea_err
-        + (p.abs() + q.abs()) * f64::EPSILON * 4.0
-        + f64::MIN_POSITIVE;
-    let difference = p - q;
-    let sign = if difference > err {
-        Ordering::Greater
-    } else if difference < -err {
-        Ordering::Less
-    } else {
-        exact_difference_sign(eye, f, edge, a, b)
-    };
-    if a_sign == Ordering::Less {
+    let plane = |x: &Point3| Orient3d([f[0], f[1], f[2], *x]);
+    let sight = |x: &Point3| eye.determinant(edge[0], edge[1], x);
+    let sign = Difference(Product(plane(a), sight(b)), Product(plane(b), sight(a))).sign();
+    if orient3d(&f[0], &f[1], &f[2], a) == Ordering::Less {
         sign.reverse()
     } else {
         sign
     }
-}
-
-/// The exact sign of `O(a) E(b) − O(b) E(a)` (see [`side_of_crossing`]).
-#[cold]
-fn exact_difference_sign(
-    eye: &Eye,
-    f: &[Point3; 3],
-    edge: [&Point3; 2],
-    a: &Point3,
-    b: &Point3,
-) -> Ordering {
-    let p = expansion_product(
-        &orient3d_value(&f[0], &f[1], &f[2], a),
-        &eye.orient3d_value(edge[0], edge[1], b),
-    );
-    let q = expansion_product(
-        &orient3d_value(&f[0], &f[1], &f[2], b),
-        &eye.orient3d_value(edge[0], edge[1], a),
-    );
-    sum_sign(&[p, negated(&q)].concat())
 }
 
 /// Whether the occluder polygon `corners` (a face, with a triangle `g` spanning its plane and

@@ -18,8 +18,8 @@
 
 use crate::geometry::exact::power_of_two_scaling;
 use crate::geometry::predicates::{
-    orient2d, orient2d_at_infinity, orient3d, orient3d_at_infinity, orient3d_at_infinity_estimate,
-    orient3d_at_infinity_value, orient3d_estimate, orient3d_value, project,
+    Orient3d, Orient3dAtInfinity, Orientation, orient2d, orient2d_at_infinity, orient3d,
+    orient3d_at_infinity, project,
 };
 use crate::geometry::{Point3, Vector3, predicates::collinear};
 use crate::scene::{Camera, Projection};
@@ -129,37 +129,22 @@ impl Eye {
         self.perturbation(a, b) == Ordering::Equal
     }
 
-    /// A floating-point value of the determinant whose sign [`Eye::orient3d`] gives, and a
-    /// bound on its error: the exact determinant lies within `bound` of `value`.
+    /// The determinant whose sign [`Eye::orient3d`] gives, as a [`Polynomial`] (its estimate
+    /// with a certified error bound, and its exact expansion).
     ///
     /// ```
-    /// use kepler::{geometry::{Point3, Vector3}, views::Eye};
+    /// use kepler::{geometry::{Point3, Vector3, kernel::Polynomial}, views::Eye};
     /// let eye = Eye::Infinity(Vector3::z());
     /// let t = [Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0)];
-    /// let (value, bound) = eye.orient3d_estimate(&t[0], &t[1], &t[2]);
-    /// assert!(value < -bound);
+    /// let det = eye.determinant(&t[0], &t[1], &t[2]);
+    /// assert!(det.estimate().value < -det.estimate().bound);
+    /// assert_eq!(det.expansion(), vec![-1.0]);
     /// ```
     #[inline]
-    pub fn orient3d_estimate(&self, a: &Point3, b: &Point3, c: &Point3) -> (f64, f64) {
+    pub fn determinant(&self, a: &Point3, b: &Point3, c: &Point3) -> Orientation {
         match self {
-            Eye::Point(e) => orient3d_estimate(a, b, c, e),
-            Eye::Infinity(u) => orient3d_at_infinity_estimate(a, b, c, u),
-        }
-    }
-
-    /// The exact determinant whose sign [`Eye::orient3d`] gives, as an expansion (see
-    /// [`crate::geometry::exact`]).
-    ///
-    /// ```
-    /// use kepler::{geometry::{Point3, Vector3, exact::estimate}, views::Eye};
-    /// let eye = Eye::Point(Point3::new(0.0, 0.0, 1.0));
-    /// let t = [Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0)];
-    /// assert!(estimate(&eye.orient3d_value(&t[0], &t[1], &t[2])) < 0.0);
-    /// ```
-    pub fn orient3d_value(&self, a: &Point3, b: &Point3, c: &Point3) -> Vec<f64> {
-        match self {
-            Eye::Point(e) => orient3d_value(a, b, c, e),
-            Eye::Infinity(u) => orient3d_at_infinity_value(a, b, c, u),
+            Eye::Point(e) => Orientation::Point(Orient3d([*a, *b, *c, *e])),
+            Eye::Infinity(u) => Orientation::Infinity(Orient3dAtInfinity([*a, *b, *c], *u)),
         }
     }
 
