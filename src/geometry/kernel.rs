@@ -66,7 +66,7 @@ pub const UNIT_ROUNDOFF: f64 = f64::EPSILON / 2.0;
 ///
 /// ```
 /// use kepler::geometry::kernel::{UNIT_ROUNDOFF, sum_error_bound};
-/// let terms = [0.1, 0.2, -0.3];
+/// let terms: [f64; 3] = [0.1, 0.2, -0.3];
 /// let magnitude: f64 = terms.iter().map(|t| t.abs()).sum();
 /// let computed: f64 = terms.iter().sum();
 /// // The exact sum of these doubles is 2^-55.
