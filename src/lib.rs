@@ -6,19 +6,56 @@
 //! decided with exact predicates; every constructed point is computed once, in `f64`, from input
 //! coordinates.
 //!
-//! Modules, with dependencies pointing one way (each uses only those above it):
-//! - [`geometry`]: points, exact predicates and exact sums, polygons.
-//! - [`grid`]: Franklin's uniform grid: every intersecting pair of segments in the plane.
+//! ## Layers
+//!
+//! The engine is built in layers; each module imports only the modules of the layers above
+//! it in this picture (`tests/layering.rs` keeps it so), and none imports the lab.
+//!
+//! ```text
+//!  geometry   the exact kernel: points, boxes, predicates, expansions,   Shewchuk 1997
+//!  clip       rays; the one place that knows about rounding; polygon
+//!             booleans to an ulp
+//!     │
+//!  mesh, io,  validated polygon meshes, mesh files, built-in solids      Franklin: faces
+//!  solids                                                                and textures
+//!     │
+//!  bounds     CBOX, INBOX and TRIBOX of one object                       Franklin; Crosnier
+//!     │                                                                  and Rossignac
+//!  scene,     the scene graph, instancing, scene files; views, the       Franklin: objects;
+//!  views      picture map, projected box areas                           Schmalstieg–Tobler
+//!     │
+//!  grid,      the uniform grid of segments; INCLUDE, VISP, ray shooting  Franklin: grid,
+//!  queries                                                               algorithms A, B
+//!     │
+//!  hidden,    hidden lines (and ideographs); visible surfaces, VISFAC    Franklin: HALO,
+//!  surfaces   and VISOBJ                                                 algorithms C–E
+//!     │
+//!  output     SVG and JSON
+//!     │
+//!  error      every layer's error, wrapped
+//!  ─────────────────────────────────────────────────────────────────────────────────────
+//!  lab        the papers' experiments: BOXTREE hierarchies, hierarchical  Barequet et al.;
+//!             triboxes, culling tables, oriented boxes                    Crosnier–Rossignac
+//! ```
+//!
+//! - [`geometry`]: points, [`geometry::kernel`] (estimates, exact expansions, the `Kernel`
+//!   seam), exact predicates, polygons, rays.
 //! - [`clip`]: boolean operations on polygons (intersection, difference, union), to an ulp.
 //! - [`mesh`]: validated polygon meshes (faces, planes, texture coordinate systems, topology).
-//! - [`io`]: mesh files (OBJ, STL, OFF).
-//! - [`solids`]: built-in closed solids (box, Platonic, Archimedean, prism, sphere, torus, cylinder).
-//! - [`bounds`]: CBOX, INBOX and TRIBOX.
+//! - [`io`]: mesh files (OBJ, STL, OFF) and point files.
+//! - [`solids`]: built-in closed solids (box, Platonic, Archimedean, prism, sphere, torus,
+//!   cylinder).
+//! - [`bounds`]: CBOX, INBOX and TRIBOX of one object.
 //! - [`scene`]: the scene graph, instancing, flattening and the scene file.
-//! - [`views`]: orthographic and perspective views, and exact predicates with the eye.
+//! - [`views`]: orthographic and perspective views, exact predicates with the eye, the
+//!   picture map, projected areas of boxes.
+//! - [`grid`]: Franklin's uniform grid: every intersecting pair of segments in the plane.
 //! - [`queries`]: INCLUDE and VISP through the hierarchy, batch INCLUDE, ray shooting.
 //! - [`hidden`]: exact hidden-line drawings (edge classes, intersection lines, visibility).
 //! - [`surfaces`]: visible surfaces, Franklin's VISFAC: the visible part of a face as polygons.
+//! - [`output`]: drawings and visible surfaces as SVG and JSON.
+//! - [`error`]: [`Error`], which wraps each layer's typed error.
+//! - [`lab`]: the papers' experiments, which the engine never uses.
 //!
 //! ```
 //! use kepler::solids;
@@ -26,6 +63,9 @@
 //! assert_eq!(cube.faces().len(), 6);
 //! assert!((cube.volume() - 8.0).abs() < 1e-12);
 //! ```
+
+#![deny(missing_docs)]
+#![forbid(unsafe_code)]
 
 pub mod bounds;
 pub mod clip;

@@ -8,6 +8,12 @@
 //! subobjects in turn. Every answer says which [`Stage`] decided it, and [`Counters`] add them
 //! up over a batch.
 //!
+//! Below the two drawing layers (`hidden` and `surfaces`), this layer also holds what both of
+//! them ask of a segment or a pair of meshes: the exact sign of a plane's form at a point of an
+//! edge and the picture of the point where the edge crosses the plane, built once from the
+//! input (`along`); the lines where two meshes' faces pierce each other (`intersections`);
+//! and the faces a solid seen from outside hides by itself (`own_solid`).
+//!
 //! ```
 //! use kepler::{geometry::Point3, scene::Scene, queries::{Stage, include::{Inclusion, include}}};
 //! let mut scene = Scene::new();

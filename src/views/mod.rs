@@ -9,6 +9,10 @@
 //! ([`Eye::Point`]) or a point at infinity ([`Eye::Infinity`]), is exactly the view-space
 //! test. The transform is only for drawing.
 //!
+//! [`Picture`] maps world points to the 2-D coordinates of a drawing, each rounded once from
+//! its exact value; [`projected_area`] gives the exact area of a box's picture (Schmalstieg
+//! and Tobler 1999).
+//!
 //! ```
 //! use kepler::views::View;
 //! use kepler::geometry::{Point3, Vector3};
@@ -129,7 +133,8 @@ impl Eye {
         self.perturbation(a, b) == Ordering::Equal
     }
 
-    /// The determinant whose sign [`Eye::orient3d`] gives, as a [`Polynomial`] (its estimate
+    /// The determinant whose sign [`Eye::orient3d`] gives, as a
+    /// [`Polynomial`](crate::geometry::kernel::Polynomial) (its estimate
     /// with a certified error bound, and its exact expansion).
     ///
     /// ```
