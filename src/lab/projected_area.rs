@@ -25,7 +25,7 @@ use crate::geometry::Vector3;
 use crate::geometry::exact::{sum_sign, two_product};
 use crate::geometry::polygon::bounding_box;
 use crate::lab::oriented::OrientedBox;
-use crate::views::projected_area::{CORNERS, direction_code, silhouette_area};
+use crate::views::projected_area::{CORNERS, area_not_in_front, direction_code, silhouette_area};
 use crate::views::{Eye, Picture, View};
 use geo::{Area, ConvexHull, MultiPoint, Point};
 use std::cmp::Ordering;
@@ -104,14 +104,8 @@ pub fn bounding_rect_area(b: &OrientedBox, view: &View) -> f64 {
     }
     let picture = Picture::of(view);
     let corners = b.corners();
-    if picture.is_perspective() {
-        let in_front = corners.iter().filter(|p| picture.in_front(p)).count();
-        if in_front == 0 {
-            return 0.0;
-        }
-        if in_front < corners.len() {
-            return f64::INFINITY;
-        }
+    if let Some(area) = area_not_in_front(&picture, &corners) {
+        return area;
     }
     let [lo, hi] = bounding_box(corners.iter().map(|p| picture.point(p)));
     (hi[0] - lo[0]) * (hi[1] - lo[1])
@@ -146,14 +140,8 @@ pub fn projected_area_tribox(t: &Tribox, view: &View) -> f64 {
     }
     let picture = Picture::of(view);
     let vertices = t.vertices();
-    if picture.is_perspective() {
-        let in_front = vertices.iter().filter(|p| picture.in_front(p)).count();
-        if in_front == 0 {
-            return 0.0;
-        }
-        if in_front < vertices.len() {
-            return f64::INFINITY;
-        }
+    if let Some(area) = area_not_in_front(&picture, vertices) {
+        return area;
     }
     let points: MultiPoint<f64> = vertices
         .iter()

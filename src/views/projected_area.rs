@@ -280,18 +280,12 @@ pub fn silhouette_area(code: u8, corner: impl Fn(u8) -> Point3, view: &View) -> 
         *p = corner(k);
     }
     let points = &points[..n];
-    if picture.is_perspective() {
-        // The eye is outside, so every point of the box is on a ray from the eye through a
-        // face turned to it, at or beyond that face; those faces' corners are the silhouette
-        // and, seen from a corner region, the nearest corner, which is in front whenever its
-        // three silhouette neighbours are. So the silhouette decides where the box is.
-        let in_front = points.iter().filter(|p| picture.in_front(p)).count();
-        if in_front == 0 {
-            return 0.0;
-        }
-        if in_front < n {
-            return f64::INFINITY;
-        }
+    // The eye is outside, so every point of the box is on a ray from the eye through a face
+    // turned to it, at or beyond that face; those faces' corners are the silhouette and, seen
+    // from a corner region, the nearest corner, which is in front whenever its three
+    // silhouette neighbours are. So the silhouette decides where the box is.
+    if let Some(area) = area_not_in_front(&picture, points) {
+        return area;
     }
     let mut projected = [[0.0; 2]; 6];
     for (q, p) in projected.iter_mut().zip(points) {
@@ -308,4 +302,34 @@ pub fn silhouette_area(code: u8, corner: impl Fn(u8) -> Point3, view: &View) -> 
     }
     // Counter-clockwise, so positive but for rounding on a box seen edge-on.
     (0.5 * sum).max(0.0)
+}
+
+/// The area of the picture of a convex body whose points `points` are not all strictly in
+/// front of a perspective eye (see [`Picture::in_front`]), when they decide it: 0 when none is
+/// (nothing of the body is in front), `f64::INFINITY` when some are and some are not (the
+/// picture is unbounded); `None` when all are, or the view is orthographic, and the picture
+/// has a finite area to compute.
+///
+/// ```
+/// use kepler::geometry::{Point3, Vector3};
+/// use kepler::views::{Picture, View, projected_area::area_not_in_front};
+/// let v = View::perspective(Point3::new(0.0, 0.0, 10.0), Point3::origin(), Vector3::y(), 60.0).unwrap();
+/// let p = Picture::of(&v);
+/// let (near, far) = (Point3::new(0.0, 0.0, 11.0), Point3::new(0.0, 0.0, 1.0));
+/// assert_eq!(area_not_in_front(&p, &[near]), Some(0.0));
+/// assert_eq!(area_not_in_front(&p, &[near, far]), Some(f64::INFINITY));
+/// assert_eq!(area_not_in_front(&p, &[far]), None);
+/// ```
+pub fn area_not_in_front(picture: &Picture, points: &[Point3]) -> Option<f64> {
+    if !picture.is_perspective() {
+        return None;
+    }
+    let in_front = points.iter().filter(|p| picture.in_front(p)).count();
+    if in_front == 0 {
+        Some(0.0)
+    } else if in_front < points.len() {
+        Some(f64::INFINITY)
+    } else {
+        None
+    }
 }
