@@ -138,7 +138,11 @@ fn check_partition(mesh: &Mesh, options: &HierarchyOptions) {
     for &i in &leaves {
         let node = &h.nodes()[i];
         let v = cell_volume(mesh, &node.region, o);
-        assert!(v > 0.0, "node {i}: empty cell ({v})");
+        // A feature plane through a vertex can leave a true sliver (its tribox of volume
+        // ~1e-31 on a unit object) that clipping in doubles loses; the exact reference of
+        // tests/triboxes_exact.rs checks such cells.
+        let sliver = node.volume <= 1e-15 * h.nodes()[0].volume;
+        assert!(v > 0.0 || sliver, "node {i}: empty cell ({v})");
         assert!(
             v <= node.volume * (1.0 + 1e-12),
             "node {i}: cell {v} > tribox {}",
