@@ -298,7 +298,13 @@ impl View {
         if !(fov > 0.0 && fov < 180.0) {
             return Err(ViewError::FieldOfView(fov));
         }
-        let (forward, right, up) = frame(&(target - eye), &up)?;
+        // Halved first where the difference would overflow; the frame is only for drawing.
+        let direction = if (target - eye).iter().all(|c| c.is_finite()) {
+            target - eye
+        } else {
+            target.coords * 0.5 - eye.coords * 0.5
+        };
+        let (forward, right, up) = frame(&direction, &up)?;
         Ok(View {
             eye: Eye::Point(eye),
             forward,
@@ -510,8 +516,20 @@ fn frame(direction: &Vector3, up: &Vector3) -> Result<(Vector3, Vector3, Vector3
     {
         return Err(ViewError::UpParallel);
     }
-    let forward = direction.normalize();
-    let right = forward.cross(up).normalize();
+    let forward = unit(direction);
+    let right = unit(&forward.cross(&unit(up)));
     let up = right.cross(&forward);
     Ok((forward, right, up))
+}
+
+/// `v` scaled to length 1, first scaled exactly by a power of two so that the sum of squares
+/// neither underflows (a direction of 1e-300) nor overflows (one of 1e300); a vector whose
+/// components overflowed (a difference of points near `f64::MAX`) is halved first.
+fn unit(v: &Vector3) -> Vector3 {
+    let v = if v.iter().all(|c| c.is_finite()) {
+        *v
+    } else {
+        v * 0.5
+    };
+    (v * power_of_two_scaling(v.amax())).normalize()
 }
