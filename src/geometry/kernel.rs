@@ -22,6 +22,16 @@
 //! A sign is then decided by the [`Exact`] kernel: the estimate's sign when `|value| > bound`
 //! (almost always), else the sign of the expansion. A NaN or infinite estimate never decides.
 //!
+//! Expansion arithmetic is exact only while no partial product overflows or loses bits to
+//! underflow, which depends on the polynomial's degree and on the binary exponents of its
+//! inputs ([`Exponents::exact_for`]): for `orient3d` (degree 3), nonzero coordinates between
+//! about `2^-306` and `2^330`; for a product of two such, between `2^-127` and `2^163`. The
+//! engine brings a scene into that window by an exact power-of-two scaling before it works on
+//! it, so the expansions serve almost every call; a polynomial whose inputs still fall outside
+//! (a view direction with a component of `1e-300`, say, or a scene whose coordinates span more
+//! than the window) is evaluated in exact rational arithmetic instead ([`Ring`], with
+//! `num-rational`). So every sign is exact for every finite input.
+//!
 //! A constructed point (where an edge is cut, where a ray meets a plane) is a ratio of such
 //! polynomials of the input: numerator and denominator are formed as exact expansions, each
 //! rounded once to the nearest double, and divided, so each coordinate is within 1.5 units in
@@ -48,7 +58,11 @@
 //! ```
 
 use super::exact::{estimate, expansion_product, expansion_sum, negated, scale_expansion};
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::{Signed, Zero};
 use std::cmp::Ordering;
+use std::ops::{Add, Mul, Neg, Sub};
 
 /// The unit roundoff of `f64`, `u = 2⁻⁵³`: half the gap between 1 and the next double, the
 /// largest relative error of one rounding to nearest.
@@ -197,7 +211,7 @@ impl Estimate {
 /// exactly, as an expansion.
 ///
 /// ```
-/// use kepler::geometry::kernel::{Estimate, Polynomial};
+/// use kepler::geometry::kernel::{Estimate, Exponents, Polynomial, Ring};
 /// use std::cmp::Ordering;
 /// /// The number `a − b` of two doubles.
 /// struct Gap(f64, f64);
@@ -208,6 +222,15 @@ impl Estimate {
 ///     fn expansion(&self) -> Vec<f64> {
 ///         kepler::geometry::exact::expansion(&[self.0, -self.1])
 ///     }
+///     fn evaluate<R: Ring>(&self) -> R {
+///         R::from_f64(self.0) - R::from_f64(self.1)
+///     }
+///     fn degree(&self) -> u32 {
+///         1
+///     }
+///     fn exponents(&self) -> Exponents {
+///         Exponents::of(&[self.0, self.1])
+///     }
 /// }
 /// assert_eq!(Gap(1.0, 1.0 - f64::EPSILON / 2.0).sign(), Ordering::Greater);
 /// assert_eq!(Gap(0.1, 0.1).sign(), Ordering::Equal);
@@ -216,18 +239,198 @@ pub trait Polynomial {
     /// A rounded value and a certified bound on its error.
     fn estimate(&self) -> Estimate;
 
-    /// The exact value, as an expansion (empty for zero).
+    /// The exact value, as an expansion (empty for zero): exact when
+    /// [`exponents`](Self::exponents) are [`exact_for`](Exponents::exact_for) the
+    /// [`degree`](Self::degree).
     fn expansion(&self) -> Vec<f64>;
 
-    /// The exact sign: the estimate's when it is certified, else the expansion's. A
-    /// polynomial with a faster exact predicate (`robust`'s adaptive `orient3d`, say)
-    /// overrides it.
+    /// The polynomial computed in the ring `R` by the same formula: exactly in
+    /// [`BigRational`], rounded at every step in `f64` or `f32`.
+    fn evaluate<R: Ring>(&self) -> R;
+
+    /// Its degree in the inputs (a bound on the number of inputs multiplied in a monomial).
+    fn degree(&self) -> u32;
+
+    /// The binary exponents of its nonzero inputs.
+    fn exponents(&self) -> Exponents;
+
+    /// The exact sign: the estimate's when it is certified, else the expansion's when the
+    /// inputs allow exact expansions, else the rational value's. A polynomial with a faster
+    /// exact predicate (`robust`'s adaptive `orient3d`, say) overrides it.
     #[inline]
     fn sign(&self) -> Ordering {
         match self.estimate().sign() {
             Some(sign) => sign,
-            None => expansion_sign(&self.expansion()),
+            None => exact_sign(self),
         }
+    }
+}
+
+/// The exact sign of `p` without its filter: from its expansion when its inputs allow, else
+/// from its rational value.
+///
+/// ```
+/// use kepler::geometry::kernel::exact_sign;
+/// use kepler::geometry::{Point3, predicates::Orient3d};
+/// use std::cmp::Ordering;
+/// let t = 1e-300; // products of three such coordinates underflow: evaluated as rationals
+/// let det = Orient3d([
+///     Point3::new(0.0, 0.0, 0.0), Point3::new(t, 0.0, 0.0),
+///     Point3::new(0.0, t, 0.0), Point3::new(0.0, 0.0, -t),
+/// ]);
+/// assert_eq!(exact_sign(&det), Ordering::Greater);
+/// ```
+#[cold]
+pub fn exact_sign<P: Polynomial + ?Sized>(p: &P) -> Ordering {
+    let exponents = p.exponents();
+    if exponents.max > 1023 {
+        // An infinite or NaN input (the engine passes none): meaningless, but no panic.
+        return Ordering::Equal;
+    }
+    if exponents.exact_for(p.degree()) {
+        expansion_sign(&p.expansion())
+    } else {
+        rational_sign(&p.evaluate::<BigRational>())
+    }
+}
+
+/// The sign of an exact rational.
+fn rational_sign(x: &BigRational) -> Ordering {
+    let n: &BigInt = x.numer();
+    if n.is_zero() {
+        Ordering::Equal
+    } else if n.is_positive() {
+        Ordering::Greater
+    } else {
+        Ordering::Less
+    }
+}
+
+/// A commutative ring in which the kernel evaluates polynomials: exact rationals for the last
+/// resort of [`exact_sign`], and rounded `f64` and `f32` for measuring cheaper arithmetic.
+///
+/// ```
+/// use kepler::geometry::kernel::{Polynomial, Ring};
+/// use kepler::geometry::predicates::Orient2d;
+/// use num_rational::BigRational;
+/// let det = Orient2d([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]);
+/// assert_eq!(det.evaluate::<f64>(), 1.0);
+/// assert_eq!(det.evaluate::<f32>(), 1.0);
+/// assert_eq!(det.evaluate::<BigRational>(), BigRational::from_f64(1.0));
+/// ```
+pub trait Ring:
+    Sized + Clone + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Neg<Output = Self>
+{
+    /// The ring element nearest a finite double (exact in the rationals).
+    fn from_f64(x: f64) -> Self;
+}
+
+impl Ring for f64 {
+    #[inline]
+    fn from_f64(x: f64) -> f64 {
+        x
+    }
+}
+
+impl Ring for f32 {
+    #[inline]
+    fn from_f64(x: f64) -> f32 {
+        x as f32
+    }
+}
+
+impl Ring for BigRational {
+    /// Exact; a non-finite `x` (never passed by the engine) gives zero.
+    fn from_f64(x: f64) -> BigRational {
+        BigRational::from_float(x).unwrap_or_else(BigRational::zero)
+    }
+}
+
+/// The smallest and largest binary exponents of a polynomial's nonzero inputs (`x` has
+/// exponent `e` when `2^e ≤ |x| < 2^(e+1)`; a subnormal counts as `-1023`, an infinity or
+/// NaN as `1024`), which decide
+/// whether expansion arithmetic evaluates it exactly.
+///
+/// ```
+/// use kepler::geometry::kernel::Exponents;
+/// let e = Exponents::of(&[0.0, 0.75, -12.0]);
+/// assert_eq!((e.min, e.max), (-1, 3));
+/// assert!(e.exact_for(3));
+/// assert!(!Exponents::of(&[1e-300, 1.0]).exact_for(3));
+/// assert!(Exponents::of(&[0.0]).exact_for(9)); // no nonzero input
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Exponents {
+    /// The smallest exponent (`i32::MAX` when no input is nonzero).
+    pub min: i32,
+    /// The largest exponent (`i32::MIN` when no input is nonzero).
+    pub max: i32,
+}
+
+impl Exponents {
+    /// No nonzero input.
+    pub const NONE: Exponents = Exponents {
+        min: i32::MAX,
+        max: i32::MIN,
+    };
+
+    /// The exponents of `values`' nonzero entries.
+    ///
+    /// ```
+    /// use kepler::geometry::kernel::Exponents;
+    /// assert_eq!(Exponents::of(&[1.0, 1024.0]), Exponents { min: 0, max: 10 });
+    /// ```
+    #[inline]
+    pub fn of(values: &[f64]) -> Exponents {
+        values
+            .iter()
+            .fold(Exponents::NONE, |e, &x| e.union(Exponents::one(x)))
+    }
+
+    /// The exponent of one value (none for zero).
+    #[inline]
+    fn one(x: f64) -> Exponents {
+        if x == 0.0 {
+            return Exponents::NONE;
+        }
+        let biased = ((x.to_bits() >> 52) & 0x7ff) as i32;
+        let k = if biased == 0 { -1023 } else { biased - 1023 };
+        Exponents { min: k, max: k }
+    }
+
+    /// The exponents of the inputs of both.
+    ///
+    /// ```
+    /// use kepler::geometry::kernel::Exponents;
+    /// let u = Exponents::of(&[1.0]).union(Exponents::of(&[8.0]));
+    /// assert_eq!((u.min, u.max), (0, 3));
+    /// ```
+    #[inline]
+    pub fn union(self, other: Exponents) -> Exponents {
+        Exponents {
+            min: self.min.min(other.min),
+            max: self.max.max(other.max),
+        }
+    }
+
+    /// Whether Shewchuk's expansion arithmetic evaluates a polynomial of `degree` in inputs
+    /// with these exponents exactly. A monomial multiplies at most `degree` inputs (or their
+    /// differences, whose components are multiples of the smaller input's unit in the last
+    /// place); its exact products stay multiples of `2^-1074` when every input's last place is
+    /// at least `2^(-1074/degree)`, that is its exponent at least `52 − 1074/degree`, and stay
+    /// below `2^1000` with room for the sums when every exponent is at most
+    /// `1000/degree − 3`.
+    ///
+    /// ```
+    /// use kepler::geometry::kernel::Exponents;
+    /// assert!(Exponents { min: -306, max: 330 }.exact_for(3));
+    /// assert!(!Exponents { min: -307, max: 0 }.exact_for(3));
+    /// assert!(!Exponents { min: 0, max: 331 }.exact_for(3));
+    /// ```
+    #[inline]
+    pub fn exact_for(self, degree: u32) -> bool {
+        let d = degree.max(1) as i32;
+        self.min > self.max || (self.min >= 52 - 1074 / d && self.max <= 1000 / d - 3)
     }
 }
 
@@ -270,6 +473,18 @@ impl<A: Polynomial, B: Polynomial> Polynomial for Product<A, B> {
         expansion_product(&self.0.expansion(), &self.1.expansion())
     }
 
+    fn evaluate<R: Ring>(&self) -> R {
+        self.0.evaluate::<R>() * self.1.evaluate::<R>()
+    }
+
+    fn degree(&self) -> u32 {
+        self.0.degree() + self.1.degree()
+    }
+
+    fn exponents(&self) -> Exponents {
+        self.0.exponents().union(self.1.exponents())
+    }
+
     #[inline]
     fn sign(&self) -> Ordering {
         match self.estimate().sign() {
@@ -307,6 +522,18 @@ impl<A: Polynomial, B: Polynomial> Polynomial for Difference<A, B> {
     fn expansion(&self) -> Vec<f64> {
         expansion_sum(&self.0.expansion(), &negated(&self.1.expansion()))
     }
+
+    fn evaluate<R: Ring>(&self) -> R {
+        self.0.evaluate::<R>() - self.1.evaluate::<R>()
+    }
+
+    fn degree(&self) -> u32 {
+        self.0.degree().max(self.1.degree())
+    }
+
+    fn exponents(&self) -> Exponents {
+        self.0.exponents().union(self.1.exponents())
+    }
 }
 
 /// An affine polynomial at a point `X(t) = a + t·(b − a)` of a segment, `0 < t < 1`, from its
@@ -339,6 +566,22 @@ impl<A: Polynomial> Polynomial for Between<A> {
         )
     }
 
+    fn evaluate<R: Ring>(&self) -> R {
+        let xa = self.0.evaluate::<R>();
+        xa.clone() + R::from_f64(self.2) * (self.1.evaluate::<R>() - xa)
+    }
+
+    fn degree(&self) -> u32 {
+        self.0.degree().max(self.1.degree()) + 1
+    }
+
+    fn exponents(&self) -> Exponents {
+        self.0
+            .exponents()
+            .union(self.1.exponents())
+            .union(Exponents::of(&[self.2]))
+    }
+
     #[inline]
     fn sign(&self) -> Ordering {
         let (sa, sb) = (self.0.sign(), self.1.sign());
@@ -351,7 +594,7 @@ impl<A: Polynomial> Polynomial for Between<A> {
         }
         match self.estimate().sign() {
             Some(sign) => sign,
-            None => expansion_sign(&self.expansion()),
+            None => exact_sign(self),
         }
     }
 }

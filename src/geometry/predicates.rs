@@ -15,8 +15,10 @@
 use super::exact::{
     expansion_product, expansion_sum, negated, product_terms, scale_expansion, sum_sign, two_sum,
 };
-use super::kernel::{Estimate, Polynomial, UNIT_ROUNDOFF};
+use super::kernel::{Estimate, Exponents, Polynomial, Ring, UNIT_ROUNDOFF, exact_sign};
 use super::{Point3, Vector3};
+use num_rational::BigRational;
+use num_traits::Zero;
 use robust::{Coord, Coord3D};
 use std::cmp::Ordering;
 
@@ -44,12 +46,7 @@ fn sign(v: f64) -> Ordering {
 /// assert_eq!(orient3d(&o, &x, &y, &Point3::new(0.0, 0.0, 1.0)), Ordering::Less);
 /// ```
 pub fn orient3d(a: &Point3, b: &Point3, c: &Point3, d: &Point3) -> Ordering {
-    let p = |q: &Point3| Coord3D {
-        x: q.x,
-        y: q.y,
-        z: q.z,
-    };
-    sign(robust::orient3d(p(a), p(b), p(c), p(d)))
+    Orient3d([*a, *b, *c, *d]).sign()
 }
 
 /// Half the gap between 1 and the next double (Shewchuk's ε).
@@ -154,9 +151,44 @@ impl Polynomial for Orient3d {
     }
 
     #[inline]
-    fn sign(&self) -> Ordering {
+    fn evaluate<R: Ring>(&self) -> R {
         let [a, b, c, d] = &self.0;
-        orient3d(a, b, c, d)
+        let diff = |p: &Point3, k: usize| R::from_f64(p[k]) - R::from_f64(d[k]);
+        let [adx, ady, adz] = [0, 1, 2].map(|k| diff(a, k));
+        let [bdx, bdy, bdz] = [0, 1, 2].map(|k| diff(b, k));
+        let [cdx, cdy, cdz] = [0, 1, 2].map(|k| diff(c, k));
+        adz * (bdx.clone() * cdy.clone() - cdx.clone() * bdy.clone())
+            + bdz * (cdx * ady.clone() - adx.clone() * cdy)
+            + cdz * (adx * bdy - bdx * ady)
+    }
+
+    fn degree(&self) -> u32 {
+        3
+    }
+
+    fn exponents(&self) -> Exponents {
+        self.0.iter().fold(Exponents::NONE, |e, p| {
+            e.union(Exponents::of(p.coords.as_slice()))
+        })
+    }
+
+    /// The filter, then `robust`'s adaptive predicate where its expansions are exact, else
+    /// rationals.
+    #[inline]
+    fn sign(&self) -> Ordering {
+        if let Some(sign) = self.estimate().sign() {
+            return sign;
+        }
+        if !self.exponents().exact_for(3) {
+            return exact_sign(self);
+        }
+        let p = |q: &Point3| Coord3D {
+            x: q.x,
+            y: q.y,
+            z: q.z,
+        };
+        let [a, b, c, d] = &self.0;
+        sign(robust::orient3d(p(a), p(b), p(c), p(d)))
     }
 }
 
@@ -227,6 +259,29 @@ impl Polynomial for Orient3dAtInfinity {
     }
 
     #[inline]
+    fn evaluate<R: Ring>(&self) -> R {
+        let ([a, b, c], u) = (&self.0, &self.1);
+        let r1 = [0, 1, 2].map(|k| R::from_f64(a[k]) - R::from_f64(c[k]));
+        let r2 = [0, 1, 2].map(|k| R::from_f64(b[k]) - R::from_f64(c[k]));
+        let u = [0, 1, 2].map(|k| R::from_f64(u[k]));
+        let minor =
+            |i: usize, j: usize| r2[i].clone() * u[j].clone() - r2[j].clone() * u[i].clone();
+        r1[0].clone() * minor(2, 1) + r1[1].clone() * minor(0, 2) + r1[2].clone() * minor(1, 0)
+    }
+
+    fn degree(&self) -> u32 {
+        3
+    }
+
+    fn exponents(&self) -> Exponents {
+        self.0
+            .iter()
+            .fold(Exponents::of(self.1.as_slice()), |e, p| {
+                e.union(Exponents::of(p.coords.as_slice()))
+            })
+    }
+
+    #[inline]
     fn sign(&self) -> Ordering {
         let ([a, b, c], u) = (&self.0, &self.1);
         orient3d_at_infinity(a, b, c, u)
@@ -267,6 +322,24 @@ impl Polynomial for Orientation {
         }
     }
 
+    fn evaluate<R: Ring>(&self) -> R {
+        match self {
+            Orientation::Point(d) => d.evaluate(),
+            Orientation::Infinity(d) => d.evaluate(),
+        }
+    }
+
+    fn degree(&self) -> u32 {
+        3
+    }
+
+    fn exponents(&self) -> Exponents {
+        match self {
+            Orientation::Point(d) => d.exponents(),
+            Orientation::Infinity(d) => d.exponents(),
+        }
+    }
+
     #[inline]
     fn sign(&self) -> Ordering {
         match self {
@@ -286,8 +359,7 @@ impl Polynomial for Orientation {
 /// assert_eq!(orient2d([0.0, 0.0], [1.0, 1.0], [2.0, 2.0]), Ordering::Equal);
 /// ```
 pub fn orient2d(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Ordering {
-    let p = |q: [f64; 2]| Coord { x: q[0], y: q[1] };
-    sign(robust::orient2d(p(a), p(b), p(c)))
+    Orient2d([a, b, c]).sign()
 }
 
 /// The determinant whose sign [`orient2d`] returns, `(a − c) × (b − c)` for
@@ -339,10 +411,33 @@ impl Polynomial for Orient2d {
         super::exact::expansion(&terms)
     }
 
+    fn evaluate<R: Ring>(&self) -> R {
+        let [a, b, c] = self.0;
+        let d = |p: [f64; 2], k: usize| R::from_f64(p[k]) - R::from_f64(c[k]);
+        d(a, 0) * d(b, 1) - d(a, 1) * d(b, 0)
+    }
+
+    fn degree(&self) -> u32 {
+        2
+    }
+
+    fn exponents(&self) -> Exponents {
+        Exponents::of(&self.0.concat())
+    }
+
+    /// The filter, then `robust`'s adaptive predicate where its expansions are exact, else
+    /// rationals.
     #[inline]
     fn sign(&self) -> Ordering {
+        if let Some(sign) = self.estimate().sign() {
+            return sign;
+        }
+        if !self.exponents().exact_for(2) {
+            return exact_sign(self);
+        }
+        let p = |q: [f64; 2]| Coord { x: q[0], y: q[1] };
         let [a, b, c] = self.0;
-        orient2d(a, b, c)
+        sign(robust::orient2d(p(a), p(b), p(c)))
     }
 }
 
@@ -385,8 +480,12 @@ pub fn orient3d_at_infinity(a: &Point3, b: &Point3, c: &Point3, u: &Vector3) -> 
         let o = orient2d(project(a, k), project(b, k), project(c, k));
         return if u[k] > 0.0 { o.reverse() } else { o };
     }
-    if let Some(sign) = Orient3dAtInfinity([*a, *b, *c], *u).estimate().sign() {
+    let det = Orient3dAtInfinity([*a, *b, *c], *u);
+    if let Some(sign) = det.estimate().sign() {
         return sign;
+    }
+    if !det.exponents().exact_for(3) {
+        return exact_sign(&det);
     }
     exact_direction_det(a, b, c, u).reverse()
 }
@@ -436,6 +535,12 @@ pub fn orient2d_at_infinity(a: [f64; 2], b: [f64; 2], u: [f64; 2]) -> Ordering {
         (true, false) => return cmp(a[0], b[0]).reverse_if(u[1] > 0.0),
         (false, true) => return cmp(a[1], b[1]).reverse_if(u[0] < 0.0),
         (false, false) => {}
+    }
+    if !Exponents::of(&[a[0], a[1], b[0], b[1], u[0], u[1]]).exact_for(2) {
+        // Exactly, in rationals: -det[a - b, u].
+        let r = |x: f64| BigRational::from_f64(x);
+        let det = (r(a[0]) - r(b[0])) * r(u[1]) - (r(a[1]) - r(b[1])) * r(u[0]);
+        return BigRational::zero().cmp(&det);
     }
     let (dx, ex) = two_sum(a[0], -b[0]);
     let (dy, ey) = two_sum(a[1], -b[1]);

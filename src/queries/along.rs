@@ -17,7 +17,7 @@
 
 use crate::geometry::Point3;
 use crate::geometry::exact::{estimate, expansion_product, expansion_sum, negated};
-use crate::geometry::kernel::{Between, Estimate, Polynomial};
+use crate::geometry::kernel::{Between, Estimate, Exponents, Polynomial, Ring};
 use crate::geometry::predicates::{Orient3d, Orientation};
 use crate::views::{Eye, Picture};
 use std::cmp::Ordering;
@@ -104,6 +104,18 @@ impl Polynomial for FormAt<'_> {
 
     fn expansion(&self) -> Vec<f64> {
         self.form.at(self.eye, self.x).expansion()
+    }
+
+    fn evaluate<R: Ring>(&self) -> R {
+        self.form.at(self.eye, self.x).evaluate()
+    }
+
+    fn degree(&self) -> u32 {
+        3
+    }
+
+    fn exponents(&self) -> Exponents {
+        self.form.at(self.eye, self.x).exponents()
     }
 
     #[inline]
