@@ -1119,19 +1119,28 @@ fn triboxes_prints_levels_and_writes_json_and_svg() {
         "-o",
         &svg,
     ]);
-    // The L wall splits once (at x = 3): two levels, the first one tribox of 7 faces.
+    // The L wall splits once by the gain (at x = 3): two levels, the first one tribox of 7
+    // faces. The third level asked for is split below the gain, and marked.
     let lines: Vec<&str> = out.lines().collect();
-    assert_eq!(lines.len(), 4, "{out}");
+    assert_eq!(lines.len(), 6, "{out}");
     assert!(lines[0].starts_with("l-wall: N = 8 faces"), "{out}");
     let first: Vec<&str> = lines[2].split_whitespace().collect();
     assert_eq!(&first[..4], &["0", "1", "7", "1.14"], "{out}");
+    assert!(
+        lines[3].ends_with(')') && lines[4].ends_with(")  *"),
+        "{out}"
+    );
+    assert!(lines[5].starts_with("* below the gain of 0.05: "), "{out}");
     let report: Value = json_file(&json);
     let levels = report["levels"].as_array().expect("levels");
-    assert_eq!(levels.len(), 2);
+    assert_eq!(levels.len(), 3);
     assert_eq!(levels[0]["triboxes"], 1);
     assert_eq!(levels[0]["faces"], 7);
     assert_eq!(levels[0]["compression"], 8.0 / 7.0);
     assert_eq!(levels[1]["triboxes"], 2);
+    assert_eq!(levels[2]["triboxes"], 4);
+    assert_eq!(levels[1].get("below_gain"), None);
+    assert_eq!(levels[2]["below_gain"], true);
     for l in levels {
         for key in [
             "hausdorff",
@@ -1146,9 +1155,10 @@ fn triboxes_prints_levels_and_writes_json_and_svg() {
     // The wall is 27 units³; its tribox 58.5.
     assert_eq!(report["volume"], 27.0);
     assert_eq!(levels[0]["volume"], 58.5);
-    assert_eq!(report["nodes"].as_array().unwrap().len(), 3);
+    // The gain's three nodes, and the four of the third level.
+    assert_eq!(report["nodes"].as_array().unwrap().len(), 7);
     assert_eq!(report["nodes"][0]["split"]["direction"], 0);
-    // The drawing: the object and two levels, side by side.
+    // The drawing: the object and three levels, side by side.
     let lines = svg_polylines(&std::fs::read_to_string(&svg).unwrap());
     assert!(lines.len() > 20, "{}", lines.len());
 }
@@ -1166,4 +1176,46 @@ fn triboxes_of_a_whole_scene_and_its_errors() {
     // All objects together: the open one is named.
     let err = fails(&["triboxes", "scenes/meshes.toml"]);
     assert!(err.contains("'tent'") && err.contains("closed"), "{err}");
+}
+
+#[test]
+fn triboxes_says_why_it_stops_and_makes_the_levels_asked_for() {
+    let ring = ["triboxes", "scenes/solids.toml", "--object", "round/ring"];
+    // The ring (a torus) keeps one tribox under the paper's gain, and a note says why and
+    // which gain splits it.
+    let o = kepler(&ring);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(stdout(&o).lines().count(), 3, "{}", stdout(&o));
+    let note = stderr(&o);
+    assert_eq!(note.lines().count(), 1, "{note}");
+    assert!(
+        note.starts_with("note: the hierarchy stops at depth 0 (1 of 4 levels): "),
+        "{note}"
+    );
+    let gain = note
+        .split("--gain ")
+        .nth(1)
+        .and_then(|rest| rest.split_whitespace().next())
+        .unwrap_or_else(|| panic!("no --gain in {note}"));
+    assert!(gain.parse::<f64>().unwrap() < 0.05, "{gain}");
+    let o = kepler(&[&ring[..], &["--gain", gain]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).lines().count() > 3, "{}", stdout(&o));
+    // Asked for four levels, it makes them, marking those split below the gain.
+    let out = ok(&[&ring[..], &["--levels", "4"]].concat());
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), 7, "{out}");
+    for (depth, line) in lines[2..6].iter().enumerate() {
+        assert!(line.trim_start().starts_with(&depth.to_string()), "{out}");
+    }
+    assert!(lines[3].ends_with("  *"), "{out}");
+    assert!(lines[6].starts_with("* below the gain of 0.05: "), "{out}");
+    // The maximum depth still bounds them, and the note says so.
+    let o = kepler(&[&ring[..], &["--levels", "4", "--max-depth", "1"]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(stdout(&o).lines().count(), 5, "{}", stdout(&o));
+    assert_eq!(
+        stderr(&o),
+        "note: the hierarchy stops at depth 1 (2 of 4 levels): its cells are at --max-depth 1\n"
+    );
 }

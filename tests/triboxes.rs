@@ -9,7 +9,7 @@ use geo::polygon;
 use kepler::bounds::tribox::{Tribox, TriboxBounds};
 use kepler::geometry::{Point3, Vector3};
 use kepler::lab::tribox_hierarchy::{
-    Hierarchy, HierarchyOptions, SplitRule, hausdorff, tribox_mesh, union_area,
+    Hierarchy, HierarchyOptions, SplitRule, Stop, hausdorff, tribox_mesh, union_area,
 };
 use kepler::mesh::{Containment, Mesh, TriangleTree, classify_point};
 use proptest::prelude::*;
@@ -36,6 +36,10 @@ fn star() -> Mesh {
 
 fn torus() -> Mesh {
     kepler::solids::torus(2.0, 0.7, 16, 10).unwrap()
+}
+
+fn sphere() -> Mesh {
+    kepler::solids::uv_sphere(2.0, 24, 12).unwrap()
 }
 
 /// HierarchyOptions that split every cell down to `depth` (a negative gain accepts any split).
@@ -513,6 +517,110 @@ fn tribox_meshes_are_closed_and_match_the_bounds() {
             assert!((0..9).all(|d| b.min()[d] <= n.tribox.min()[d] + 1e-9));
         }
     }
+}
+
+// ---------------------------------------------------------------------------------------
+// Levels asked for (`HierarchyOptions::levels`): made below the gain where the gain stops.
+// ---------------------------------------------------------------------------------------
+
+/// The paper's options, asking for `levels` levels.
+fn asking(levels: usize) -> HierarchyOptions {
+    HierarchyOptions {
+        levels: Some(levels),
+        ..HierarchyOptions::default()
+    }
+}
+
+#[test]
+fn the_gain_stops_a_torus_and_a_sphere_at_the_root_and_names_the_gain_that_splits() {
+    for mesh in [torus(), sphere()] {
+        let h = Hierarchy::build(&mesh, &HierarchyOptions::default()).unwrap();
+        assert_eq!(h.depth(), 0);
+        let Stop::Gain { best_gain } = h.stop() else {
+            panic!("{:?}", h.stop());
+        };
+        assert!(best_gain < 0.0, "{best_gain}");
+        // Under the best gain the root splits; a little above it, it does not.
+        let depth = |gain| {
+            let o = HierarchyOptions {
+                gain,
+                ..HierarchyOptions::default()
+            };
+            Hierarchy::build(&mesh, &o).unwrap().depth()
+        };
+        assert!(depth(best_gain) > 0);
+        assert_eq!(depth(best_gain + 1e-9), 0);
+    }
+}
+
+#[test]
+fn asked_levels_are_made_below_the_gain_and_marked() {
+    for mesh in [torus(), sphere()] {
+        let options = asking(4);
+        let h = Hierarchy::build(&mesh, &options).unwrap();
+        let levels = h.levels(4);
+        assert_eq!(levels.len(), 4);
+        assert!(!levels[0].below_gain && levels[1].below_gain);
+        for pair in levels.windows(2) {
+            assert!(pair[1].triboxes > pair[0].triboxes);
+            assert!(pair[1].volume <= pair[0].volume);
+        }
+        // A level is marked exactly when the splits that made it all miss the gain.
+        let nodes = h.nodes();
+        for l in &levels[1..] {
+            let fits: Vec<bool> = nodes
+                .iter()
+                .filter(|n| n.depth + 1 == l.depth)
+                .filter_map(|n| n.children)
+                .map(|[a, b]| {
+                    let parent = nodes[a].parent.unwrap();
+                    nodes[a].area + nodes[b].area <= (1.0 - options.gain) * nodes[parent].area
+                })
+                .collect();
+            assert!(!fits.is_empty());
+            assert!(fits.iter().all(|&fit| fit != l.below_gain), "{l:?}");
+        }
+        check_partition(&mesh, &options);
+    }
+}
+
+#[test]
+fn asked_levels_change_nothing_where_the_gain_reaches_them() {
+    // The star splits to depth 3 under a gain of -0.5: asking for its 4 levels keeps the tree.
+    let o = HierarchyOptions {
+        gain: -0.5,
+        max_depth: 3,
+        split: SplitRule::Features,
+        ..HierarchyOptions::default()
+    };
+    let asked = HierarchyOptions {
+        levels: Some(4),
+        ..o
+    };
+    let (a, b) = (
+        Hierarchy::build(&star(), &o).unwrap(),
+        Hierarchy::build(&star(), &asked).unwrap(),
+    );
+    assert_eq!(a.nodes(), b.nodes());
+    assert!(b.levels(4).iter().all(|l| !l.below_gain));
+    // The L wall's one split fits the gain; a third level is made below it.
+    let h = Hierarchy::build(&l_wall(), &asking(3)).unwrap();
+    let marks: Vec<bool> = h.levels(3).iter().map(|l| l.below_gain).collect();
+    assert_eq!(marks, [false, false, true]);
+    let split = h.nodes()[0].split.unwrap();
+    assert_eq!((split.direction, split.offset), (0, 3.0));
+}
+
+#[test]
+fn max_depth_bounds_the_levels_asked_for() {
+    let o = HierarchyOptions {
+        max_depth: 2,
+        levels: Some(6),
+        ..HierarchyOptions::default()
+    };
+    let h = Hierarchy::build(&torus(), &o).unwrap();
+    assert_eq!((h.depth(), h.stop()), (2, Stop::MaxDepth));
+    assert_eq!(h.levels(6).len(), 3);
 }
 
 proptest! {

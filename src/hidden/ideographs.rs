@@ -22,10 +22,14 @@ use crate::views::{Picture, View};
 /// assert_ne!(kepler::hidden::ideographs::Ideograph::Bound, kepler::hidden::ideographs::Ideograph::Omit);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+// The command line's --ideograph: its `--help` lists the values by name only.
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Ideograph {
     /// Draw its CBOX instead (a box, with its hidden lines removed like any object).
+    #[cfg_attr(feature = "cli", value(help = None::<&str>))]
     Bound,
     /// Leave it out.
+    #[cfg_attr(feature = "cli", value(help = None::<&str>))]
     Omit,
 }
 

@@ -105,12 +105,16 @@ pub type Result<T, E = DrawError> = std::result::Result<T, E>;
 /// assert_eq!(kepler::hidden::EdgeSelection::default(), kepler::hidden::EdgeSelection::Feature);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+// The command line's --edges: its `--help` lists the values by name only.
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum EdgeSelection {
     /// Silhouette, boundary, crease and intersection edges: a scanned mesh draws as a line
     /// drawing.
     #[default]
+    #[cfg_attr(feature = "cli", value(help = None::<&str>))]
     Feature,
     /// Every edge (smooth ones too) with its hidden parts removed: a wireframe.
+    #[cfg_attr(feature = "cli", value(help = None::<&str>))]
     All,
 }
 

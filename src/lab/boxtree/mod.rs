@@ -152,12 +152,17 @@ impl std::str::FromStr for Shape {
 /// assert_eq!(Merge::Volume.to_string(), "volume");
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+// The command line's --merge: its `--help` lists the values by name only, the paper's setting
+// first.
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
 pub enum Merge {
-    /// Smallest parent surface area (the paper's conclusion, by Cauchy's formula).
-    Area,
     /// Smallest parent volume (the paper's Table 1 setting).
+    #[cfg_attr(feature = "cli", value(help = None::<&str>))]
     Volume,
+    /// Smallest parent surface area (the paper's conclusion, by Cauchy's formula).
+    #[cfg_attr(feature = "cli", value(help = None::<&str>))]
+    Area,
 }
 
 impl Merge {

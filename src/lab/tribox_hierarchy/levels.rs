@@ -40,6 +40,20 @@ pub struct Level {
     pub hausdorff: f64,
     /// A lower bound on the same distance (the exact value is between the two).
     pub hausdorff_lower: f64,
+    /// Whether the level was split from the one above although no split lowered a cell's
+    /// tribox area by the gain, because [`levels`](super::HierarchyOptions::levels) asked for
+    /// it (left out of JSON when false).
+    ///
+    /// ```
+    /// use kepler::lab::tribox_hierarchy::{Hierarchy, HierarchyOptions};
+    /// let cube = kepler::solids::cube(1.0).unwrap();
+    /// let o = HierarchyOptions { levels: Some(2), ..HierarchyOptions::default() };
+    /// let levels = Hierarchy::build(&cube, &o).unwrap().levels(2);
+    /// assert_eq!((levels[0].below_gain, levels[1].below_gain), (false, true));
+    /// assert_eq!((levels[1].triboxes, levels[1].volume_excess), (2, 0.0));
+    /// ```
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub below_gain: bool,
 }
 
 /// The report of the cut at `depth`.
@@ -62,6 +76,7 @@ pub(crate) fn level(h: &Hierarchy, depth: usize) -> Level {
         area_excess: area / h.object_area - 1.0,
         hausdorff: distance.upper,
         hausdorff_lower: distance.lower,
+        below_gain: h.below_gain.contains(&depth),
     }
 }
 

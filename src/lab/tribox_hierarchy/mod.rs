@@ -10,7 +10,9 @@
 //! vertices in the cell. A candidate is admissible when the two triboxes' total area is at
 //! most `1 − gain` times the cell's ([`HierarchyOptions::gain`], the paper's stopping rule); of those,
 //! the one with the least total volume is taken. A cell stays a leaf when no candidate is
-//! admissible, or at [`HierarchyOptions::max_depth`].
+//! admissible, or at [`HierarchyOptions::max_depth`]; [`Hierarchy::stop`] tells which ended
+//! the tree. Asked for more levels ([`HierarchyOptions::levels`]), a level the rule would not
+//! make is made regardless, of the best candidates below the gain ([`Level::below_gain`]).
 //!
 //! The cells' vertices are computed exactly as the paper lists them, incrementally from the
 //! parent cell (see the `cell` module): every tribox contains its exact cell. A level of
@@ -42,6 +44,8 @@ pub use levels::{Level, union_area};
 use crate::bounds::tribox::{Tribox, TriboxBounds};
 use crate::geometry::Point3;
 use crate::mesh::{Mesh, MeshError, TriangleTree};
+use crate::scene::Scene;
+use crate::views::View;
 use cell::Cell;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -84,16 +88,21 @@ pub enum TriboxesError {
 /// assert_eq!((level.triboxes, level.volume), (2, 27.0));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+// The command line's --split: its `--help` lists the values by name only.
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
 pub enum SplitRule {
     /// The paper's first choice: the bisector of the thickest slab, alone.
+    #[cfg_attr(feature = "cli", value(help = None::<&str>))]
     Thickest,
     /// The bisectors of all nine slabs.
     #[default]
+    #[cfg_attr(feature = "cli", value(help = None::<&str>))]
     Bisectors,
     /// The nine bisectors and, along each direction, up to [`FEATURE_PLANES`] planes through
     /// the object's vertices in the cell: they can cut off a concave corner, which bisectors
     /// never reach (the paper's suggestion of planes at local extrema).
+    #[cfg_attr(feature = "cli", value(help = None::<&str>))]
     Features,
 }
 
@@ -108,7 +117,7 @@ pub const FEATURE_PLANES: usize = 4;
 ///
 /// ```
 /// let o = kepler::lab::tribox_hierarchy::HierarchyOptions::default();
-/// assert_eq!((o.gain, o.max_depth), (0.05, 8));
+/// assert_eq!((o.gain, o.max_depth, o.levels), (0.05, 8, None));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct HierarchyOptions {
@@ -124,6 +133,11 @@ pub struct HierarchyOptions {
     /// The Hausdorff bounds of [`Hierarchy::levels`] stop when their gap is at most this
     /// fraction of the root tribox's diagonal.
     pub hausdorff_tolerance: f64,
+    /// How many levels the tree must have (depths 0 to `levels − 1`, within `max_depth`):
+    /// where the gain leaves a level above that depth with no split, each of its cells is
+    /// split by its best candidate (the least total volume, then area) whatever the area it
+    /// saves, and [`Level::below_gain`] marks the level made. `None`: the gain alone decides.
+    pub levels: Option<usize>,
 }
 
 impl Default for HierarchyOptions {
@@ -133,8 +147,33 @@ impl Default for HierarchyOptions {
             max_depth: 8,
             split: SplitRule::Bisectors,
             hausdorff_tolerance: 1e-3,
+            levels: None,
         }
     }
+}
+
+/// Why a hierarchy has no deeper level: what kept every cell of its deepest level whole.
+///
+/// ```
+/// use kepler::lab::tribox_hierarchy::{Hierarchy, HierarchyOptions, Stop};
+/// let cube = kepler::solids::cube(1.0).unwrap();
+/// let o = HierarchyOptions { max_depth: 0, ..HierarchyOptions::default() };
+/// assert_eq!(Hierarchy::build(&cube, &o).unwrap().stop(), Stop::MaxDepth);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Stop {
+    /// The cells are at [`HierarchyOptions::max_depth`].
+    MaxDepth,
+    /// No candidate lowers a cell's tribox area by the gain. `best_gain` is (within a few
+    /// ulps) the largest gain that admits a candidate of one of the cells, about `1 − area
+    /// after / area before` (negative when every candidate raises the area): that cell splits
+    /// under a gain at most `best_gain`.
+    Gain {
+        /// The largest gain that admits a candidate.
+        best_gain: f64,
+    },
+    /// No candidate plane splits a cell: none has a vertex of the cell strictly on each side.
+    NoPlane,
 }
 
 /// The tolerance of the simplification of [`HierarchyNode::faces`] and of the drawn triboxes,
@@ -210,6 +249,9 @@ pub struct HierarchyNode {
 #[derive(Debug)]
 pub struct Hierarchy {
     nodes: Vec<HierarchyNode>,
+    /// The depths of the levels split below the gain (for [`HierarchyOptions::levels`]).
+    below_gain: Vec<usize>,
+    stop: Stop,
     tree: TriangleTree,
     object_faces: usize,
     object_volume: f64,
@@ -259,35 +301,55 @@ impl Hierarchy {
         let node =
             |cell: &Cell, depth: usize, parent: Option<usize>| node(cell, depth, parent, simplify);
         let mut nodes = vec![node(&root, 0, None)];
+        let mut below_gain = Vec::new();
+        // The cells of one depth, split together (a level the gain leaves whole may be split
+        // regardless, for `options.levels`).
         let mut level = vec![(0usize, root)];
-        while !level.is_empty() {
-            let splits: Vec<Option<(SplitPlane, [Cell; 2])>> = level
+        let mut depth = 0;
+        let stop = loop {
+            if depth >= options.max_depth {
+                break Stop::MaxDepth;
+            }
+            let choices: Vec<Choice> = level
                 .par_iter()
-                .map(|(index, cell)| {
-                    if nodes[*index].depth >= options.max_depth {
-                        return None;
-                    }
-                    best_split(cell, mesh, &tree, options, nodes[*index].area)
-                })
+                .map(|(index, cell)| choose(cell, mesh, &tree, options, nodes[*index].area))
                 .collect();
+            let forced = choices.iter().all(|c| c.fit.is_none())
+                && options.levels.is_some_and(|levels| depth + 1 < levels);
+            let best_gain = choices
+                .iter()
+                .filter_map(|c| c.best_gain)
+                .max_by(f64::total_cmp);
             let mut next = Vec::new();
-            for ((index, _), split) in level.into_iter().zip(splits) {
-                let Some((plane, children)) = split else {
+            for ((index, _), choice) in level.into_iter().zip(choices) {
+                let split = if forced { choice.unfit } else { choice.fit };
+                let Some(Candidate {
+                    plane, children, ..
+                }) = split
+                else {
                     continue;
                 };
-                let depth = nodes[index].depth + 1;
                 let first = nodes.len();
                 for cell in children {
-                    nodes.push(node(&cell, depth, Some(index)));
+                    nodes.push(node(&cell, depth + 1, Some(index)));
                     next.push((nodes.len() - 1, cell));
                 }
                 nodes[index].children = Some([first, first + 1]);
                 nodes[index].split = Some(plane);
             }
+            if next.is_empty() {
+                break best_gain.map_or(Stop::NoPlane, |best_gain| Stop::Gain { best_gain });
+            }
+            depth += 1;
+            if forced {
+                below_gain.push(depth);
+            }
             level = next;
-        }
+        };
         Ok(Hierarchy {
             nodes,
+            below_gain,
+            stop,
             tree,
             object_faces: mesh.faces().len(),
             object_volume: mesh.volume(),
@@ -385,6 +447,70 @@ impl Hierarchy {
             .map(|depth| levels::level(self, depth))
             .collect()
     }
+
+    /// Why the tree goes no deeper: what kept every cell at [`Hierarchy::depth`] whole.
+    ///
+    /// ```
+    /// use kepler::lab::tribox_hierarchy::{Hierarchy, HierarchyOptions, Stop};
+    /// // No split of a torus's tribox lowers the area: the two halves' have more.
+    /// let torus = kepler::solids::torus(2.0, 0.5, 24, 12).unwrap();
+    /// let h = Hierarchy::build(&torus, &HierarchyOptions::default()).unwrap();
+    /// let Stop::Gain { best_gain } = h.stop() else { panic!("{:?}", h.stop()) };
+    /// assert!(best_gain < 0.0);
+    /// // A gain at most the best one admits that split: the tree goes deeper.
+    /// let o = HierarchyOptions { gain: best_gain, ..HierarchyOptions::default() };
+    /// assert!(Hierarchy::build(&torus, &o).unwrap().depth() > 0);
+    /// ```
+    pub fn stop(&self) -> Stop {
+        self.stop
+    }
+
+    /// The object and its first `levels` levels of detail (no deeper than the tree) side by
+    /// side, as a scene to draw in `view`: the object as `object`, then the triboxes of the
+    /// cut at depth `d` as group `level-d` of meshes `tribox-i` (as [`tribox_mesh`] draws
+    /// them), each panel moved along the picture's horizontal by 1.25 times the root tribox's
+    /// width across it, so that panels never overlap.
+    ///
+    /// ```
+    /// use kepler::lab::tribox_hierarchy::{Hierarchy, HierarchyOptions};
+    /// use geo::polygon;
+    /// let l = polygon![(x: 0.0, y: 0.0), (x: 6.0, y: 0.0), (x: 6.0, y: 1.0),
+    ///     (x: 1.0, y: 1.0), (x: 1.0, y: 4.0), (x: 0.0, y: 4.0)];
+    /// let wall = kepler::solids::prism(&l, 3.0).unwrap();
+    /// let h = Hierarchy::build(&wall, &HierarchyOptions::default()).unwrap();
+    /// let view = kepler::views::View::standard();
+    /// let scene = h.panels(&wall, 5, &view)?;
+    /// // The wall, one tribox, then the two of depth 1: the tree is no deeper.
+    /// assert_eq!(scene.roots().len(), 3);
+    /// assert!(scene.find("level-1/tribox-1").is_some());
+    /// let drawing = kepler::hidden::draw(&scene, &view, &kepler::hidden::Options::default())?;
+    /// assert!(!drawing.polylines.is_empty());
+    /// # Ok::<(), kepler::Error>(())
+    /// ```
+    pub fn panels(&self, mesh: &Mesh, levels: usize, view: &View) -> crate::Result<Scene> {
+        let (right, _) = view.right_up();
+        let root = Tribox::new(&self.nodes[0].tribox).cleaned();
+        let along = root.vertices().iter().map(|v| v.coords.dot(&right));
+        let (lo, hi) = along.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+            (lo.min(x), hi.max(x))
+        });
+        let pitch = 1.25 * (hi - lo);
+        let shifted = |m: &Mesh, k: usize| {
+            m.transformed(&nalgebra::Matrix4::new_translation(
+                &(right * (pitch * k as f64)),
+            ))
+        };
+        let mut scene = Scene::new();
+        scene.add_mesh(None, "object", shifted(mesh, 0)?)?;
+        for depth in 0..levels.min(self.depth() + 1) {
+            let group = scene.add_group(None, format!("level-{depth}"))?;
+            for (i, node) in self.cut(depth).into_iter().enumerate() {
+                let m = tribox_mesh(&self.nodes[node].tribox, self.simplify)?;
+                scene.add_mesh(Some(group), format!("tribox-{i}"), shifted(&m, depth + 1)?)?;
+            }
+        }
+        Ok(scene)
+    }
 }
 
 /// The boundary of a tribox as a mesh (its faces counter-clockwise seen from outside), for
@@ -463,16 +589,104 @@ fn node(cell: &Cell, depth: usize, parent: Option<usize>, simplify: f64) -> Hier
     }
 }
 
-/// The split of a cell: among the rule's candidates whose two triboxes have a total area at
-/// most `(1 − gain)` times the cell's (the paper's rule), the one with the least total volume
-/// (then area). None when no candidate lowers the area enough.
-fn best_split(
+/// A candidate split of a cell: its plane, the two cells, and their triboxes' total volume and
+/// area.
+struct Candidate {
+    plane: SplitPlane,
+    children: [Cell; 2],
+    volume: f64,
+    area: f64,
+}
+
+impl Candidate {
+    /// The order of choice: the least total volume, then area (then the plane, for a result
+    /// independent of the order of evaluation).
+    fn order(&self, other: &Candidate) -> std::cmp::Ordering {
+        self.volume
+            .total_cmp(&other.volume)
+            .then(self.area.total_cmp(&other.area))
+            .then(self.plane.direction.cmp(&other.plane.direction))
+            .then(self.plane.offset.total_cmp(&other.plane.offset))
+    }
+}
+
+/// The candidates of a cell sorted out by the gain: the best that lowers the area enough (the
+/// paper's rule), the best of the others (for a level split regardless), and the largest gain
+/// that admits one.
+#[derive(Default)]
+struct Choice {
+    fit: Option<Candidate>,
+    unfit: Option<Candidate>,
+    best_gain: Option<f64>,
+}
+
+impl Choice {
+    /// The choice of one candidate of a cell of tribox area `area`.
+    fn of(candidate: Candidate, gain: f64, area: f64) -> Choice {
+        let best_gain = Some(admitting_gain(candidate.area, area));
+        if admits(gain, candidate.area, area) {
+            Choice {
+                fit: Some(candidate),
+                unfit: None,
+                best_gain,
+            }
+        } else {
+            Choice {
+                fit: None,
+                unfit: Some(candidate),
+                best_gain,
+            }
+        }
+    }
+
+    /// The choice of the candidates of both.
+    fn merge(self, other: Choice) -> Choice {
+        let better = |a: Option<Candidate>, b: Option<Candidate>| match (a, b) {
+            (Some(a), Some(b)) => Some(if b.order(&a).is_lt() { b } else { a }),
+            (a, b) => a.or(b),
+        };
+        Choice {
+            fit: better(self.fit, other.fit),
+            unfit: better(self.unfit, other.unfit),
+            best_gain: [self.best_gain, other.best_gain]
+                .into_iter()
+                .flatten()
+                .max_by(f64::total_cmp),
+        }
+    }
+}
+
+/// Whether children of total tribox area `after` split a cell of area `before` under `gain`:
+/// the paper's rule, `after ≤ (1 − gain) · before`.
+fn admits(gain: f64, after: f64, before: f64) -> bool {
+    after <= (1.0 - gain) * before
+}
+
+/// Nearly the largest gain (within a few ulps) under which children of total area `after`
+/// split a cell of area `before`: `1 − after / before`, lowered until [`admits`] holds as it
+/// rounds. The steps double: where `after` and `before` are within rounding of each other
+/// (a flat cell), the quotient gives a gain of 0 and ulps of 0 would never reach the next
+/// value of `1 − gain`.
+fn admitting_gain(after: f64, before: f64) -> f64 {
+    let mut gain = 1.0 - after / before;
+    let mut step = f64::EPSILON * gain.abs().max(1.0);
+    while gain.is_finite() && !admits(gain, after, before) {
+        gain -= step;
+        step *= 2.0;
+    }
+    gain
+}
+
+/// The candidates of the rule for a cell, evaluated: among them, the least total volume
+/// (then area) of those whose two triboxes have a total area at most `(1 − gain)` times the
+/// cell's `area` (the paper's rule), and of the others.
+fn choose(
     cell: &Cell,
     mesh: &Mesh,
     tree: &TriangleTree,
     options: &HierarchyOptions,
     area: f64,
-) -> Option<(SplitPlane, [Cell; 2])> {
+) -> Choice {
     let mut candidates: Vec<(usize, f64)> = match options.split {
         SplitRule::Thickest => (0..9)
             .filter(|&d| cell.bisector(d).is_some())
@@ -490,31 +704,47 @@ fn best_split(
             candidates.extend(planes.into_iter().map(|h| (d, h)));
         }
     }
-    let limit = (1.0 - options.gain) * area;
-    let best = candidates
+    candidates
         .into_par_iter()
         .filter_map(|(d, h)| {
             let children = cell.split(mesh, tree, d, h)?;
             let boundaries = children
                 .each_ref()
                 .map(|c| Tribox::new(&c.tribox).cleaned());
-            let area: f64 = boundaries.iter().map(Tribox::surface_area).sum();
-            let volume: f64 = boundaries.iter().map(Tribox::volume).sum();
-            (area <= limit).then_some((
-                volume,
-                area,
-                SplitPlane {
+            let candidate = Candidate {
+                plane: SplitPlane {
                     direction: d,
                     offset: h,
                 },
                 children,
-            ))
+                volume: boundaries.iter().map(Tribox::volume).sum(),
+                area: boundaries.iter().map(Tribox::surface_area).sum(),
+            };
+            Some(Choice::of(candidate, options.gain, area))
         })
-        .min_by(|a, b| {
-            a.0.total_cmp(&b.0)
-                .then(a.1.total_cmp(&b.1))
-                .then(a.2.direction.cmp(&b.2.direction))
-                .then(a.2.offset.total_cmp(&b.2.offset))
-        })?;
-    Some((best.2, best.3))
+        .reduce(Choice::default, Choice::merge)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{admits, admitting_gain};
+
+    #[test]
+    fn the_admitting_gain_admits_and_is_the_largest_to_rounding() {
+        // The last pair's quotient rounds to 1: the gain of 0 does not admit, nor any gain
+        // within an ulp of 0.
+        for (after, before) in [
+            (68.0, 103.0),
+            (103.0, 68.0),
+            (1.0, 1.0),
+            (2.0, 2f64.next_down()),
+        ] {
+            let gain = admitting_gain(after, before);
+            assert!(admits(gain, after, before), "{after} {before}: {gain}");
+            assert!(
+                !admits(gain + 1e-12, after, before),
+                "{after} {before}: {gain}"
+            );
+        }
+    }
 }

@@ -1,0 +1,63 @@
+//! The `kepler` command line: one module per command, each with its options (`Args`) and its
+//! `run`; `args` and `output` hold what several commands share.
+
+mod args;
+mod bounds;
+mod boxtree;
+mod cull;
+mod include;
+mod output;
+mod render;
+mod segx;
+mod surfaces;
+mod triboxes;
+mod visobj;
+mod visp;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// kepler: exact visibility for scenes of polyhedra.
+#[derive(Parser)]
+#[command(name = "kepler", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+// Each command's help is its `Args`' doc comment; `--help` lists them in this order.
+#[derive(Subcommand)]
+enum Command {
+    Bounds(bounds::Args),
+    Include(include::Args),
+    Segx(segx::Args),
+    Render(render::Args),
+    Surfaces(surfaces::Args),
+    Visobj(visobj::Args),
+    Cull(cull::Args),
+    Boxtree(boxtree::Args),
+    Triboxes(triboxes::Args),
+    Visp(visp::Args),
+}
+
+fn main() -> ExitCode {
+    let result = match Cli::parse().command {
+        Command::Bounds(args) => bounds::run(args),
+        Command::Include(args) => include::run(args),
+        Command::Segx(args) => segx::run(args),
+        Command::Render(args) => render::run(args),
+        Command::Surfaces(args) => surfaces::run(args),
+        Command::Visobj(args) => visobj::run(args),
+        Command::Cull(args) => cull::run(args),
+        Command::Boxtree(args) => boxtree::run(args),
+        Command::Triboxes(args) => triboxes::run(args),
+        Command::Visp(args) => visp::run(args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

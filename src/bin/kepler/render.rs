@@ -1,0 +1,194 @@
+//! `kepler render`: the exact hidden-line drawing of a scene, as SVG (and JSON).
+
+use crate::args::{PageArgs, ViewArgs, load_drawable, parse_area, parse_stroke};
+use crate::output::{progress_bar, write_file};
+use anyhow::Result;
+use kepler::geometry::polygon::bounding_box;
+use kepler::hidden::ideographs::{Ideograph, ideographs};
+use kepler::hidden::{self, Drawing, EdgeClass, EdgeSelection};
+use kepler::output::{PageTransform, SvgOptions, write_json, write_svg};
+use kepler::scene::Scene;
+use kepler::views::{Picture, View};
+use std::fmt::Write as _;
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+/// Draw the scene's visible (and hidden) lines exactly, as SVG (and JSON).
+#[derive(clap::Args)]
+pub struct Args {
+    /// A scene file (.toml) or a mesh file (.obj, .stl, .off).
+    scene: PathBuf,
+    /// The SVG file to write (`-` writes standard output).
+    #[arg(short = 'o', long = "output", value_name = "FILE")]
+    output: PathBuf,
+    /// Which edges: `feature` (silhouette, boundary, crease, intersection) or `all` (smooth
+    /// edges too: a wireframe with hidden parts removed).
+    #[arg(long, value_enum, default_value_t = EdgeSelection::Feature)]
+    edges: EdgeSelection,
+    /// An edge whose faces bend by more than this many degrees is a crease.
+    #[arg(long, value_name = "DEGREES", default_value_t = 30.0)]
+    crease_angle: f64,
+    /// Hidden lines: `dashed` (their own grey dashed layers) or `omit`.
+    #[arg(long, value_enum, default_value_t = Hidden::Dashed)]
+    hidden: Hidden,
+    #[command(flatten)]
+    page: PageArgs,
+    /// A stroke width in millimetres for one class, `CLASS=MM` (classes: silhouette,
+    /// boundary, crease, intersection, smooth); repeat for several.
+    #[arg(long, value_name = "CLASS=MM", value_parser = parse_stroke)]
+    stroke: Vec<(EdgeClass, f64)>,
+    /// Also write the polylines as JSON, in view coordinates, to this file.
+    #[arg(long, value_name = "FILE")]
+    json: Option<PathBuf>,
+    /// Print what each stage computed and skipped, its time, and the visible and hidden
+    /// length of each edge class (to stderr).
+    #[arg(long)]
+    stats: bool,
+    /// Franklin's ideographs: an object whose CBOX's picture is smaller than this many
+    /// square millimetres on the page is drawn as its CBOX, or left out (`--ideograph`).
+    #[arg(long, value_name = "MM2", value_parser = parse_area)]
+    ideograph_below: Option<f64>,
+    /// What a small object becomes: `bound` (its CBOX) or `omit`.
+    #[arg(long, value_enum, default_value_t = Ideograph::Bound)]
+    ideograph: Ideograph,
+    #[command(flatten)]
+    view: ViewArgs,
+}
+
+/// `--hidden`: the library keeps hidden lines or not (`hidden::Options::hidden`).
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum Hidden {
+    Dashed,
+    Omit,
+}
+
+/// Draws the scene and writes the drawing.
+pub fn run(args: Args) -> Result<()> {
+    let crease_angle = args.crease_angle;
+    if !(crease_angle.is_finite() && (0.0..=180.0).contains(&crease_angle)) {
+        anyhow::bail!("--crease-angle must be between 0 and 180 degrees, not {crease_angle}");
+    }
+    let started = Instant::now();
+    let scene = load_drawable(&args.scene)?;
+    let view = args.view.view(&scene)?;
+    let options = hidden::Options {
+        edges: args.edges,
+        crease_angle,
+        hidden: args.hidden == Hidden::Dashed,
+    };
+    let svg_options = svg_options(&args);
+    let (scene, culled) = match args.ideograph_below {
+        Some(mm2) => {
+            let min_area = picture_area(&scene, &view, &svg_options, mm2);
+            let small = ideographs(&scene, &view, min_area, args.ideograph)?;
+            let counts = (small.culled, small.triangles_culled, small.triangles_added);
+            (small.scene, Some(counts))
+        }
+        None => (scene, None),
+    };
+    let loaded = started.elapsed();
+    let drawing = draw(&scene, &view, &options)?;
+    let clock = Instant::now();
+    write_file(&args.output, |mut out| {
+        write_svg(&drawing, &svg_options, &mut out)
+    })?;
+    if let Some(json) = &args.json {
+        write_file(json, |mut out| write_json(&drawing, &mut out))?;
+    }
+    let written = clock.elapsed();
+    if args.stats {
+        if let Some((objects, removed, added)) = culled {
+            eprintln!(
+                "ideographs: {objects} objects below {} mm² culled ({removed} triangles; \
+                 {added} triangles of bounds drawn instead)",
+                args.ideograph_below.unwrap_or(0.0)
+            );
+        }
+        eprint!("{}", stats_report(&drawing, loaded, written));
+    }
+    Ok(())
+}
+
+/// The SVG options of the page, with the stroke widths given.
+fn svg_options(args: &Args) -> SvgOptions {
+    let mut svg_options = args.page.svg_options();
+    for &(class, width) in &args.stroke {
+        match class {
+            EdgeClass::Silhouette => svg_options.stroke.silhouette = width,
+            EdgeClass::Boundary => svg_options.stroke.boundary = width,
+            EdgeClass::Crease => svg_options.stroke.crease = width,
+            EdgeClass::Intersection => svg_options.stroke.intersection = width,
+            EdgeClass::Smooth => svg_options.stroke.smooth = width,
+        }
+    }
+    svg_options
+}
+
+/// An area of `mm2` square millimetres on the page in picture units squared, at the page
+/// scale of the whole scene (the ideographs' threshold).
+fn picture_area(scene: &Scene, view: &View, svg_options: &SvgOptions, mm2: f64) -> f64 {
+    let picture = Picture::of(view);
+    let points = scene
+        .mesh_objects(scene.roots())
+        .into_iter()
+        .flat_map(|(_, m)| m.vertices().iter().map(|v| picture.point(v)))
+        .collect::<Vec<_>>();
+    let [lo, hi] = bounding_box(points);
+    let scale = PageTransform::fit(Some((lo, hi)), svg_options).scale;
+    mm2 / (scale * scale)
+}
+
+/// The drawing, with a progress bar on a terminal.
+fn draw(scene: &Scene, view: &View, options: &hidden::Options) -> Result<Drawing> {
+    let bar = progress_bar();
+    let drawing = hidden::draw_with_progress(scene, view, options, &|done, total| {
+        if let Some(bar) = &bar {
+            bar.set_length(total);
+            bar.set_position(done);
+        }
+    })?;
+    if let Some(bar) = bar {
+        bar.finish_and_clear();
+    }
+    Ok(drawing)
+}
+
+/// The `--stats` report: each stage, then lengths per class.
+fn stats_report(drawing: &Drawing, loaded: Duration, written: Duration) -> String {
+    let mut text = String::new();
+    let _ = writeln!(text, "stage          seconds  computed / skipped");
+    let _ = writeln!(
+        text,
+        "load           {:>7.4}  scene file and meshes",
+        loaded.as_secs_f64()
+    );
+    for stage in &drawing.stages {
+        let _ = writeln!(
+            text,
+            "{:<14} {:>7.4}  {}",
+            stage.name, stage.seconds, stage.done
+        );
+        if let Some(skipped) = &stage.skipped {
+            let _ = writeln!(text, "{:<14} {:>7}  skipped: {skipped}", "", "");
+        }
+    }
+    let _ = writeln!(
+        text,
+        "write          {:>7.4}  output files",
+        written.as_secs_f64()
+    );
+    let _ = writeln!(
+        text,
+        "class          visible length  hidden length  (view coordinates)"
+    );
+    for class in EdgeClass::ALL.into_iter().rev() {
+        let _ = writeln!(
+            text,
+            "{:<14} {:>14.6} {:>14.6}",
+            class.name(),
+            drawing.length(class, true),
+            drawing.length(class, false)
+        );
+    }
+    text
+}
