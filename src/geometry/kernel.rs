@@ -259,10 +259,27 @@ pub trait Polynomial {
     /// exact predicate (`robust`'s adaptive `orient3d`, say) overrides it.
     #[inline]
     fn sign(&self) -> Ordering {
-        match self.estimate().sign() {
-            Some(sign) => sign,
-            None => exact_sign(self),
-        }
+        sign_with(self, || expansion_sign(&self.expansion()))
+    }
+}
+
+/// The sign of `p`: its estimate's when certified, else `exact()` (an exact predicate that
+/// relies on expansion arithmetic) when the inputs allow exact expansions, else the sign of
+/// its rational value.
+///
+/// ```
+/// use kepler::geometry::kernel::{Polynomial, sign_with};
+/// use kepler::geometry::predicates::Orient2d;
+/// use std::cmp::Ordering;
+/// let flat = Orient2d([[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]]);
+/// assert_eq!(sign_with(&flat, || Ordering::Equal), Ordering::Equal);
+/// ```
+#[inline]
+pub fn sign_with<P: Polynomial + ?Sized>(p: &P, exact: impl FnOnce() -> Ordering) -> Ordering {
+    match p.estimate().sign() {
+        Some(sign) => sign,
+        None if p.exponents().exact_for(p.degree()) => exact(),
+        None => exact_sign(p),
     }
 }
 

@@ -15,7 +15,7 @@
 use super::exact::{
     expansion_product, expansion_sum, negated, product_terms, scale_expansion, sum_sign, two_sum,
 };
-use super::kernel::{Estimate, Exponents, Polynomial, Ring, UNIT_ROUNDOFF, exact_sign};
+use super::kernel::{Estimate, Exponents, Polynomial, Ring, UNIT_ROUNDOFF, sign_with};
 use super::{Point3, Vector3};
 use num_rational::BigRational;
 use num_traits::Zero;
@@ -176,19 +176,15 @@ impl Polynomial for Orient3d {
     /// rationals.
     #[inline]
     fn sign(&self) -> Ordering {
-        if let Some(sign) = self.estimate().sign() {
-            return sign;
-        }
-        if !self.exponents().exact_for(3) {
-            return exact_sign(self);
-        }
-        let p = |q: &Point3| Coord3D {
-            x: q.x,
-            y: q.y,
-            z: q.z,
-        };
-        let [a, b, c, d] = &self.0;
-        sign(robust::orient3d(p(a), p(b), p(c), p(d)))
+        sign_with(self, || {
+            let p = |q: &Point3| Coord3D {
+                x: q.x,
+                y: q.y,
+                z: q.z,
+            };
+            let [a, b, c, d] = &self.0;
+            sign(robust::orient3d(p(a), p(b), p(c), p(d)))
+        })
     }
 }
 
@@ -429,15 +425,11 @@ impl Polynomial for Orient2d {
     /// rationals.
     #[inline]
     fn sign(&self) -> Ordering {
-        if let Some(sign) = self.estimate().sign() {
-            return sign;
-        }
-        if !self.exponents().exact_for(2) {
-            return exact_sign(self);
-        }
-        let p = |q: [f64; 2]| Coord { x: q[0], y: q[1] };
-        let [a, b, c] = self.0;
-        sign(robust::orient2d(p(a), p(b), p(c)))
+        sign_with(self, || {
+            let p = |q: [f64; 2]| Coord { x: q[0], y: q[1] };
+            let [a, b, c] = self.0;
+            sign(robust::orient2d(p(a), p(b), p(c)))
+        })
     }
 }
 
@@ -480,14 +472,9 @@ pub fn orient3d_at_infinity(a: &Point3, b: &Point3, c: &Point3, u: &Vector3) -> 
         let o = orient2d(project(a, k), project(b, k), project(c, k));
         return if u[k] > 0.0 { o.reverse() } else { o };
     }
-    let det = Orient3dAtInfinity([*a, *b, *c], *u);
-    if let Some(sign) = det.estimate().sign() {
-        return sign;
-    }
-    if !det.exponents().exact_for(3) {
-        return exact_sign(&det);
-    }
-    exact_direction_det(a, b, c, u).reverse()
+    sign_with(&Orient3dAtInfinity([*a, *b, *c], *u), || {
+        exact_direction_det(a, b, c, u).reverse()
+    })
 }
 
 /// The exact sign of `det[a - c, b - c, u]` from its expansion (the filter's fallback).
