@@ -15,7 +15,7 @@
 use super::exact::{
     expansion_product, expansion_sum, negated, product_terms, scale_expansion, sum_sign, two_sum,
 };
-use super::kernel::{Estimate, Exponents, Polynomial, Ring, UNIT_ROUNDOFF, sign_with};
+use super::kernel::{Estimate, Exponents, Polynomial, Ring, UNIT_ROUNDOFF, exact_sign, sign_with};
 use super::{Point3, Vector3};
 use num_rational::BigRational;
 use num_traits::Zero;
@@ -46,7 +46,46 @@ fn sign(v: f64) -> Ordering {
 /// assert_eq!(orient3d(&o, &x, &y, &Point3::new(0.0, 0.0, 1.0)), Ordering::Less);
 /// ```
 pub fn orient3d(a: &Point3, b: &Point3, c: &Point3, d: &Point3) -> Ordering {
-    Orient3d([*a, *b, *c, *d]).sign()
+    match orient3d_filter(a, b, c, d).sign() {
+        Some(sign) => sign,
+        None => orient3d_exact(a, b, c, d),
+    }
+}
+
+/// [`orient3d`] past its filter: `robust`'s adaptive predicate where its expansions are
+/// exact, else rationals.
+#[cold]
+#[inline(never)]
+fn orient3d_exact(a: &Point3, b: &Point3, c: &Point3, d: &Point3) -> Ordering {
+    let det = Orient3d([*a, *b, *c, *d]);
+    if !det.exponents().exact_for(3) {
+        return exact_sign(&det);
+    }
+    let p = |q: &Point3| Coord3D {
+        x: q.x,
+        y: q.y,
+        z: q.z,
+    };
+    sign(robust::orient3d(p(a), p(b), p(c), p(d)))
+}
+
+/// The estimate of [`Orient3d`] (see there for the bound), from references: the filter of
+/// [`orient3d`], kept apart so that the common case copies no point.
+#[inline(always)]
+fn orient3d_filter(a: &Point3, b: &Point3, c: &Point3, d: &Point3) -> Estimate {
+    let (adx, ady, adz) = (a.x - d.x, a.y - d.y, a.z - d.z);
+    let (bdx, bdy, bdz) = (b.x - d.x, b.y - d.y, b.z - d.z);
+    let (cdx, cdy, cdz) = (c.x - d.x, c.y - d.y, c.z - d.z);
+    let (bdxcdy, cdxbdy) = (bdx * cdy, cdx * bdy);
+    let (cdxady, adxcdy) = (cdx * ady, adx * cdy);
+    let (adxbdy, bdxady) = (adx * bdy, bdx * ady);
+    let det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
+    let permanent = (bdxcdy.abs() + cdxbdy.abs()) * adz.abs()
+        + (cdxady.abs() + adxcdy.abs()) * bdz.abs()
+        + (adxbdy.abs() + bdxady.abs()) * cdz.abs();
+    let outer = adz.abs() + bdz.abs() + cdz.abs();
+    let bound = ORIENT3D_ERROR_BOUND * permanent + f64::MIN_POSITIVE * (1.0 + outer);
+    Estimate { value: det, bound }
 }
 
 /// Half the gap between 1 and the next double (Shewchuk's ε).
@@ -123,19 +162,7 @@ impl Polynomial for Orient3d {
     #[inline]
     fn estimate(&self) -> Estimate {
         let [a, b, c, d] = &self.0;
-        let (adx, ady, adz) = (a.x - d.x, a.y - d.y, a.z - d.z);
-        let (bdx, bdy, bdz) = (b.x - d.x, b.y - d.y, b.z - d.z);
-        let (cdx, cdy, cdz) = (c.x - d.x, c.y - d.y, c.z - d.z);
-        let (bdxcdy, cdxbdy) = (bdx * cdy, cdx * bdy);
-        let (cdxady, adxcdy) = (cdx * ady, adx * cdy);
-        let (adxbdy, bdxady) = (adx * bdy, bdx * ady);
-        let det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
-        let permanent = (bdxcdy.abs() + cdxbdy.abs()) * adz.abs()
-            + (cdxady.abs() + adxcdy.abs()) * bdz.abs()
-            + (adxbdy.abs() + bdxady.abs()) * cdz.abs();
-        let outer = adz.abs() + bdz.abs() + cdz.abs();
-        let bound = ORIENT3D_ERROR_BOUND * permanent + f64::MIN_POSITIVE * (1.0 + outer);
-        Estimate { value: det, bound }
+        orient3d_filter(a, b, c, d)
     }
 
     fn expansion(&self) -> Vec<f64> {
@@ -172,19 +199,10 @@ impl Polynomial for Orient3d {
         })
     }
 
-    /// The filter, then `robust`'s adaptive predicate where its expansions are exact, else
-    /// rationals.
     #[inline]
     fn sign(&self) -> Ordering {
-        sign_with(self, || {
-            let p = |q: &Point3| Coord3D {
-                x: q.x,
-                y: q.y,
-                z: q.z,
-            };
-            let [a, b, c, d] = &self.0;
-            sign(robust::orient3d(p(a), p(b), p(c), p(d)))
-        })
+        let [a, b, c, d] = &self.0;
+        orient3d(a, b, c, d)
     }
 }
 
@@ -222,19 +240,7 @@ impl Polynomial for Orient3dAtInfinity {
     #[inline]
     fn estimate(&self) -> Estimate {
         let ([a, b, c], u) = (&self.0, &self.1);
-        let (r1x, r1y, r1z) = (a.x - c.x, a.y - c.y, a.z - c.z);
-        let (r2x, r2y, r2z) = (b.x - c.x, b.y - c.y, b.z - c.z);
-        let (r2zuy, r2yuz) = (r2z * u.y, r2y * u.z);
-        let (r2xuz, r2zux) = (r2x * u.z, r2z * u.x);
-        let (r2yux, r2xuy) = (r2y * u.x, r2x * u.y);
-        let value = r1x * (r2zuy - r2yuz) + r1y * (r2xuz - r2zux) + r1z * (r2yux - r2xuy);
-        let permanent = (r2zuy.abs() + r2yuz.abs()) * r1x.abs()
-            + (r2xuz.abs() + r2zux.abs()) * r1y.abs()
-            + (r2yux.abs() + r2xuy.abs()) * r1z.abs();
-        let outer = r1x.abs() + r1y.abs() + r1z.abs();
-        let bound =
-            ORIENT3D_AT_INFINITY_ERROR_BOUND * permanent + f64::MIN_POSITIVE * (1.0 + outer);
-        Estimate { value, bound }
+        orient3d_at_infinity_filter(a, b, c, u)
     }
 
     fn expansion(&self) -> Vec<f64> {
@@ -355,7 +361,34 @@ impl Polynomial for Orientation {
 /// assert_eq!(orient2d([0.0, 0.0], [1.0, 1.0], [2.0, 2.0]), Ordering::Equal);
 /// ```
 pub fn orient2d(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Ordering {
-    Orient2d([a, b, c]).sign()
+    match orient2d_filter(a, b, c).sign() {
+        Some(sign) => sign,
+        None => orient2d_exact(a, b, c),
+    }
+}
+
+/// [`orient2d`] past its filter: `robust`'s adaptive predicate where its expansions are
+/// exact, else rationals.
+#[cold]
+#[inline(never)]
+fn orient2d_exact(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Ordering {
+    let det = Orient2d([a, b, c]);
+    if !det.exponents().exact_for(2) {
+        return exact_sign(&det);
+    }
+    let p = |q: [f64; 2]| Coord { x: q[0], y: q[1] };
+    sign(robust::orient2d(p(a), p(b), p(c)))
+}
+
+/// The estimate of [`Orient2d`] (see there for the bound).
+#[inline(always)]
+fn orient2d_filter(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Estimate {
+    let left = (a[0] - c[0]) * (b[1] - c[1]);
+    let right = (a[1] - c[1]) * (b[0] - c[0]);
+    Estimate {
+        value: left - right,
+        bound: ORIENT2D_ERROR_BOUND * (left.abs() + right.abs()) + f64::MIN_POSITIVE,
+    }
 }
 
 /// The determinant whose sign [`orient2d`] returns, `(a − c) × (b − c)` for
@@ -385,12 +418,7 @@ impl Polynomial for Orient2d {
     #[inline]
     fn estimate(&self) -> Estimate {
         let [a, b, c] = self.0;
-        let left = (a[0] - c[0]) * (b[1] - c[1]);
-        let right = (a[1] - c[1]) * (b[0] - c[0]);
-        Estimate {
-            value: left - right,
-            bound: ORIENT2D_ERROR_BOUND * (left.abs() + right.abs()) + f64::MIN_POSITIVE,
-        }
+        orient2d_filter(a, b, c)
     }
 
     fn expansion(&self) -> Vec<f64> {
@@ -421,15 +449,10 @@ impl Polynomial for Orient2d {
         Exponents::of(&self.0.concat())
     }
 
-    /// The filter, then `robust`'s adaptive predicate where its expansions are exact, else
-    /// rationals.
     #[inline]
     fn sign(&self) -> Ordering {
-        sign_with(self, || {
-            let p = |q: [f64; 2]| Coord { x: q[0], y: q[1] };
-            let [a, b, c] = self.0;
-            sign(robust::orient2d(p(a), p(b), p(c)))
-        })
+        let [a, b, c] = self.0;
+        orient2d(a, b, c)
     }
 }
 
@@ -472,9 +495,30 @@ pub fn orient3d_at_infinity(a: &Point3, b: &Point3, c: &Point3, u: &Vector3) -> 
         let o = orient2d(project(a, k), project(b, k), project(c, k));
         return if u[k] > 0.0 { o.reverse() } else { o };
     }
-    sign_with(&Orient3dAtInfinity([*a, *b, *c], *u), || {
-        exact_direction_det(a, b, c, u).reverse()
-    })
+    match orient3d_at_infinity_filter(a, b, c, u).sign() {
+        Some(sign) => sign,
+        None => {
+            let det = Orient3dAtInfinity([*a, *b, *c], *u);
+            sign_with(&det, || exact_direction_det(a, b, c, u).reverse())
+        }
+    }
+}
+
+/// The estimate of [`Orient3dAtInfinity`] (see there for the bound), from references.
+#[inline(always)]
+fn orient3d_at_infinity_filter(a: &Point3, b: &Point3, c: &Point3, u: &Vector3) -> Estimate {
+    let (r1x, r1y, r1z) = (a.x - c.x, a.y - c.y, a.z - c.z);
+    let (r2x, r2y, r2z) = (b.x - c.x, b.y - c.y, b.z - c.z);
+    let (r2zuy, r2yuz) = (r2z * u.y, r2y * u.z);
+    let (r2xuz, r2zux) = (r2x * u.z, r2z * u.x);
+    let (r2yux, r2xuy) = (r2y * u.x, r2x * u.y);
+    let value = r1x * (r2zuy - r2yuz) + r1y * (r2xuz - r2zux) + r1z * (r2yux - r2xuy);
+    let permanent = (r2zuy.abs() + r2yuz.abs()) * r1x.abs()
+        + (r2xuz.abs() + r2zux.abs()) * r1y.abs()
+        + (r2yux.abs() + r2xuy.abs()) * r1z.abs();
+    let outer = r1x.abs() + r1y.abs() + r1z.abs();
+    let bound = ORIENT3D_AT_INFINITY_ERROR_BOUND * permanent + f64::MIN_POSITIVE * (1.0 + outer);
+    Estimate { value, bound }
 }
 
 /// The exact sign of `det[a - c, b - c, u]` from its expansion (the filter's fallback).
