@@ -430,6 +430,38 @@ impl Exponents {
         }
     }
 
+    /// The exponents within which the engine works: a scene whose nonzero coordinates lie in
+    /// `[2^-60, 2^101)` has every expansion of degree up to 9 exact (see
+    /// [`exact_for`](Self::exact_for)), which covers every construction of the engine.
+    ///
+    /// ```
+    /// use kepler::geometry::kernel::Exponents;
+    /// assert!(Exponents::WINDOW.exact_for(9));
+    /// ```
+    pub const WINDOW: Exponents = Exponents { min: -60, max: 100 };
+
+    /// The power of two `k` by which to scale inputs with these exponents so that they lie in
+    /// [`WINDOW`](Self::WINDOW): 0 when they already do (or none is nonzero); otherwise the
+    /// shift that brings the largest exponent to the window's top, so that nothing overflows
+    /// and as little as possible falls below the window. Scaling by `2^k` is exact, so every
+    /// sign and every rounded construction of the scaled inputs is that of the inputs, scaled.
+    ///
+    /// ```
+    /// use kepler::geometry::kernel::Exponents;
+    /// assert_eq!(Exponents::of(&[1e-3, 1e6]).shift(), 0);
+    /// assert_eq!(Exponents::of(&[1e-300]).shift(), 100 - (-997));
+    /// assert_eq!(Exponents::of(&[1e300, 1.0]).shift(), 100 - 996);
+    /// ```
+    pub fn shift(self) -> i32 {
+        if self.min > self.max
+            || (self.min >= Exponents::WINDOW.min && self.max <= Exponents::WINDOW.max)
+        {
+            0
+        } else {
+            Exponents::WINDOW.max - self.max
+        }
+    }
+
     /// Whether Shewchuk's expansion arithmetic evaluates a polynomial of `degree` in inputs
     /// with these exponents exactly. A monomial multiplies at most `degree` inputs (or their
     /// differences, whose components are multiples of the smaller input's unit in the last

@@ -1,5 +1,6 @@
 //! The result of the hidden-line pass: classified polylines in view coordinates.
 
+use crate::geometry::exact::ldexp;
 use serde::Serialize;
 
 /// What an edge of a drawing is (see the module documentation of [`crate::hidden`]).
@@ -109,6 +110,24 @@ pub struct Drawing {
 }
 
 impl Drawing {
+    /// The drawing with every point multiplied by `2^exponent` (exactly, unless a coordinate
+    /// overflows or leaves the normal range).
+    ///
+    /// ```
+    /// use kepler::hidden::{Drawing, EdgeClass, Polyline};
+    /// let p = Polyline { class: EdgeClass::Boundary, visible: true, points: vec![[0.0, 0.0], [1.0, 3.0]] };
+    /// let d = Drawing { polylines: vec![p], stages: Vec::new() }.scaled(-1);
+    /// assert_eq!(d.polylines[0].points[1], [0.5, 1.5]);
+    /// ```
+    pub fn scaled(mut self, exponent: i32) -> Drawing {
+        for p in &mut self.polylines {
+            for q in &mut p.points {
+                *q = q.map(|x| ldexp(x, exponent));
+            }
+        }
+        self
+    }
+
     /// The total length of the polylines of one class and visibility, in view coordinates.
     ///
     /// ```

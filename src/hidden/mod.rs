@@ -224,6 +224,32 @@ pub fn draw_with_progress(
     options: &Options,
     progress: &(dyn Fn(u64, u64) + Sync),
 ) -> Result<Drawing> {
+    // A scene of extreme coordinates is drawn scaled by a power of two into the range where
+    // every construction is exact, and the drawing scaled back: the same bits, scaled.
+    let shift = scene.exponents().union(view.exponents()).shift();
+    if shift == 0 {
+        return draw_pass(scene, view, options, progress);
+    }
+    let drawing = draw_pass(
+        &scene.scaled(shift)?,
+        &view.scaled(shift),
+        options,
+        progress,
+    )?;
+    Ok(if view.is_perspective() {
+        drawing
+    } else {
+        drawing.scaled(-shift)
+    })
+}
+
+/// [`draw_with_progress`] on a scene in the kernel's working range.
+fn draw_pass(
+    scene: &Scene,
+    view: &View,
+    options: &Options,
+    progress: &(dyn Fn(u64, u64) + Sync),
+) -> Result<Drawing> {
     let mut pass = Pass::new(scene, view)?;
     pass.edges(options);
     pass.intersections();

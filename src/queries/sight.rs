@@ -10,7 +10,7 @@
 //! of an orthographic eye is scaled by a power of two (exactly) so the parameters cannot
 //! overflow; the direction to a perspective eye is rounded once, an error of the same order.
 
-use crate::geometry::exact::power_of_two_scaling;
+use crate::geometry::exact::unit_scaled;
 use crate::geometry::{Aabb, Point3, Vector3};
 use crate::views::Eye;
 
@@ -46,11 +46,10 @@ impl Sight {
 
     /// The ray from `p` along `u` (which must not be zero).
     pub(crate) fn ray(p: &Point3, u: &Vector3) -> Sight {
-        let scaling = power_of_two_scaling(u.amax());
         Sight {
             origin: *p,
             eye: None,
-            direction: u * scaling,
+            direction: Vector3::from(unit_scaled((*u).into())),
             limit: f64::INFINITY,
             scale: max_abs(p),
         }

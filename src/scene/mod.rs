@@ -30,6 +30,7 @@ pub use transform::Transform;
 use crate::bounds::tribox::TriboxBounds;
 use crate::bounds::{Aabb, Inbox, InboxMethod, inbox};
 use crate::geometry::Point3;
+use crate::geometry::kernel::Exponents;
 use crate::io::FileError;
 use crate::mesh::{Mesh, MeshError};
 use crate::solids::SolidError;
@@ -140,7 +141,7 @@ pub enum Content {
 /// assert_eq!(s[c].name(), "cube");
 /// assert!(s[c].mesh().is_some());
 /// ```
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub struct Object {
     name: String,
     parent: Option<ObjectId>,
@@ -800,6 +801,62 @@ impl Scene {
         concatenate(self.meshes(id)).map_err(|e| SceneError::Object {
             object: self.path(id),
             problem: ObjectProblem::Flatten(e),
+        })
+    }
+
+    /// The binary exponents of the nonzero coordinates of every mesh's vertices.
+    ///
+    /// ```
+    /// let mut s = kepler::scene::Scene::new();
+    /// s.add_mesh(None, "c", kepler::solids::cube(2.0).unwrap()).unwrap();
+    /// assert_eq!((s.exponents().min, s.exponents().max), (0, 0)); // coordinates ±1
+    /// ```
+    pub fn exponents(&self) -> Exponents {
+        self.objects
+            .values()
+            .filter_map(Object::mesh)
+            .flat_map(|m| m.vertices())
+            .fold(Exponents::NONE, |e, p| {
+                e.union(Exponents::of(p.coords.as_slice()))
+            })
+    }
+
+    /// The scene scaled by `2^exponent`, exactly (the same objects, with the same ids and
+    /// names; the camera is left as it is): how the engine brings a scene of extreme
+    /// coordinates into the range where its arithmetic is exact (see
+    /// [`Exponents::shift`]). An error if a mesh, scaled, is not valid (coordinates that
+    /// overflow).
+    ///
+    /// ```
+    /// let mut s = kepler::scene::Scene::new();
+    /// let c = s.add_mesh(None, "c", kepler::solids::cube(2.0).unwrap()).unwrap();
+    /// let big = s.scaled(500).unwrap();
+    /// assert_eq!(big.cbox(c).max, [2f64.powi(500); 3]);
+    /// ```
+    pub fn scaled(&self, exponent: i32) -> Result<Scene> {
+        // In two steps: 2^exponent itself may not be a double.
+        let half = exponent / 2;
+        let steps = [half, exponent - half].map(|k| nalgebra::Matrix4::new_scaling(2f64.powi(k)));
+        let mut objects = self.objects.clone();
+        for o in objects.values_mut() {
+            if let Content::Mesh(mesh) = &o.content {
+                let scaled = mesh
+                    .transformed(&steps[0])
+                    .and_then(|m| m.transformed(&steps[1]))
+                    .map_err(|e| SceneError::Object {
+                        object: o.name.clone(),
+                        problem: ObjectProblem::Mesh(e),
+                    })?;
+                o.content = Content::Mesh(scaled);
+            }
+            o.cbox = OnceLock::new();
+            o.inbox = OnceLock::new();
+            o.tribox = OnceLock::new();
+        }
+        Ok(Scene {
+            objects,
+            roots: self.roots.clone(),
+            camera: self.camera,
         })
     }
 

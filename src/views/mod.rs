@@ -20,7 +20,8 @@
 //! assert_eq!(view.to_view(&Point3::new(1.0, 2.0, 3.0)), Point3::new(1.0, 2.0, 3.0));
 //! ```
 
-use crate::geometry::exact::power_of_two_scaling;
+use crate::geometry::exact::{ldexp, unit_scaled};
+use crate::geometry::kernel::Exponents;
 use crate::geometry::predicates::{
     Orient3d, Orient3dAtInfinity, Orientation, orient2d, orient2d_at_infinity, orient3d,
     orient3d_at_infinity, project,
@@ -263,9 +264,8 @@ impl View {
         let (forward, right, up) = frame(&direction, &up)?;
         // Scaled by a power of two (exactly) so that the predicates' products stay in range
         // for tiny or huge directions.
-        let scaling = power_of_two_scaling(direction.amax());
         Ok(View {
-            eye: Eye::Infinity(-direction * scaling),
+            eye: Eye::Infinity(-Vector3::from(unit_scaled(direction.into()))),
             forward,
             right,
             up,
@@ -328,6 +328,38 @@ impl View {
             Projection::Perspective { eye, target, fov } => {
                 View::perspective(eye.into(), target.into(), up, fov)
             }
+        }
+    }
+
+    /// The same view of the scene scaled by `2^exponent` (see
+    /// [`Scene::scaled`](crate::scene::Scene::scaled)): a perspective eye is scaled with it,
+    /// exactly; directions, the frame and the field of view stay.
+    ///
+    /// ```
+    /// use kepler::{geometry::{Point3, Vector3}, views::{Eye, View}};
+    /// let v = View::perspective(Point3::new(0.0, 0.0, 3.0), Point3::origin(), Vector3::y(), 40.0).unwrap();
+    /// assert_eq!(v.scaled(4).eye(), &Eye::Point(Point3::new(0.0, 0.0, 48.0)));
+    /// ```
+    pub fn scaled(&self, exponent: i32) -> View {
+        let eye = match self.eye {
+            Eye::Point(p) => Eye::Point(p.map(|c| ldexp(c, exponent))),
+            Eye::Infinity(u) => Eye::Infinity(u),
+        };
+        View { eye, ..*self }
+    }
+
+    /// The binary exponents of the eye's coordinates, when it is a point (none for an eye at
+    /// infinity, whose direction is normalised apart).
+    ///
+    /// ```
+    /// use kepler::{geometry::{Point3, Vector3}, views::View};
+    /// let v = View::perspective(Point3::new(0.0, 0.0, 8.0), Point3::origin(), Vector3::y(), 40.0).unwrap();
+    /// assert_eq!((v.exponents().min, v.exponents().max), (3, 3));
+    /// ```
+    pub fn exponents(&self) -> Exponents {
+        match &self.eye {
+            Eye::Point(p) => Exponents::of(p.coords.as_slice()),
+            Eye::Infinity(_) => Exponents::NONE,
         }
     }
 
@@ -531,5 +563,5 @@ fn unit(v: &Vector3) -> Vector3 {
     } else {
         v * 0.5
     };
-    (v * power_of_two_scaling(v.amax())).normalize()
+    Vector3::from(unit_scaled(v.into())).normalize()
 }

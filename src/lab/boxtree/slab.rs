@@ -22,7 +22,7 @@
 
 use crate::geometry::Vector3;
 use crate::geometry::exact::{
-    add_round_down, add_round_up, power_of_two_scaling, product_terms, sum_sign, two_sum,
+    add_round_down, add_round_up, product_terms, sum_sign, two_sum, unit_scaled,
 };
 use crate::geometry::ray::Ray;
 use std::cmp::Ordering;
@@ -75,13 +75,14 @@ impl RayProbe {
         if !finite || ray.direction == Vector3::zeros() {
             return None;
         }
-        let k = power_of_two_scaling(ray.direction.amax());
-        let scaled = ray.direction * k;
-        // Keep the rescaled direction only when it is exact (no component underflowed).
+        let scaled = Vector3::from(unit_scaled(ray.direction.into()));
+        // Keep the rescaled direction only when it is exact (no component underflowed): the
+        // same ratios between components.
+        let k = scaled.amax() / ray.direction.amax();
         let direction = if scaled
             .iter()
             .zip(ray.direction.iter())
-            .all(|(s, u)| s / k == *u)
+            .all(|(s, u)| *s == u * k)
         {
             scaled
         } else {

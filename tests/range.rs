@@ -1,0 +1,219 @@
+//! The range of inputs: every finite scene, scaled by any power of two that keeps it
+//! representable, draws the bit-for-bit scaled drawing (orthographic views; a perspective
+//! picture does not scale at all), and extreme but valid views draw finite pictures.
+//!
+//! The scaled scenes are built here from the vertices (multiplied by `2^k`, exactly) and the
+//! faces, independently of the library's own normalisation, which brings every scene into the
+//! range where its arithmetic is exact before drawing it.
+
+mod common;
+
+use common::Rng;
+use kepler::geometry::{Point3, Vector3};
+use kepler::hidden::{Drawing, EdgeSelection, Options, draw};
+use kepler::mesh::Mesh;
+use kepler::scene::{Scene, file};
+use kepler::views::View;
+
+/// `x · 2^k` for `|k| ≤ 2046`, exactly when the result is normal.
+fn ldexp(x: f64, k: i32) -> f64 {
+    let half = k / 2;
+    x * 2f64.powi(half) * 2f64.powi(k - half)
+}
+
+/// The mesh objects of `scene`, each scaled by `2^k` vertex by vertex, as top-level objects.
+fn scaled_scene(scene: &Scene, k: i32) -> Scene {
+    let mut out = Scene::new();
+    for (id, mesh) in scene.mesh_objects(scene.roots()) {
+        let vertices = mesh
+            .vertices()
+            .iter()
+            .map(|p| p.map(|c| ldexp(c, k)))
+            .collect();
+        let faces = mesh.faces().iter().map(|f| f.vertices().to_vec()).collect();
+        let scaled = Mesh::from_polygons(vertices, faces)
+            .unwrap_or_else(|e| panic!("{} scaled by 2^{k}: {e}", scene.path(id)));
+        out.add_mesh(None, scene.path(id), scaled)
+            .unwrap_or_else(|e| panic!("{e}"));
+    }
+    out
+}
+
+/// Every point of `d`, scaled by `2^k`.
+fn scaled_drawing(d: &Drawing, k: i32) -> Vec<(bool, Vec<[f64; 2]>)> {
+    d.polylines
+        .iter()
+        .map(|p| {
+            let points = p.points.iter().map(|q| q.map(|x| ldexp(x, k))).collect();
+            (p.visible, points)
+        })
+        .collect()
+}
+
+/// The drawing as comparable data: visibility and points of each polyline, in order.
+fn plain(d: &Drawing) -> Vec<(bool, Vec<[f64; 2]>)> {
+    scaled_drawing(d, 0)
+}
+
+/// The largest coordinate magnitude of a scene.
+fn largest(scene: &Scene) -> f64 {
+    scene
+        .mesh_objects(scene.roots())
+        .iter()
+        .flat_map(|(_, m)| m.vertices())
+        .flat_map(|p| p.iter().copied())
+        .fold(0.0, |m: f64, c| m.max(c.abs()))
+}
+
+/// The binary exponent of the largest coordinate (`2^e ≤ m < 2^(e+1)`).
+fn top_exponent(scene: &Scene) -> i32 {
+    largest(scene).log2().floor() as i32
+}
+
+/// Powers of two to scale by: ±150, ±280, a spread of others, and the ends of the range
+/// where the scene's largest coordinate lands just below `2^1023` or its smallest nonzero one
+/// just above the normal range.
+fn exponents(scene: &Scene) -> Vec<i32> {
+    let top = top_exponent(scene);
+    let smallest = scene
+        .mesh_objects(scene.roots())
+        .iter()
+        .flat_map(|(_, m)| m.vertices())
+        .flat_map(|p| p.iter().copied())
+        .filter(|c| *c != 0.0)
+        .fold(f64::INFINITY, |m, c| m.min(c.abs()));
+    let bottom = smallest.log2().floor() as i32;
+    // Keep pictures finite (a rotated coordinate grows by up to √3) and the smallest normal.
+    let high = 1020 - top;
+    let low = -1021 - bottom;
+    let mut ks = vec![-280, -150, -1, 1, 150, 280, high, low];
+    ks.extend((low..high).step_by(97));
+    ks.retain(|&k| (low..=high).contains(&k));
+    ks
+}
+
+fn check_scaling(name: &str, scene: &Scene, view: &View, options: &Options) {
+    let base = draw(scene, view, options).unwrap_or_else(|e| panic!("{name}: {e}"));
+    for k in exponents(scene) {
+        let scaled = scaled_scene(scene, k);
+        let scaled_view = view.scaled(k);
+        let drawing = draw(&scaled, &scaled_view, options)
+            .unwrap_or_else(|e| panic!("{name} scaled by 2^{k}: {e}"));
+        let expected = if view.is_perspective() {
+            plain(&base)
+        } else {
+            scaled_drawing(&base, k)
+        };
+        assert!(
+            plain(&drawing) == expected,
+            "{name} scaled by 2^{k}: the drawing is not the scaled drawing"
+        );
+    }
+}
+
+#[test]
+fn bundled_scenes_scale_bit_for_bit() {
+    let options = Options {
+        edges: EdgeSelection::All,
+        ..Options::default()
+    };
+    for name in [
+        "scenes/cube.toml",
+        "scenes/city.toml",
+        "scenes/polyhedra.toml",
+    ] {
+        let scene = file::load(name.as_ref()).unwrap_or_else(|e| panic!("{e}"));
+        let scene = scaled_scene(&scene, 0);
+        let general = View::orthographic(Vector3::new(-1.0, -2.0, -3.0), Vector3::z()).unwrap();
+        check_scaling(name, &scene, &general, &options);
+        let axis = View::orthographic(Vector3::new(0.0, 0.0, -1.0), Vector3::y()).unwrap();
+        check_scaling(name, &scene, &axis, &options);
+    }
+}
+
+#[test]
+fn perspective_pictures_do_not_scale() {
+    let scene = file::load("scenes/city.toml".as_ref()).unwrap_or_else(|e| panic!("{e}"));
+    let scene = scaled_scene(&scene, 0);
+    let view = View::perspective(
+        Point3::new(60.0, -90.0, 70.0),
+        Point3::new(0.0, 0.0, 10.0),
+        Vector3::z(),
+        40.0,
+    )
+    .unwrap();
+    check_scaling("city in perspective", &scene, &view, &Options::default());
+}
+
+/// Random boxes and tetrahedra, touching and piercing, in a random general view: the
+/// normalisation changes no bit whatever the power of two.
+#[test]
+fn random_scenes_scale_bit_for_bit() {
+    let mut rng = Rng(0x5ca1e);
+    for case in 0..12 {
+        let mut scene = Scene::new();
+        for i in 0..4 {
+            let lo = Point3::new(rng.int(-4, 3), rng.int(-4, 3), rng.int(-4, 3));
+            let size = Vector3::new(rng.int(1, 3), rng.int(1, 3), rng.int(1, 3));
+            let mesh = if rng.below(2) == 0 {
+                kepler::solids::box_between(lo.into(), (lo + size).into()).ok()
+            } else {
+                let mut t = || {
+                    Point3::new(
+                        rng.range(-4.0, 4.0),
+                        rng.range(-4.0, 4.0),
+                        rng.range(-4.0, 4.0),
+                    )
+                };
+                let v = vec![t(), t(), t(), t()];
+                let faces = vec![vec![0, 2, 1], vec![0, 1, 3], vec![1, 2, 3], vec![0, 3, 2]];
+                Mesh::from_polygons(v, faces).ok()
+            };
+            if let Some(mesh) = mesh {
+                scene
+                    .add_mesh(None, format!("o{i}"), mesh)
+                    .unwrap_or_else(|e| panic!("{e}"));
+            }
+        }
+        let view = View::orthographic(rng.vector(1.0), rng.vector(1.0));
+        let Ok(view) = view else { continue };
+        check_scaling(
+            &format!("random case {case}"),
+            &scene,
+            &view,
+            &Options::default(),
+        );
+    }
+}
+
+/// Views whose directions are valid but extreme: no NaN, a finite drawing, and the exact
+/// answer for a cube seen along an axis tilted by 1e-300 (its side faces are seen at a
+/// grazing angle, not edge-on).
+#[test]
+fn extreme_view_directions_draw() {
+    let mut scene = Scene::new();
+    scene
+        .add_mesh(None, "cube", kepler::solids::cube(2.0).unwrap())
+        .unwrap();
+    for d in [
+        [1e-300, 0.0, -1.0],
+        [1e-300, 1e-300, -1e-300],
+        [1e300, 1e300, -1e300],
+        [5e-324, 0.0, -1e-320],
+        [0.0, -f64::MAX, f64::MAX],
+    ] {
+        let view = View::orthographic(Vector3::from(d), Vector3::new(0.0, 1.0, 0.0))
+            .unwrap_or_else(|e| panic!("{d:?}: {e}"));
+        let drawing =
+            draw(&scene, &view, &Options::default()).unwrap_or_else(|e| panic!("{d:?}: {e}"));
+        assert!(
+            drawing
+                .polylines
+                .iter()
+                .flat_map(|p| &p.points)
+                .all(|q| q.iter().all(|x| x.is_finite())),
+            "{d:?}: a point is not finite"
+        );
+        assert!(!drawing.polylines.is_empty(), "{d:?}: nothing drawn");
+    }
+}
