@@ -456,6 +456,72 @@ impl Polynomial for Orient2d {
     }
 }
 
+/// The side of the point `x` of the plane through `origin` with normal `normal`,
+/// `normal · (x − origin)`, as a [`Polynomial`] of degree 2: positive on the side the normal
+/// points to. A plane given by a point and a normal in doubles (a clipping plane of a view
+/// frustum, say) is exact input like any vertex.
+///
+/// Its estimate rounds the three differences and products and the two additions: each term
+/// `n_k·d_k` is off by at most `2u` of its magnitude and the sum adds `γ2` of the terms'
+/// magnitudes, so the kernel's [`sum_error_bound`](super::kernel::sum_error_bound) of four
+/// terms over the computed magnitudes bounds it (with room for their own rounding).
+///
+/// ```
+/// use kepler::geometry::{Point3, Vector3, kernel::Polynomial, predicates::Side};
+/// use std::cmp::Ordering;
+/// let s = |x| Side { origin: Point3::new(0.0, 0.0, 1.0), normal: Vector3::z(), x };
+/// assert_eq!(s(Point3::new(5.0, 5.0, 3.0)).estimate().value, 2.0);
+/// assert_eq!(s(Point3::new(0.1, 0.7, 1.0)).sign(), Ordering::Equal);
+/// assert_eq!(s(Point3::new(0.0, 0.0, 0.0)).expansion(), vec![-1.0]);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Side {
+    /// A point of the plane.
+    pub origin: Point3,
+    /// The plane's normal (need not be a unit vector).
+    pub normal: Vector3,
+    /// The point whose side is asked.
+    pub x: Point3,
+}
+
+impl Polynomial for Side {
+    #[inline]
+    fn estimate(&self) -> Estimate {
+        let terms = [0, 1, 2].map(|k| self.normal[k] * (self.x[k] - self.origin[k]));
+        let magnitude = terms.iter().map(|t| t.abs()).sum::<f64>();
+        Estimate {
+            value: terms[0] + terms[1] + terms[2],
+            bound: super::kernel::sum_error_bound(4, magnitude),
+        }
+    }
+
+    fn expansion(&self) -> Vec<f64> {
+        let mut terms = Vec::with_capacity(12);
+        for k in 0..3 {
+            let (s, e) = two_sum(self.x[k], -self.origin[k]);
+            product_terms(&[s, e], &[self.normal[k]], &mut terms);
+        }
+        super::exact::expansion(&terms)
+    }
+
+    fn evaluate<R: Ring>(&self) -> R {
+        let term = |k: usize| {
+            R::from_f64(self.normal[k]) * (R::from_f64(self.x[k]) - R::from_f64(self.origin[k]))
+        };
+        term(0) + term(1) + term(2)
+    }
+
+    fn degree(&self) -> u32 {
+        2
+    }
+
+    fn exponents(&self) -> Exponents {
+        Exponents::of(self.origin.coords.as_slice())
+            .union(Exponents::of(self.normal.as_slice()))
+            .union(Exponents::of(self.x.coords.as_slice()))
+    }
+}
+
 /// The projection of `p` that drops coordinate `axis` (0, 1 or 2), keeping the other two in
 /// cyclic order so that orientations in the projection match the sign of the dropped normal
 /// component: dropping z gives (x, y), dropping x gives (y, z), dropping y gives (z, x).

@@ -22,8 +22,9 @@
 
 use crate::geometry::exact::{ldexp, unit_scaled};
 use crate::geometry::kernel::Exponents;
+use crate::geometry::kernel::Polynomial;
 use crate::geometry::predicates::{
-    Orient3d, Orient3dAtInfinity, Orientation, orient2d, orient2d_at_infinity, orient3d,
+    Orient3d, Orient3dAtInfinity, Orientation, Side, orient2d, orient2d_at_infinity, orient3d,
     orient3d_at_infinity, project,
 };
 use crate::geometry::{Point3, Vector3, predicates::collinear};
@@ -222,6 +223,10 @@ pub struct View {
     right: Vector3,
     up: Vector3,
     fov: Option<f64>,
+    /// A perspective view's near clipping distance.
+    near: f64,
+    /// A perspective view's picture width over its height.
+    aspect: f64,
 }
 
 impl View {
@@ -241,6 +246,8 @@ impl View {
             right: Vector3::x(),
             up: Vector3::y(),
             fov: None,
+            near: 0.0,
+            aspect: 1.0,
         }
     }
 
@@ -270,6 +277,8 @@ impl View {
             right,
             up,
             fov: None,
+            near: 0.0,
+            aspect: 1.0,
         })
     }
 
@@ -305,12 +314,18 @@ impl View {
             target.coords * 0.5 - eye.coords * 0.5
         };
         let (forward, right, up) = frame(&direction, &up)?;
+        // The near plane at 1/1024 of the distance to the target, computed without overflow.
+        let scaled = unit_scaled(direction.into());
+        let magnitude = direction.amax() / scaled.iter().fold(0.0f64, |m, c| m.max(c.abs()));
+        let near = Vector3::from(scaled).norm() * magnitude / 1024.0;
         Ok(View {
             eye: Eye::Point(eye),
             forward,
             right,
             up,
             fov: Some(fov),
+            near,
+            aspect: 1.0,
         })
     }
 
@@ -346,6 +361,59 @@ impl View {
             Eye::Infinity(u) => Eye::Infinity(u),
         };
         View { eye, ..*self }
+    }
+
+    /// The same view clipped, when the scene is not wholly in front of a perspective eye, to a
+    /// frustum with its near plane at `near` in front of the eye and a picture `aspect` times
+    /// as wide as high (the field of view is vertical). An error unless both are positive and
+    /// finite; no effect on an orthographic view.
+    ///
+    /// ```
+    /// use kepler::{geometry::{Point3, Vector3}, views::View};
+    /// let v = View::perspective(Point3::origin(), Point3::new(0.0, 10.0, 0.0), Vector3::z(), 90.0).unwrap();
+    /// let f = v.with_clipping(0.5, 2.0).unwrap().frustum().unwrap();
+    /// assert!(f.contains(&Point3::new(1.9, 1.0, 0.9)));
+    /// assert!(!f.contains(&Point3::new(0.0, 0.25, 0.0))); // nearer than the near plane
+    /// assert!(!f.contains(&Point3::new(2.1, 1.0, 0.0))); // beyond the right side
+    /// ```
+    pub fn with_clipping(self, near: f64, aspect: f64) -> Result<View, ViewError> {
+        if !(near > 0.0 && near.is_finite() && aspect > 0.0 && aspect.is_finite()) {
+            return Err(ViewError::Options(
+                "the near distance and the aspect ratio must be positive numbers",
+            ));
+        }
+        Ok(View {
+            near,
+            aspect,
+            ..self
+        })
+    }
+
+    /// The frustum a perspective view clips to when the scene is not wholly in front of the
+    /// eye (see [`with_clipping`](Self::with_clipping)); `None` for an orthographic view.
+    ///
+    /// ```
+    /// use kepler::{geometry::{Point3, Vector3}, views::View};
+    /// let v = View::perspective(Point3::new(0.0, 0.0, 5.0), Point3::origin(), Vector3::y(), 40.0).unwrap();
+    /// assert!(v.frustum().unwrap().contains(&Point3::origin()));
+    /// assert!(kepler::views::View::standard().frustum().is_none());
+    /// ```
+    pub fn frustum(&self) -> Option<Frustum> {
+        let (Eye::Point(eye), Some(fov)) = (self.eye, self.fov) else {
+            return None;
+        };
+        let (f, r, u) = (self.forward, self.right, self.up);
+        let vertical = (fov.to_radians() / 2.0).tan();
+        let horizontal = vertical * self.aspect;
+        Some(Frustum {
+            planes: [
+                (eye + f * self.near, f),
+                (eye, r + f * horizontal),
+                (eye, f * horizontal - r),
+                (eye, u + f * vertical),
+                (eye, f * vertical - u),
+            ],
+        })
     }
 
     /// The binary exponents of the eye's coordinates, when it is a point (none for an eye at
@@ -537,6 +605,54 @@ impl ViewOptions {
                 other => other,
             },
         }
+    }
+}
+
+/// The region a perspective view draws when its scene is not wholly in front of the eye: the
+/// points on the inner side of five planes, each given by a point and an inward normal in
+/// doubles (exact input for the predicates): the near plane, then the left, right, bottom and
+/// top planes through the eye at the field of view.
+///
+/// ```
+/// use kepler::{geometry::{Point3, Vector3}, views::View};
+/// let v = View::perspective(Point3::new(0.0, 0.0, 5.0), Point3::origin(), Vector3::y(), 40.0).unwrap();
+/// let f = v.frustum().unwrap();
+/// assert_eq!(f.planes[0].1, Vector3::new(0.0, 0.0, -1.0)); // the near plane faces away from the eye
+/// assert!(!f.contains(&Point3::new(0.0, 0.0, 6.0))); // behind the eye
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Frustum {
+    /// Each plane as a point on it and its inward normal: near, left, right, bottom, top.
+    pub planes: [(Point3, Vector3); 5],
+}
+
+impl Frustum {
+    /// The side of `p` of plane `k`, as a polynomial (positive inside).
+    ///
+    /// ```
+    /// use kepler::{geometry::{Point3, Vector3, kernel::Polynomial}, views::View};
+    /// use std::cmp::Ordering;
+    /// let v = View::perspective(Point3::new(0.0, 0.0, 5.0), Point3::origin(), Vector3::y(), 40.0).unwrap();
+    /// assert_eq!(v.frustum().unwrap().side(0, &Point3::origin()).sign(), Ordering::Greater);
+    /// ```
+    pub fn side(&self, k: usize, p: &Point3) -> Side {
+        let (origin, normal) = self.planes[k];
+        Side {
+            origin,
+            normal,
+            x: *p,
+        }
+    }
+
+    /// Whether `p` lies in the closed frustum, decided exactly.
+    ///
+    /// ```
+    /// use kepler::{geometry::{Point3, Vector3}, views::View};
+    /// let v = View::perspective(Point3::new(0.0, 0.0, 5.0), Point3::origin(), Vector3::y(), 40.0).unwrap();
+    /// assert!(v.frustum().unwrap().contains(&Point3::new(0.0, 0.0, 1.0)));
+    /// ```
+    pub fn contains(&self, p: &Point3) -> bool {
+        (0..5).all(|k| self.side(k, p).sign() != Ordering::Less)
     }
 }
 
