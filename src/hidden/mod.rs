@@ -52,6 +52,7 @@ mod cover;
 mod drawing;
 mod edges;
 pub mod ideographs;
+pub mod verify;
 
 pub use drawing::{Drawing, EdgeClass, Polyline, StageReport};
 
@@ -224,11 +225,27 @@ pub fn draw_with_progress(
     options: &Options,
     progress: &(dyn Fn(u64, u64) + Sync),
 ) -> Result<Drawing> {
+    let (pass, pieces) = decided(scene, view, options, progress)?;
+    Ok(chained(pass, pieces, options))
+}
+
+/// Stages 1 to 4 of the pass: the pass and every piece with its visibility.
+fn decided<'a>(
+    scene: &'a Scene,
+    view: &View,
+    options: &Options,
+    progress: &(dyn Fn(u64, u64) + Sync),
+) -> Result<(Pass<'a>, Vec<Piece>)> {
     let mut pass = Pass::new(scene, view)?;
     pass.edges(options);
     pass.intersections();
     pass.contour_cuts();
-    let mut pieces = pass.visibility(progress);
+    let pieces = pass.visibility(progress);
+    Ok((pass, pieces))
+}
+
+/// Stage 5 of the pass: the drawing chained from the pieces.
+fn chained(mut pass: Pass, mut pieces: Vec<Piece>, options: &Options) -> Drawing {
     let clock = Instant::now();
     if !options.hidden {
         pieces.retain(|p| p.visible);
@@ -240,10 +257,10 @@ pub fn draw_with_progress(
         format!("{} polylines from {} runs", polylines.len(), pieces.len()),
         (!options.hidden).then(|| "hidden pieces (not asked for)".to_string()),
     );
-    Ok(Drawing {
+    Drawing {
         polylines,
         stages: pass.stages,
-    })
+    }
 }
 
 /// A mesh of the scene in the pass: its object, its vertices' pictures, and the range of its
@@ -588,7 +605,7 @@ impl<'a> Pass<'a> {
                     .iter()
                     .map(|c| c.1)
                     .collect();
-                pieces(&occluders, scene, eye, picture, &lines[l], &line_cuts)
+                pieces(&occluders, scene, eye, picture, (l, &lines[l]), &line_cuts)
             })
             .collect();
         let mut counters = Counters::default();
@@ -669,14 +686,14 @@ fn crossing(eye: &Eye, l: &Line, c: &Line) -> Option<Vec<Cut>> {
     })
 }
 
-/// The visible and hidden runs of line `l` cut at `cuts` (sorted by `t`), and the stages that
-/// decided its pieces.
+/// The visible and hidden runs of line `l` (index `line`) cut at `cuts` (sorted by `t`), and the
+/// stages that decided its pieces.
 fn pieces(
     occluders: &Occluders,
     scene: &Scene,
     eye: &Eye,
     picture: &Picture,
-    l: &Line,
+    (line, l): (usize, &Line),
     cuts: &[Cut],
 ) -> (Vec<Piece>, Counters) {
     let mut counters = Counters::default();
@@ -685,6 +702,8 @@ fn pieces(
             class: l.class,
             visible: false,
             ends: l.ends,
+            line,
+            t: [0.0, 1.0],
         };
         return (vec![piece], counters);
     }
@@ -697,6 +716,7 @@ fn pieces(
     bounds.push((1.0, None));
     let mut out: Vec<Piece> = Vec::new();
     let mut run_start = l.ends[0];
+    let mut run_t = 0.0;
     let mut run_visible: Option<bool> = None;
     for k in 0..bounds.len() - 1 {
         let (lo, hi) = (bounds[k].0, bounds[k + 1].0);
@@ -727,8 +747,11 @@ fn pieces(
                     class: l.class,
                     visible: v,
                     ends: [run_start, at],
+                    line,
+                    t: [run_t, lo],
                 });
                 run_start = at;
+                run_t = lo;
             }
             _ => {}
         }
@@ -739,6 +762,8 @@ fn pieces(
             class: l.class,
             visible: v,
             ends: [run_start, l.ends[1]],
+            line,
+            t: [run_t, 1.0],
         });
     }
     (out, counters)
