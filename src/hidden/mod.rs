@@ -491,7 +491,15 @@ impl<'a> Pass<'a> {
     /// it, from the uniform grid over the lines' pictures (or every pair, for few lines).
     fn contour_cuts(&mut self) {
         let clock = Instant::now();
-        let (lines, eye) = (&self.lines, &self.eye);
+        let (lines, eye, leaves) = (&self.lines, &self.eye, &self.leaves);
+        // The triangles on the sides of edge `j` (none for an intersection line).
+        let sides = |j: usize| -> Vec<[Point3; 3]> {
+            let leaf = leaves.get(leaves.partition_point(|leaf| leaf.lines.end <= j));
+            match (lines[j].triangles, leaf) {
+                (Some(ts), Some(leaf)) => ts.map(|t| leaf.mesh.triangle(t as usize)).to_vec(),
+                _ => Vec::new(),
+            }
+        };
         let cuts_needed = |i: usize, j: usize| {
             (lines[j].is_contour() && !lines[i].back) || (lines[i].is_contour() && !lines[j].back)
         };
@@ -500,7 +508,7 @@ impl<'a> Pass<'a> {
             for (x, y) in [(i, j), (j, i)] {
                 if lines[y].is_contour()
                     && !lines[x].back
-                    && let Some(c) = crossing(eye, &lines[x], &lines[y])
+                    && let Some(c) = crossing(eye, &lines[x], &lines[y], || sides(y))
                 {
                     out.extend(c.into_iter().map(|c| (x, c)));
                 }
@@ -627,8 +635,14 @@ impl<'a> Pass<'a> {
 }
 
 /// The cuts on `l` where its picture meets the picture of the contour `c`: a crossing (one
-/// cut), or, for collinear pictures, at the pictures of `c`'s ends inside `l`.
-fn crossing(eye: &Eye, l: &Line, c: &Line) -> Option<Vec<Cut>> {
+/// cut), or, for collinear pictures, at the pictures of `c`'s ends inside `l` and where `l`
+/// passes through the plane of one of `c`'s faces (`c_sides`, the triangles on its sides).
+fn crossing(
+    eye: &Eye,
+    l: &Line,
+    c: &Line,
+    c_sides: impl Fn() -> Vec<[Point3; 3]>,
+) -> Option<Vec<Cut>> {
     // Lines with a common end meet there, at the end of each: no cut (and the exact zero
     // determinants would take the predicates' slowest path).
     if l.a == c.a || l.a == c.b || l.b == c.a || l.b == c.b {
@@ -648,7 +662,7 @@ fn crossing(eye: &Eye, l: &Line, c: &Line) -> Option<Vec<Cut>> {
         let [p, q] = l.ends;
         let d = [q[0] - p[0], q[1] - p[1]];
         let norm = d[0] * d[0] + d[1] * d[1];
-        let cuts = c
+        let mut cuts: Vec<Cut> = c
             .ends
             .iter()
             .filter_map(|e| {
@@ -659,6 +673,22 @@ fn crossing(eye: &Eye, l: &Line, c: &Line) -> Option<Vec<Cut>> {
                 })
             })
             .collect();
+        // Both lines lie in one plane through the eye, which meets a face of `c` not seen
+        // edge-on only along `c`: behind `c`'s picture, `l` is hidden by the face exactly where
+        // it lies behind the face's plane, so it is cut where it crosses that plane too.
+        for tri in c_sides() {
+            let form = Form::Plane(tri);
+            if eye.orient3d(&tri[0], &tri[1], &tri[2]) != zero
+                && let Some(t) = form.zero_along(eye, &l.a, &l.b)
+                && t > 0.0
+                && t < 1.0
+            {
+                cuts.push(Cut {
+                    t,
+                    at: CutAt::Form(form),
+                });
+            }
+        }
         return Some(cuts);
     }
     if (sc == sd && sc != zero) || (sa == sb && sa != zero) {

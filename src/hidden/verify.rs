@@ -426,41 +426,71 @@ fn visibility(scene: &Scene, view: &View, traced: &Traced, report: &mut Verifica
 
 /// VISP at the samples of one edge piece.
 fn samples(index: &VisibilityIndex, eye: &Eye, p: &TracedPiece) -> Vec<Sampled> {
-    let [a, b] = p.line;
     let [lo, hi] = p.t;
     SAMPLES
         .iter()
         .map(|&f| {
-            let t = lo + (hi - lo) * f;
-            let margin = NEAR_END_ULPS * f64::EPSILON * t.abs();
-            if !(t - lo > margin && hi - t > margin && t > 0.0 && t < 1.0) {
-                return Sampled::NearEnd;
-            }
-            let grazing = Cell::new(false);
-            let near = a + (b - a) * t;
-            let (visibility, _) = index.visp_by(&near, |tri| {
-                let (hides, grazes) = hides_at(eye, tri, &a, &b, t);
-                grazing.set(grazing.get() || grazes);
-                hides
-            });
-            if (visibility == Visibility::Visible) == p.visible {
-                Sampled::Agrees {
-                    grazing: grazing.get() && visibility == Visibility::Hidden,
+            let at = |f: f64| lo + (hi - lo) * f;
+            let inside = |t: f64| {
+                let margin = NEAR_END_ULPS * f64::EPSILON * t.abs();
+                t - lo > margin && hi - t > margin && t > 0.0 && t < 1.0
+            };
+            // A sample whose line of sight passes exactly through the edge of the only faces
+            // that hide it (a vertex's picture on the piece, say) stands for no piece around
+            // it: the sample moves (a sixteenth of the piece either way), unless every try
+            // grazes (a piece right behind a contour): then the closed faces hide it.
+            let tries = [at(f), at(f + 1.0 / 16.0), at(f - 1.0 / 16.0)];
+            let mut first = None;
+            for t in tries {
+                if !inside(t) {
+                    return Sampled::NearEnd;
                 }
-            } else {
-                Sampled::Disagrees { t, visibility }
+                let (visibility, grazing) = visp_at(index, eye, &p.line, t);
+                first.get_or_insert((t, visibility));
+                if !grazing {
+                    return sampled(p, t, visibility, false);
+                }
+            }
+            match first {
+                Some((t, visibility)) => sampled(p, t, visibility, true),
+                None => Sampled::NearEnd,
             }
         })
         .collect()
 }
 
+/// A sample's outcome: VISP found `visibility` at `t`.
+fn sampled(p: &TracedPiece, t: f64, visibility: Visibility, grazing: bool) -> Sampled {
+    if (visibility == Visibility::Visible) == p.visible {
+        Sampled::Agrees { grazing }
+    } else {
+        Sampled::Disagrees { t, visibility }
+    }
+}
+
+/// VISP at `X(t)` on `line`, with the closed faces, and whether the answer rests on lines of
+/// sight through faces' edges only (HIDDEN with the closed faces, VISIBLE with the open ones).
+fn visp_at(index: &VisibilityIndex, eye: &Eye, [a, b]: &[Point3; 2], t: f64) -> (Visibility, bool) {
+    let near = a + (b - a) * t;
+    let grazed = Cell::new(false);
+    let (closed, _) = index.visp_by(&near, |tri| {
+        let (hides, grazes) = hides_at(eye, tri, a, b, t);
+        grazed.set(grazed.get() || grazes);
+        hides
+    });
+    if closed == Visibility::Visible || !grazed.get() {
+        return (closed, false);
+    }
+    let (open, _) = index.visp_by(&near, |tri| hides_at(eye, tri, a, b, t) == (true, false));
+    (closed, open == Visibility::Visible)
+}
+
 /// Whether the triangle `tri` hides `X(t) = a + t·(b − a)` (strictly behind its plane, the
 /// line of sight through the closed triangle), and whether that line of sight passes exactly
-/// through an edge of the triangle it meets.
+/// through an edge of the triangle.
 fn hides_at(eye: &Eye, tri: &[Point3; 3], a: &Point3, b: &Point3, t: f64) -> (bool, bool) {
     let facing = eye.orient3d(&tri[0], &tri[1], &tri[2]);
-    if facing == Ordering::Equal || Form::Plane(*tri).sign_along(eye, a, b, t) != facing.reverse()
-    {
+    if facing == Ordering::Equal || Form::Plane(*tri).sign_along(eye, a, b, t) != facing.reverse() {
         return (false, false);
     }
     let sides = [0, 1, 2].map(|i| Form::Sight(tri[i], tri[(i + 1) % 3]).sign_along(eye, a, b, t));
@@ -576,7 +606,11 @@ fn whole(traced: &Traced, on: &[usize], class: EdgeClass) -> Result<(), (String,
     let mut reached = 0.0;
     for r in ranges {
         if r[0] != reached {
-            let what = if r[0] > reached { "nothing" } else { "overlapping pieces" };
+            let what = if r[0] > reached {
+                "nothing"
+            } else {
+                "overlapping pieces"
+            };
             return Err((format!("t = {reached:e}"), what.to_string()));
         }
         reached = r[1];
@@ -663,17 +697,21 @@ fn drawing(options: &Options, traced: &Traced, report: &mut Verification) {
     let mut count: HashMap<(EdgeClass, bool, [[u64; 2]; 2]), i64> = HashMap::new();
     for p in &traced.pieces {
         if p.ends[0] != p.ends[1] && (p.visible || options.hidden) {
-            *count.entry(segment(p.class, p.visible, p.ends)).or_default() += 1;
+            *count
+                .entry(segment(p.class, p.visible, p.ends))
+                .or_default() += 1;
         }
     }
     for l in &traced.drawing.polylines {
         for w in l.points.windows(2) {
             report.segments += 1;
-            *count.entry(segment(l.class, l.visible, [w[0], w[1]])).or_default() -= 1;
+            *count
+                .entry(segment(l.class, l.visible, [w[0], w[1]]))
+                .or_default() -= 1;
         }
     }
     let mut differing: Vec<_> = count.into_iter().filter(|&(_, n)| n != 0).collect();
-    differing.sort_unstable_by(|x, y| x.0.cmp(&y.0));
+    differing.sort_unstable_by_key(|x| x.0);
     for ((class, visible, [p, q]), n) in differing {
         let point = |k: [u64; 2]| {
             let [x, y] = k.map(f64::from_bits);
