@@ -22,10 +22,11 @@
 //!    triangles of different faces, one turned towards the eye and one away (each triangle's
 //!    side of the eye by [`Eye::orient3d`], taken along the edge's direction in that triangle,
 //!    so it holds for inside-out and inconsistently oriented meshes as well), or an edge of one
-//!    triangle only. Each must be drawn whole: pieces of that class on that edge (matched by
-//!    object and exact input end points, never by rounded pictures) whose parameter ranges
-//!    tile `[0, 1]`. Edges seen end-on, edges with a face seen edge-on and edges of more than
-//!    two triangles are not checked.
+//!    triangle only; and an edge of a face seen edge-on (the surface seen ends there). Each
+//!    must be drawn whole: pieces of that class on that edge (matched by object and exact input
+//!    end points, never by rounded pictures) whose parameter ranges tile `[0, 1]`. Edges seen
+//!    end-on, edges between two faces seen edge-on and edges of more than two triangles are
+//!    not checked.
 //! 3. **The drawing.** Its segments are exactly the pieces' pictures (of nonzero length; with
 //!    their class and visibility; hidden ones only when the drawing keeps them): each piece
 //!    checked is one that is drawn.
@@ -289,8 +290,8 @@ pub struct Verification {
     pub unchecked_intersections: usize,
     /// Samples not checked for lying within a few units in the last place of a piece's end.
     pub near_ends: usize,
-    /// Edges the sign test does not decide: seen end-on, with a face seen edge-on, or of more
-    /// than two triangles.
+    /// Edges the sign test does not decide: seen end-on, between two faces seen edge-on, or of
+    /// more than two triangles.
     pub unchecked_edges: usize,
     /// The time the checks took, in seconds.
     pub seconds: f64,
@@ -333,8 +334,8 @@ impl fmt::Display for Verification {
         writeln!(
             f,
             "verify: not checked: {} intersection-line pieces (their lines are not yet exact), \
-             {} samples within {NEAR_END_ULPS} ulps of a piece's end, {} edges end-on, with a \
-             face edge-on or of more than two triangles",
+             {} samples within {NEAR_END_ULPS} ulps of a piece's end, {} edges end-on, between \
+             faces edge-on or of more than two triangles",
             self.unchecked_intersections, self.near_ends, self.unchecked_edges
         )?;
         for d in &self.described {
@@ -355,13 +356,15 @@ impl fmt::Display for Verification {
 /// documentation).
 ///
 /// ```
-/// use kepler::{scene::Scene, views::View, hidden::{Options, verify::{draw_traced, verify}}};
+/// use kepler::{geometry::Vector3, scene::Scene, views::View};
+/// use kepler::hidden::{Options, verify::{draw_traced, verify}};
 /// let mut scene = Scene::new();
 /// scene.add_mesh(None, "cube", kepler::solids::cube(2.0).unwrap()).unwrap();
-/// let (view, options) = (View::standard(), Options::default());
+/// let view = View::orthographic(Vector3::new(-1.0, -2.0, -3.0), Vector3::z()).unwrap();
+/// let options = Options::default();
 /// let mut traced = draw_traced(&scene, &view, &options, &|_, _| {}).unwrap();
-/// // Four silhouette edges around the top, four under them: each drawn whole.
-/// assert_eq!(verify(&scene, &view, &options, &traced).silhouettes, 8);
+/// // Six silhouette edges around the outline, each drawn whole.
+/// assert_eq!(verify(&scene, &view, &options, &traced).silhouettes, 6);
 /// // Leave out a piece: its edge is no longer drawn whole.
 /// traced.pieces.remove(0);
 /// assert!(verify(&scene, &view, &options, &traced).disagreements > 0);
@@ -663,12 +666,14 @@ fn contour_edges(mesh: &Mesh, eye: &Eye) -> (Vec<Contour>, usize) {
             [x, y] if mesh.face_of(x.1) == mesh.face_of(y.1) => continue,
             [x, y] => {
                 let (fx, fy) = (facing(x), facing(y));
-                if eye.sees_end_on(a, b) || fx == Ordering::Equal || fy == Ordering::Equal {
+                let edge_on = [fx, fy].iter().filter(|&&f| f == Ordering::Equal).count();
+                if eye.sees_end_on(a, b) || edge_on == 2 {
                     None
-                } else if fx == fy {
-                    // Made to run the same way along the edge, their sides differ: with the
+                } else if fx == fy || edge_on == 1 {
+                    // Made to run the same way along the edge, their sides agree: with the
                     // triangles oriented alike (one runs the edge the other way), one is
-                    // turned towards the eye and the other away.
+                    // turned towards the eye and the other away. Or one is seen edge-on, and
+                    // the surface seen ends at the edge.
                     Some(EdgeClass::Silhouette)
                 } else {
                     continue;
