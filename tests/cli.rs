@@ -1254,38 +1254,11 @@ fn render_verify_reports_its_checks_and_writes_the_same_files() {
 fn render_verify_fails_on_a_disagreement() {
     // A box's edge through the apex of a cone, its lower half inside the cone: the pass does
     // not cut the edge there (see tests/verify.rs), and --verify says so.
-    let cone = temp_path("cone.off");
-    let mut off = String::from("OFF\n9 9 0\n1 1 4\n");
-    for [x, y] in [
-        [4, 1],
-        [3, 3],
-        [1, 4],
-        [-1, 3],
-        [-2, 1],
-        [-1, -1],
-        [1, -2],
-        [3, -1],
-    ] {
-        off.push_str(&format!("{x} {y} 0\n"));
-    }
-    for k in 0..8 {
-        off.push_str(&format!("3 0 {} {}\n", 1 + k, 1 + (k + 1) % 8));
-    }
-    off.push_str("8 8 7 6 5 4 3 2 1\n");
-    std::fs::write(&cone, off).unwrap();
-    let scene = temp_path("cone.toml");
-    std::fs::write(
-        &scene,
-        "[camera]\nprojection = \"perspective\"\neye = [2, 1, 25]\ntarget = [1, 1, 1]\n\
-         up = [0, 1, 0]\nfov = 60\n\n[[object]]\nname = \"box\"\nsolid = \"box\"\n\
-         size = [1, 1, 2]\ntranslate = [0.5, 0.5, 4]\n\n[[object]]\nname = \"cone\"\n\
-         mesh = \"cone.off\"\n",
-    )
-    .unwrap();
+    let scene = "tests/data/edge_through_apex.toml";
     let svg = temp_path("cone.svg");
-    let o = kepler(&["render", &scene, "-o", &svg]);
+    let o = kepler(&["render", scene, "-o", &svg]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let o = kepler(&["render", &scene, "-o", &svg, "--verify"]);
+    let o = kepler(&["render", scene, "-o", &svg, "--verify"]);
     let report = stderr(&o);
     assert_eq!(o.status.code(), Some(1), "{report}");
     assert!(!report.contains("panicked"), "{report}");

@@ -270,48 +270,16 @@ fn the_report_describes_the_first_disagreements_and_counts_all() {
     )));
 }
 
-/// A box's edge that passes through a vertex of a tetrahedron, its lower half inside: the pass
+/// A box's edge that passes through the apex of a cone, its lower half inside: the pass
 /// does not cut the edge at that vertex (no face is pierced through its interior), and decides
 /// the whole edge at its midpoint, the vertex, where nothing hides it. The check finds the
 /// hidden half drawn visible. When the pass cuts there, this test fails: then it should expect
 /// no disagreement.
 #[test]
 fn an_edge_through_a_vertex_of_another_solid_is_caught() {
-    let mut scene = Scene::new();
-    scene
-        .add_mesh(
-            None,
-            "box",
-            solids::box_between([0.0, 0.0, 3.0], [1.0, 1.0, 5.0]).unwrap(),
-        )
-        .unwrap();
-    // A closed cone, its apex at the middle of the box's edge x = y = 1.
-    let mut vertices = vec![Point3::new(1.0, 1.0, 4.0)];
-    vertices.extend(
-        [
-            [4, 1],
-            [3, 3],
-            [1, 4],
-            [-1, 3],
-            [-2, 1],
-            [-1, -1],
-            [1, -2],
-            [3, -1],
-        ]
-        .map(|[x, y]| Point3::new(f64::from(x), f64::from(y), 0.0)),
-    );
-    let mut faces: Vec<Vec<u32>> = (0..8).map(|k| vec![0, 1 + k, 1 + (k + 1) % 8]).collect();
-    faces.push((1..=8).rev().collect());
-    let cone = Mesh::from_polygons(vertices, faces).unwrap();
-    scene.add_mesh(None, "cone", cone).unwrap();
     // From above: the apex is inside the cone's picture, on no contour.
-    let view = View::perspective(
-        Point3::new(2.0, 1.0, 25.0),
-        Point3::new(1.0, 1.0, 1.0),
-        Vector3::y(),
-        60.0,
-    )
-    .unwrap();
+    let scene = file::load(Path::new("tests/data/edge_through_apex.toml")).unwrap();
+    let view = View::from_camera(scene.camera().unwrap()).unwrap();
     let options = Options::default();
     let report = verify(&scene, &view, &options, &traced(&scene, &view, &options));
     let d = report

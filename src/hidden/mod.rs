@@ -12,7 +12,9 @@
 //!    where the edge pierces a face. Franklin's uniform grid ([`crate::grid`]) finds the
 //!    candidate crossings among the pictures; each is decided exactly in 3-D with the eye's
 //!    predicates, and a contour behind the line at the crossing changes nothing and cuts
-//!    nothing. Piercings come from step 2: where an edge passes through a face, and where an
+//!    nothing. A line whose picture lies on a contour's (both in one plane through the eye) is
+//!    cut at the pictures of the contour's ends and where it crosses the planes of the
+//!    contour's faces. Piercings come from step 2: where an edge passes through a face, and where an
 //!    intersection line passes through a third face (a triple point).
 //! 4. **Visibility.** Each piece between cuts is decided by one VISP query at a point inside
 //!    it, through the object hierarchy (CBOX rejects, INBOX accepts, then the faces near the
@@ -22,6 +24,8 @@
 //!    meets the closed face.
 //! 5. **Chains.** Consecutive pieces of one edge with the same visibility merge; pieces of one
 //!    class and visibility that share an end are chained into maximal polylines.
+//!
+//! [`verify`] checks a drawing against answers found independently (`kepler render --verify`).
 //!
 //! Every vertex of the drawing is the picture of an input vertex, of a cut (where an edge's
 //! picture crosses a contour's, or where it pierces a face), or of an intersection line's end,

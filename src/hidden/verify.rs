@@ -442,12 +442,12 @@ fn samples(index: &VisibilityIndex, eye: &Eye, p: &TracedPiece) -> Vec<Sampled> 
             // that hide it (a vertex's picture on the piece, say) stands for no piece around
             // it: the sample moves (a sixteenth of the piece either way), unless every try
             // grazes (a piece right behind a contour): then the closed faces hide it.
+            if !inside(at(f)) {
+                return Sampled::NearEnd;
+            }
             let tries = [at(f), at(f + 1.0 / 16.0), at(f - 1.0 / 16.0)];
             let mut first = None;
-            for t in tries {
-                if !inside(t) {
-                    return Sampled::NearEnd;
-                }
+            for t in tries.into_iter().filter(|&t| inside(t)) {
                 let (visibility, grazing) = visp_at(index, eye, &p.line, t);
                 first.get_or_insert((t, visibility));
                 if !grazing {
