@@ -61,7 +61,7 @@ pub mod verify;
 pub use drawing::{Drawing, EdgeClass, Polyline, StageReport};
 
 use crate::geometry::Point3;
-use crate::geometry::predicates::orient3d;
+use crate::geometry::predicates::{collinear, orient3d};
 use crate::grid::SegmentGrid;
 use crate::mesh::Mesh;
 use crate::queries::Counters;
@@ -679,8 +679,10 @@ fn crossing(
             .collect();
         // Both lines lie in one plane through the eye, which meets a face of `c` not seen
         // edge-on only along `c`: behind `c`'s picture, `l` is hidden by the face exactly where
-        // it lies behind the face's plane, so it is cut where it crosses that plane too.
-        for tri in c_sides() {
+        // it lies behind the face's plane, so it is cut where it crosses that plane too (at an
+        // end of `c` when one lies on the line of `l`: cut there already).
+        let meets_end = collinear(&l.a, &l.b, &c.a) || collinear(&l.a, &l.b, &c.b);
+        for tri in c_sides().into_iter().filter(|_| !meets_end) {
             let form = Form::Plane(tri);
             if eye.orient3d(&tri[0], &tri[1], &tri[2]) != zero
                 && let Some(t) = form.zero_along(eye, &l.a, &l.b)
