@@ -1219,3 +1219,59 @@ fn triboxes_says_why_it_stops_and_makes_the_levels_asked_for() {
         "note: the hierarchy stops at depth 1 (2 of 4 levels): its cells are at --max-depth 1\n"
     );
 }
+
+#[test]
+fn render_verify_reports_its_checks_and_writes_the_same_files() {
+    let plain = (temp_path("plain.svg"), temp_path("plain.json"));
+    let checked = (temp_path("checked.svg"), temp_path("checked.json"));
+    for path in ["scenes/city.toml", "scenes/meshes/tent.stl"] {
+        ok(&["render", path, "-o", &plain.0, "--json", &plain.1]);
+        let o = kepler(&[
+            "render", path, "-o", &checked.0, "--json", &checked.1, "--verify",
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        assert_eq!(stdout(&o), "");
+        let report = stderr(&o);
+        let lines: Vec<&str> = report.lines().collect();
+        assert_eq!(lines.len(), 3, "{report}");
+        let counts: Vec<&str> = lines[0].split_whitespace().collect();
+        assert_eq!(&counts[..2], ["verify:", counts[1]]);
+        assert!(counts[1].parse::<usize>().expect("a count") > 0, "{report}");
+        assert_eq!(&counts[2..5], ["checks,", "0", "disagreements"], "{report}");
+        assert!(lines[1].starts_with("verify: ") && lines[1].contains("visibility samples"));
+        assert!(lines[2].starts_with("verify: not checked: "));
+        for (a, b) in [(&plain.0, &checked.0), (&plain.1, &checked.1)] {
+            assert_eq!(
+                std::fs::read(a).unwrap(),
+                std::fs::read(b).unwrap(),
+                "{path}"
+            );
+        }
+    }
+}
+
+#[test]
+fn render_verify_fails_on_a_disagreement() {
+    // A box's edge through the apex of a cone, its lower half inside the cone: the pass does
+    // not cut the edge there (see tests/verify.rs), and --verify says so.
+    let scene = "tests/data/edge_through_apex.toml";
+    let svg = temp_path("cone.svg");
+    let o = kepler(&["render", scene, "-o", &svg]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = kepler(&["render", scene, "-o", &svg, "--verify"]);
+    let report = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{report}");
+    assert!(!report.contains("panicked"), "{report}");
+    assert!(
+        report.contains("verify: disagreement: visibility: object 'box', ")
+            && report.contains("expected hidden, found visible"),
+        "{report}"
+    );
+    let last = report.lines().last().unwrap_or_default();
+    assert!(
+        last.starts_with("error: verify: the drawing disagrees with "),
+        "{report}"
+    );
+    // The drawing is written all the same.
+    assert!(std::fs::read_to_string(&svg).unwrap().contains("<svg"));
+}

@@ -311,6 +311,48 @@ pub fn exact_sign<P: Polynomial + ?Sized>(p: &P) -> Ordering {
     }
 }
 
+/// The value of `p` to within a few units in the last place: its estimate when the certified
+/// bound is below 2⁻⁴⁰ of it (the common case, no extra work), else its exact expansion
+/// rounded correctly, else its rational value rounded. For parameters computed from
+/// polynomials whose estimates cancel (a far perspective eye, say), where the plain estimate
+/// may be off in every digit or even in sign.
+///
+/// ```
+/// use kepler::geometry::kernel::{Polynomial, value};
+/// use kepler::geometry::{Point3, predicates::Orient3d};
+/// // Far from the origin, the filter's value cancels; the exact one does not.
+/// let f = 2f64.powi(30);
+/// let det = Orient3d([
+///     Point3::new(f, f, f), Point3::new(f + 1.0, f, f),
+///     Point3::new(f, f + 1.0, f), Point3::new(f, f, f - 0.5),
+/// ]);
+/// assert_eq!(value(&det), 0.5);
+/// ```
+pub fn value<P: Polynomial + ?Sized>(p: &P) -> f64 {
+    let e = p.estimate();
+    if e.value.is_finite() && e.bound <= e.value.abs() * RELATIVE_VALUE {
+        return e.value;
+    }
+    let exponents = p.exponents();
+    if exponents.max > 1023 {
+        return e.value;
+    }
+    if exponents.exact_for(p.degree()) {
+        estimate(&p.expansion())
+    } else {
+        rational_value(&p.evaluate::<BigRational>()).unwrap_or(e.value)
+    }
+}
+
+/// The relative bound under which [`value`] keeps an estimate: 2⁻⁴⁰.
+const RELATIVE_VALUE: f64 = 1.0 / (1u64 << 40) as f64;
+
+/// A rational rounded to a double (`None` when it does not fit).
+fn rational_value(x: &BigRational) -> Option<f64> {
+    use num_traits::ToPrimitive;
+    x.to_f64().filter(|v| v.is_finite())
+}
+
 /// The sign of an exact rational.
 fn rational_sign(x: &BigRational) -> Ordering {
     let n: &BigInt = x.numer();

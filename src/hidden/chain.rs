@@ -16,6 +16,11 @@ pub(crate) struct Piece {
     pub visible: bool,
     /// Its ends.
     pub ends: [[f64; 2]; 2],
+    /// The index of its line in the pass, and its range of the line's parameter `t` (where
+    /// `X(t) = a + t·(b - a)`): what [`super::verify`] checks it by.
+    pub line: usize,
+    /// See `line`.
+    pub t: [f64; 2],
 }
 
 /// Chains the pieces of each class and visibility into polylines, joining pieces at ends

@@ -12,7 +12,9 @@
 //!    where the edge pierces a face. Franklin's uniform grid ([`crate::grid`]) finds the
 //!    candidate crossings among the pictures; each is decided exactly in 3-D with the eye's
 //!    predicates, and a contour behind the line at the crossing changes nothing and cuts
-//!    nothing. Piercings come from step 2: where an edge passes through a face, and where an
+//!    nothing. A line whose picture lies on a contour's (both in one plane through the eye) is
+//!    cut at the pictures of the contour's ends and where it crosses the planes of the
+//!    contour's faces. Piercings come from step 2: where an edge passes through a face, and where an
 //!    intersection line passes through a third face (a triple point).
 //! 4. **Visibility.** Each piece between cuts is decided by one VISP query at a point inside
 //!    it, through the object hierarchy (CBOX rejects, INBOX accepts, then the faces near the
@@ -22,6 +24,8 @@
 //!    meets the closed face.
 //! 5. **Chains.** Consecutive pieces of one edge with the same visibility merge; pieces of one
 //!    class and visibility that share an end are chained into maximal polylines.
+//!
+//! [`verify`] checks a drawing against answers found independently (`kepler render --verify`).
 //!
 //! Every vertex of the drawing is the picture of an input vertex, of a cut (where an edge's
 //! picture crosses a contour's, or where it pierces a face), or of an intersection line's end,
@@ -52,11 +56,12 @@ mod cover;
 mod drawing;
 mod edges;
 pub mod ideographs;
+pub mod verify;
 
 pub use drawing::{Drawing, EdgeClass, Polyline, StageReport};
 
 use crate::geometry::Point3;
-use crate::geometry::predicates::orient3d;
+use crate::geometry::predicates::{collinear, orient3d};
 use crate::grid::SegmentGrid;
 use crate::mesh::Mesh;
 use crate::queries::Counters;
@@ -224,37 +229,55 @@ pub fn draw_with_progress(
     options: &Options,
     progress: &(dyn Fn(u64, u64) + Sync),
 ) -> Result<Drawing> {
-    // A scene of extreme coordinates is drawn scaled by a power of two into the range where
-    // every construction is exact, and the drawing scaled back: the same bits, scaled.
+    let (drawing, shift) = in_working_range(scene, view, |scene, view| {
+        let (pass, pieces) = decided(scene, view, options, progress)?;
+        Ok(chained(pass, pieces, options))
+    })?;
+    Ok(scaled_back(drawing, view, shift))
+}
+
+/// `work` on the scene and view brought into the kernel's working range by a power of two,
+/// `2^shift`, with that shift: a scene of extreme coordinates is drawn scaled into the range
+/// where every construction is exact, and its results are scaled back (the same bits, scaled).
+fn in_working_range<T>(
+    scene: &Scene,
+    view: &View,
+    work: impl FnOnce(&Scene, &View) -> Result<T>,
+) -> Result<(T, i32)> {
     let shift = scene.exponents().union(view.exponents()).shift();
     if shift == 0 {
-        return draw_pass(scene, view, options, progress);
+        return Ok((work(scene, view)?, 0));
     }
-    let drawing = draw_pass(
-        &scene.scaled(shift)?,
-        &view.scaled(shift),
-        options,
-        progress,
-    )?;
-    Ok(if view.is_perspective() {
+    Ok((work(&scene.scaled(shift)?, &view.scaled(shift))?, shift))
+}
+
+/// A drawing made in the working range by `2^shift` brought back to the view's scale: a
+/// perspective picture does not scale.
+fn scaled_back(drawing: Drawing, view: &View, shift: i32) -> Drawing {
+    if shift == 0 || view.is_perspective() {
         drawing
     } else {
         drawing.scaled(-shift)
-    })
+    }
 }
 
-/// [`draw_with_progress`] on a scene in the kernel's working range.
-fn draw_pass(
-    scene: &Scene,
+/// Stages 1 to 4 of the pass: the pass and every piece with its visibility.
+fn decided<'a>(
+    scene: &'a Scene,
     view: &View,
     options: &Options,
     progress: &(dyn Fn(u64, u64) + Sync),
-) -> Result<Drawing> {
+) -> Result<(Pass<'a>, Vec<Piece>)> {
     let mut pass = Pass::new(scene, view)?;
     pass.edges(options);
     pass.intersections();
     pass.contour_cuts();
-    let mut pieces = pass.visibility(progress);
+    let pieces = pass.visibility(progress);
+    Ok((pass, pieces))
+}
+
+/// Stage 5 of the pass: the drawing chained from the pieces.
+fn chained(mut pass: Pass, mut pieces: Vec<Piece>, options: &Options) -> Drawing {
     let clock = Instant::now();
     if !options.hidden {
         pieces.retain(|p| p.visible);
@@ -266,10 +289,10 @@ fn draw_pass(
         format!("{} polylines from {} runs", polylines.len(), pieces.len()),
         (!options.hidden).then(|| "hidden pieces (not asked for)".to_string()),
     );
-    Ok(Drawing {
+    Drawing {
         polylines,
         stages: pass.stages,
-    })
+    }
 }
 
 /// A mesh of the scene in the pass: its object, its vertices' pictures, and the range of its
@@ -500,7 +523,15 @@ impl<'a> Pass<'a> {
     /// it, from the uniform grid over the lines' pictures (or every pair, for few lines).
     fn contour_cuts(&mut self) {
         let clock = Instant::now();
-        let (lines, eye) = (&self.lines, &self.eye);
+        let (lines, eye, leaves) = (&self.lines, &self.eye, &self.leaves);
+        // The triangles on the sides of edge `j` (none for an intersection line).
+        let sides = |j: usize| -> Vec<[Point3; 3]> {
+            let leaf = leaves.get(leaves.partition_point(|leaf| leaf.lines.end <= j));
+            match (lines[j].triangles, leaf) {
+                (Some(ts), Some(leaf)) => ts.map(|t| leaf.mesh.triangle(t as usize)).to_vec(),
+                _ => Vec::new(),
+            }
+        };
         let cuts_needed = |i: usize, j: usize| {
             (lines[j].is_contour() && !lines[i].back) || (lines[i].is_contour() && !lines[j].back)
         };
@@ -509,7 +540,7 @@ impl<'a> Pass<'a> {
             for (x, y) in [(i, j), (j, i)] {
                 if lines[y].is_contour()
                     && !lines[x].back
-                    && let Some(c) = crossing(eye, &lines[x], &lines[y])
+                    && let Some(c) = crossing(eye, &lines[x], &lines[y], || sides(y))
                 {
                     out.extend(c.into_iter().map(|c| (x, c)));
                 }
@@ -614,7 +645,7 @@ impl<'a> Pass<'a> {
                     .iter()
                     .map(|c| c.1)
                     .collect();
-                pieces(&occluders, scene, eye, picture, &lines[l], &line_cuts)
+                pieces(&occluders, scene, eye, picture, (l, &lines[l]), &line_cuts)
             })
             .collect();
         let mut counters = Counters::default();
@@ -636,8 +667,14 @@ impl<'a> Pass<'a> {
 }
 
 /// The cuts on `l` where its picture meets the picture of the contour `c`: a crossing (one
-/// cut), or, for collinear pictures, at the pictures of `c`'s ends inside `l`.
-fn crossing(eye: &Eye, l: &Line, c: &Line) -> Option<Vec<Cut>> {
+/// cut), or, for collinear pictures, at the pictures of `c`'s ends inside `l` and where `l`
+/// passes through the plane of one of `c`'s faces (`c_sides`, the triangles on its sides).
+fn crossing(
+    eye: &Eye,
+    l: &Line,
+    c: &Line,
+    c_sides: impl Fn() -> Vec<[Point3; 3]>,
+) -> Option<Vec<Cut>> {
     // Lines with a common end meet there, at the end of each: no cut (and the exact zero
     // determinants would take the predicates' slowest path).
     if l.a == c.a || l.a == c.b || l.b == c.a || l.b == c.b {
@@ -657,7 +694,7 @@ fn crossing(eye: &Eye, l: &Line, c: &Line) -> Option<Vec<Cut>> {
         let [p, q] = l.ends;
         let d = [q[0] - p[0], q[1] - p[1]];
         let norm = d[0] * d[0] + d[1] * d[1];
-        let cuts = c
+        let mut cuts: Vec<Cut> = c
             .ends
             .iter()
             .filter_map(|e| {
@@ -668,6 +705,24 @@ fn crossing(eye: &Eye, l: &Line, c: &Line) -> Option<Vec<Cut>> {
                 })
             })
             .collect();
+        // Both lines lie in one plane through the eye, which meets a face of `c` not seen
+        // edge-on only along `c`: behind `c`'s picture, `l` is hidden by the face exactly where
+        // it lies behind the face's plane, so it is cut where it crosses that plane too (at an
+        // end of `c` when one lies on the line of `l`: cut there already).
+        let meets_end = collinear(&l.a, &l.b, &c.a) || collinear(&l.a, &l.b, &c.b);
+        for tri in c_sides().into_iter().filter(|_| !meets_end) {
+            let form = Form::Plane(tri);
+            if eye.orient3d(&tri[0], &tri[1], &tri[2]) != zero
+                && let Some(t) = form.zero_along(eye, &l.a, &l.b)
+                && t > 0.0
+                && t < 1.0
+            {
+                cuts.push(Cut {
+                    t,
+                    at: CutAt::Form(form),
+                });
+            }
+        }
         return Some(cuts);
     }
     if (sc == sd && sc != zero) || (sa == sb && sa != zero) {
@@ -695,14 +750,14 @@ fn crossing(eye: &Eye, l: &Line, c: &Line) -> Option<Vec<Cut>> {
     })
 }
 
-/// The visible and hidden runs of line `l` cut at `cuts` (sorted by `t`), and the stages that
-/// decided its pieces.
+/// The visible and hidden runs of line `l` (index `line`) cut at `cuts` (sorted by `t`), and the
+/// stages that decided its pieces.
 fn pieces(
     occluders: &Occluders,
     scene: &Scene,
     eye: &Eye,
     picture: &Picture,
-    l: &Line,
+    (line, l): (usize, &Line),
     cuts: &[Cut],
 ) -> (Vec<Piece>, Counters) {
     let mut counters = Counters::default();
@@ -711,6 +766,8 @@ fn pieces(
             class: l.class,
             visible: false,
             ends: l.ends,
+            line,
+            t: [0.0, 1.0],
         };
         return (vec![piece], counters);
     }
@@ -723,6 +780,7 @@ fn pieces(
     bounds.push((1.0, None));
     let mut out: Vec<Piece> = Vec::new();
     let mut run_start = l.ends[0];
+    let mut run_t = 0.0;
     let mut run_visible: Option<bool> = None;
     for k in 0..bounds.len() - 1 {
         let (lo, hi) = (bounds[k].0, bounds[k + 1].0);
@@ -753,8 +811,11 @@ fn pieces(
                     class: l.class,
                     visible: v,
                     ends: [run_start, at],
+                    line,
+                    t: [run_t, lo],
                 });
                 run_start = at;
+                run_t = lo;
             }
             _ => {}
         }
@@ -765,6 +826,8 @@ fn pieces(
             class: l.class,
             visible: v,
             ends: [run_start, l.ends[1]],
+            line,
+            t: [run_t, 1.0],
         });
     }
     (out, counters)

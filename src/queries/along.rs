@@ -17,7 +17,7 @@
 
 use crate::geometry::Point3;
 use crate::geometry::exact::{estimate, expansion_product, expansion_sum, negated};
-use crate::geometry::kernel::{Between, Estimate, Exponents, Polynomial, Ring};
+use crate::geometry::kernel::{Between, Estimate, Exponents, Polynomial, Ring, value};
 use crate::geometry::predicates::{Orient3d, Orientation};
 use crate::views::{Eye, Picture};
 use std::cmp::Ordering;
@@ -81,7 +81,7 @@ impl Form {
             (_, Ordering::Equal) => Some(1.0),
             _ if sa == sb => None,
             _ => {
-                let (va, vb) = (fa.estimate().value, fb.estimate().value);
+                let (va, vb) = (value(&fa), value(&fb));
                 Some((va / (va - vb)).clamp(0.0, 1.0))
             }
         }

@@ -256,12 +256,23 @@ impl<'s> VisibilityIndex<'s> {
     /// ```
     pub fn visp(&self, p: &Point3) -> (Visibility, Stage) {
         let eye = self.view.eye();
-        let sight = Sight::to_eye(p, eye);
+        self.visp_by(p, |t| hides(eye, t, p))
+    }
+
+    /// VISP of a point given by its face test `hides` (whether a triangle hides the point,
+    /// decided exactly however the point is given) and a point `near` it, within a few units
+    /// in the last place, for the bounds (whose tests keep a far wider margin: see `sight.rs`).
+    pub(crate) fn visp_by(
+        &self,
+        near: &Point3,
+        hides: impl Fn(&[Point3; 3]) -> bool,
+    ) -> (Visibility, Stage) {
+        let sight = Sight::to_eye(near, self.view.eye());
         any_hides(self.objects.iter().map(|&id| {
             descend(self.scene, id, &sight, &|_| true, &|leaf, _| {
                 self.trees[leaf]
                     .select(|b| sight.may_meet(b))
-                    .any(|(_, t)| hides(eye, &t, p))
+                    .any(|(_, t)| hides(&t))
             })
         }))
     }

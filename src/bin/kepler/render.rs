@@ -5,6 +5,7 @@ use crate::output::{progress_bar, write_file};
 use anyhow::Result;
 use kepler::geometry::polygon::bounding_box;
 use kepler::hidden::ideographs::{Ideograph, ideographs};
+use kepler::hidden::verify::{Traced, draw_traced, verify};
 use kepler::hidden::{self, Drawing, EdgeClass, EdgeSelection};
 use kepler::output::{PageTransform, SvgOptions, write_json, write_svg};
 use kepler::scene::Scene;
@@ -44,6 +45,11 @@ pub struct Args {
     /// length of each edge class (to stderr).
     #[arg(long)]
     stats: bool,
+    /// Check the drawing independently (VISP at points of every piece, silhouettes by a sign
+    /// test, the drawing against its pieces), print the checks and disagreements (to stderr),
+    /// and fail on any disagreement. The files written are the same.
+    #[arg(long)]
+    verify: bool,
     /// Franklin's ideographs: an object whose CBOX's picture is smaller than this many
     /// square millimetres on the page is drawn as its CBOX, or left out (`--ideograph`).
     #[arg(long, value_name = "MM2", value_parser = parse_area)]
@@ -87,13 +93,14 @@ pub fn run(args: Args) -> Result<()> {
         None => (scene, None),
     };
     let loaded = started.elapsed();
-    let drawing = draw(&scene, &view, &options)?;
+    let traced = draw(&scene, &view, &options, args.verify)?;
+    let drawing = &traced.drawing;
     let clock = Instant::now();
     write_file(&args.output, |mut out| {
-        write_svg(&drawing, &svg_options, &mut out)
+        write_svg(drawing, &svg_options, &mut out)
     })?;
     if let Some(json) = &args.json {
-        write_file(json, |mut out| write_json(&drawing, &mut out))?;
+        write_file(json, |mut out| write_json(drawing, &mut out))?;
     }
     let written = clock.elapsed();
     if args.stats {
@@ -104,7 +111,18 @@ pub fn run(args: Args) -> Result<()> {
                 args.ideograph_below.unwrap_or(0.0)
             );
         }
-        eprint!("{}", stats_report(&drawing, loaded, written));
+        eprint!("{}", stats_report(drawing, loaded, written));
+    }
+    if args.verify {
+        let report = verify(&scene, &view, &options, &traced);
+        eprint!("{report}");
+        if report.disagreements > 0 {
+            anyhow::bail!(
+                "verify: the drawing disagrees with {} of {} checks",
+                report.disagreements,
+                report.checks()
+            );
+        }
     }
     Ok(())
 }
@@ -138,19 +156,28 @@ fn picture_area(scene: &Scene, view: &View, svg_options: &SvgOptions, mm2: f64) 
     mm2 / (scale * scale)
 }
 
-/// The drawing, with a progress bar on a terminal.
-fn draw(scene: &Scene, view: &View, options: &hidden::Options) -> Result<Drawing> {
+/// The drawing, with a progress bar on a terminal, and its pieces traced to their lines when
+/// they are to be verified (else none).
+fn draw(scene: &Scene, view: &View, options: &hidden::Options, traced: bool) -> Result<Traced> {
     let bar = progress_bar();
-    let drawing = hidden::draw_with_progress(scene, view, options, &|done, total| {
+    let progress = |done, total| {
         if let Some(bar) = &bar {
             bar.set_length(total);
             bar.set_position(done);
         }
-    })?;
+    };
+    let traced = if traced {
+        draw_traced(scene, view, options, &progress)?
+    } else {
+        Traced {
+            drawing: hidden::draw_with_progress(scene, view, options, &progress)?,
+            pieces: Vec::new(),
+        }
+    };
     if let Some(bar) = bar {
         bar.finish_and_clear();
     }
-    Ok(drawing)
+    Ok(traced)
 }
 
 /// The `--stats` report: each stage, then lengths per class.

@@ -1,0 +1,777 @@
+//! Self-verification of a drawing (`kepler render --verify`): the drawing checked against
+//! answers found independently of the hidden-line pass.
+//!
+//! [`draw_traced`] makes the drawing as [`draw`](super::draw) does (the same bits) and keeps
+//! every piece with the 3-D line it lies on, its range of that line's parameter and its
+//! visibility ([`TracedPiece`]). [`verify`] then checks:
+//!
+//! 1. **Visibility.** At sample points inside every piece of an edge (at the fractions
+//!    [`SAMPLES`] of its parameter range, never its midpoint, where the pass decided it, and
+//!    never within a few units in the last place of its ends), VISP through the object
+//!    hierarchy ([`VisibilityIndex`], its CBOXes, INBOXes and R-trees of triangles, not the
+//!    pass's picture grid of occluders) must give the piece's visibility. The sample point
+//!    `X(t) = a + t·(b − a)` is never rounded: each face test is an affine form at `X(t)`,
+//!    `(1 − t)·O(a) + t·O(b)`, decided exactly ([`Between`](crate::geometry::kernel::Between)).
+//!    A face hides the point when the point lies strictly behind its plane and the line of
+//!    sight meets the closed face (the drawing's rule: see [`crate::hidden`]). Where the line
+//!    of sight passes exactly through an edge of such a face (a piece right behind a contour),
+//!    [`crate::queries::visp`]'s symbolic perturbation may answer otherwise: those samples are
+//!    counted (`grazing`). Pieces of intersection lines are not checked yet: their 3-D ends are
+//!    rounded points, not on the exact line (counted as `unchecked`).
+//! 2. **Silhouettes and boundaries.** A second, simple method finds them: an edge between two
+//!    triangles of different faces, one turned towards the eye and one away (each triangle's
+//!    side of the eye by [`Eye::orient3d`], taken along the edge's direction in that triangle,
+//!    so it holds for inside-out and inconsistently oriented meshes as well), or an edge of one
+//!    triangle only; and an edge of a face seen edge-on (the surface seen ends there). Each
+//!    must be drawn whole: pieces of that class on that edge (matched by object and exact input
+//!    end points, never by rounded pictures) whose parameter ranges tile `[0, 1]`. Edges seen
+//!    end-on, edges between two faces seen edge-on and edges of more than two triangles are
+//!    not checked.
+//! 3. **The drawing.** Its segments are exactly the pieces' pictures (of nonzero length; with
+//!    their class and visibility; hidden ones only when the drawing keeps them): each piece
+//!    checked is one that is drawn.
+//!
+//! ```
+//! use kepler::{scene::Scene, views::View};
+//! use kepler::hidden::{Options, verify::{draw_traced, verify}};
+//! let mut scene = Scene::new();
+//! scene.add_mesh(None, "cube", kepler::solids::cube(2.0).unwrap()).unwrap();
+//! let (view, options) = (View::standard(), Options::default());
+//! let mut traced = draw_traced(&scene, &view, &options, &|_, _| {}).unwrap();
+//! let report = verify(&scene, &view, &options, &traced);
+//! assert!(report.checks() > 0 && report.disagreements == 0);
+//! // The top face's outline is visible: say it is hidden, and the check finds out.
+//! let top = traced.pieces.iter().position(|p| p.visible).unwrap();
+//! traced.pieces[top].visible = false;
+//! assert!(verify(&scene, &view, &options, &traced).disagreements > 0);
+//! ```
+
+use super::{
+    Drawing, EdgeClass, Options, Pass, Piece, Result, chained, decided, in_working_range,
+    scaled_back,
+};
+use crate::geometry::Point3;
+use crate::geometry::exact::ldexp;
+use crate::mesh::Mesh;
+use crate::queries::along::Form;
+use crate::queries::visp::{Visibility, VisibilityIndex};
+use crate::scene::{ObjectId, Scene};
+use crate::views::{Eye, View};
+use rayon::prelude::*;
+use std::cell::Cell;
+use std::cmp::Ordering;
+use std::collections::HashMap;
+use std::fmt;
+use std::time::Instant;
+
+/// The fractions of a piece's parameter range where its visibility is checked: not its
+/// midpoint, where the pass decided it.
+pub const SAMPLES: [f64; 4] = [0.125, 0.375, 0.625, 0.875];
+
+/// A sample closer than this many units in the last place to an end of its piece is not
+/// checked: an end's parameter is rounded, the point it stands for is exact.
+pub const NEAR_END_ULPS: f64 = 64.0;
+
+/// How many disagreements a [`Verification`] describes.
+pub const DESCRIBED: usize = 10;
+
+/// The 3-D line a piece of a drawing lies on.
+///
+/// ```
+/// use kepler::{scene::Scene, views::View, hidden::{Options, verify::{Source, draw_traced}}};
+/// let mut scene = Scene::new();
+/// let cube = scene.add_mesh(None, "cube", kepler::solids::cube(2.0).unwrap()).unwrap();
+/// let traced = draw_traced(&scene, &View::standard(), &Options::default(), &|_, _| {}).unwrap();
+/// assert!(traced.pieces.iter().all(|p| p.source == Source::Edge { object: cube }));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Source {
+    /// An edge of an object's mesh (its ends are input vertices).
+    Edge {
+        /// The object.
+        object: ObjectId,
+    },
+    /// An intersection line: where two faces, each `(object, face index)`, pierce each other
+    /// (its ends are rounded).
+    Intersection {
+        /// The two faces.
+        faces: [(ObjectId, usize); 2],
+    },
+}
+
+/// A visible or hidden piece of a drawing with the 3-D line it lies on: the piece is the part
+/// `t[0] ≤ t ≤ t[1]` of `X(t) = line[0] + t·(line[1] − line[0])`.
+///
+/// ```
+/// use kepler::{scene::Scene, views::View, hidden::{EdgeClass, Options, verify::draw_traced}};
+/// let mut scene = Scene::new();
+/// scene.add_mesh(None, "cube", kepler::solids::cube(2.0).unwrap()).unwrap();
+/// let traced = draw_traced(&scene, &View::standard(), &Options::default(), &|_, _| {}).unwrap();
+/// // Straight down: four visible silhouette edges on top, four hidden under them.
+/// let count = |v| traced.pieces.iter().filter(|p| p.class == EdgeClass::Silhouette && p.visible == v).count();
+/// assert_eq!((count(true), count(false)), (4, 4));
+/// assert!(traced.pieces.iter().all(|p| p.t == [0.0, 1.0]));
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct TracedPiece {
+    /// The line's provenance.
+    pub source: Source,
+    /// The line's ends in 3-D.
+    pub line: [Point3; 2],
+    /// The line's class.
+    pub class: EdgeClass,
+    /// Whether the piece is visible.
+    pub visible: bool,
+    /// The piece's range of the line's parameter.
+    pub t: [f64; 2],
+    /// The pictures of the piece's ends, as drawn.
+    pub ends: [[f64; 2]; 2],
+}
+
+/// A drawing with its pieces traced to their 3-D lines (see [`draw_traced`]).
+///
+/// ```
+/// let t = kepler::hidden::verify::Traced {
+///     drawing: kepler::hidden::Drawing { polylines: Vec::new(), stages: Vec::new() },
+///     pieces: Vec::new(),
+/// };
+/// assert!(t.pieces.is_empty());
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct Traced {
+    /// The drawing, bit for bit as [`draw`](super::draw) makes it.
+    pub drawing: Drawing,
+    /// Every piece, hidden ones too (even when the drawing leaves them out), in the pass's
+    /// order: by line, then along it.
+    pub pieces: Vec<TracedPiece>,
+}
+
+/// [`draw_with_progress`](super::draw_with_progress), keeping every piece with its 3-D line.
+///
+/// ```
+/// use kepler::{scene::Scene, views::View, hidden::{Options, draw, verify::draw_traced}};
+/// let mut scene = Scene::new();
+/// scene.add_mesh(None, "cube", kepler::solids::cube(2.0).unwrap()).unwrap();
+/// let (view, options) = (View::standard(), Options::default());
+/// let traced = draw_traced(&scene, &view, &options, &|_, _| {}).unwrap();
+/// assert_eq!(traced.drawing.polylines, draw(&scene, &view, &options).unwrap().polylines);
+/// ```
+pub fn draw_traced(
+    scene: &Scene,
+    view: &View,
+    options: &Options,
+    progress: &(dyn Fn(u64, u64) + Sync),
+) -> Result<Traced> {
+    let (traced, shift) = in_working_range(scene, view, |scene, view| {
+        let (pass, pieces) = decided(scene, view, options, progress)?;
+        Ok(traced(pass, pieces, options))
+    })?;
+    if shift == 0 {
+        return Ok(traced);
+    }
+    // Back to the input's scale, exactly: lines always, pictures when they scale.
+    let pictures = if view.is_perspective() { 0 } else { -shift };
+    let pieces = traced
+        .pieces
+        .into_iter()
+        .map(|p| TracedPiece {
+            line: p.line.map(|q| q.map(|c| ldexp(c, -shift))),
+            ends: p.ends.map(|e| e.map(|c| ldexp(c, pictures))),
+            ..p
+        })
+        .collect();
+    Ok(Traced {
+        drawing: scaled_back(traced.drawing, view, shift),
+        pieces,
+    })
+}
+
+/// The drawing of a pass and its pieces, each traced to its line.
+fn traced(pass: Pass, pieces: Vec<Piece>, options: &Options) -> Traced {
+    let mut sources: Vec<Option<Source>> = pass
+        .lines
+        .iter()
+        .map(|l| l.on_faces.map(|faces| Source::Intersection { faces }))
+        .collect();
+    for leaf in &pass.leaves {
+        for l in leaf.lines.clone() {
+            sources[l] = Some(Source::Edge { object: leaf.id });
+        }
+    }
+    // Every line is an edge of a leaf or an intersection line: no piece is left out.
+    let pieces_traced = pieces
+        .iter()
+        .filter_map(|p| {
+            let line = &pass.lines[p.line];
+            Some(TracedPiece {
+                source: sources[p.line]?,
+                line: [line.a, line.b],
+                class: p.class,
+                visible: p.visible,
+                t: p.t,
+                ends: p.ends,
+            })
+        })
+        .collect();
+    Traced {
+        drawing: chained(pass, pieces, options),
+        pieces: pieces_traced,
+    }
+}
+
+/// Which check a disagreement failed.
+///
+/// ```
+/// assert_eq!(kepler::hidden::verify::Check::Visibility.to_string(), "visibility");
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Check {
+    /// VISP at a sample point against the piece's visibility.
+    Visibility,
+    /// A silhouette edge (found by the sign test) drawn whole as silhouette pieces.
+    Silhouette,
+    /// A boundary edge drawn whole as boundary pieces.
+    Boundary,
+    /// The drawing's segments against the pieces.
+    Drawing,
+}
+
+impl fmt::Display for Check {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Check::Visibility => "visibility",
+            Check::Silhouette => "silhouette",
+            Check::Boundary => "boundary",
+            Check::Drawing => "drawing",
+        })
+    }
+}
+
+/// One disagreement, described for a person.
+///
+/// ```
+/// use kepler::hidden::verify::{Check, Disagreement};
+/// let d = Disagreement {
+///     check: Check::Visibility,
+///     object: "cube".into(),
+///     line: "edge v0–v1".into(),
+///     at: "t = 0.25".into(),
+///     expected: "hidden".into(),
+///     found: "visible".into(),
+/// };
+/// assert_eq!(d.to_string(), "visibility: object 'cube', edge v0–v1, at t = 0.25: expected hidden, found visible");
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Disagreement {
+    /// The check.
+    pub check: Check,
+    /// The object's path (empty for a segment of the drawing).
+    pub object: String,
+    /// The line: an edge by its vertices, an intersection line by its faces, or a segment.
+    pub line: String,
+    /// Where on it.
+    pub at: String,
+    /// What the independent check says.
+    pub expected: String,
+    /// What the drawing has.
+    pub found: String,
+}
+
+impl fmt::Display for Disagreement {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: ", self.check)?;
+        if !self.object.is_empty() {
+            write!(f, "object '{}', ", self.object)?;
+        }
+        write!(
+            f,
+            "{}, at {}: expected {}, found {}",
+            self.line, self.at, self.expected, self.found
+        )
+    }
+}
+
+/// What [`verify`] checked and found.
+///
+/// ```
+/// let v = kepler::hidden::verify::Verification::default();
+/// assert_eq!((v.checks(), v.disagreements), (0, 0));
+/// assert!(v.to_string().starts_with("verify: 0 checks, 0 disagreements"));
+/// ```
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Verification {
+    /// Sample points whose visibility VISP checked.
+    pub samples: usize,
+    /// Of those, samples whose line of sight passes exactly through an edge of a face that
+    /// hides them (there the closed face hides, as the drawing's rule says).
+    pub grazing: usize,
+    /// Silhouette edges found by the sign test, each checked drawn whole.
+    pub silhouettes: usize,
+    /// Boundary edges, each checked drawn whole.
+    pub boundaries: usize,
+    /// Segments of the drawing matched with pieces.
+    pub segments: usize,
+    /// The number of disagreements.
+    pub disagreements: usize,
+    /// The first few of them ([`DESCRIBED`]).
+    pub described: Vec<Disagreement>,
+    /// Pieces of intersection lines, whose visibility is not checked yet.
+    pub unchecked_intersections: usize,
+    /// Samples not checked for lying within a few units in the last place of a piece's end.
+    pub near_ends: usize,
+    /// Edges the sign test does not decide: seen end-on, between two faces seen edge-on, or of
+    /// more than two triangles.
+    pub unchecked_edges: usize,
+    /// The time the checks took, in seconds.
+    pub seconds: f64,
+}
+
+impl Verification {
+    /// The number of checks made.
+    ///
+    /// ```
+    /// let v = kepler::hidden::verify::Verification { samples: 5, segments: 2, ..Default::default() };
+    /// assert_eq!(v.checks(), 7);
+    /// ```
+    pub fn checks(&self) -> usize {
+        self.samples + self.silhouettes + self.boundaries + self.segments
+    }
+
+    fn disagree(&mut self, d: Disagreement) {
+        self.disagreements += 1;
+        if self.described.len() < DESCRIBED {
+            self.described.push(d);
+        }
+    }
+}
+
+impl fmt::Display for Verification {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(
+            f,
+            "verify: {} checks, {} disagreements ({:.3} s)",
+            self.checks(),
+            self.disagreements,
+            self.seconds
+        )?;
+        writeln!(
+            f,
+            "verify: {} visibility samples by VISP ({} grazing a hiding face's edge), {} \
+             silhouette and {} boundary edges drawn whole, {} drawing segments matched to pieces",
+            self.samples, self.grazing, self.silhouettes, self.boundaries, self.segments
+        )?;
+        writeln!(
+            f,
+            "verify: not checked: {} intersection-line pieces (their lines are not yet exact), \
+             {} samples within {NEAR_END_ULPS} ulps of a piece's end, {} edges end-on, between \
+             faces edge-on or of more than two triangles",
+            self.unchecked_intersections, self.near_ends, self.unchecked_edges
+        )?;
+        for d in &self.described {
+            writeln!(f, "verify: disagreement: {d}")?;
+        }
+        if self.disagreements > self.described.len() {
+            writeln!(
+                f,
+                "verify: ... and {} more disagreements",
+                self.disagreements - self.described.len()
+            )?;
+        }
+        Ok(())
+    }
+}
+
+/// Checks a traced drawing of `scene` from `view`, made with `options` (see the module
+/// documentation).
+///
+/// ```
+/// use kepler::{geometry::Vector3, scene::Scene, views::View};
+/// use kepler::hidden::{Options, verify::{draw_traced, verify}};
+/// let mut scene = Scene::new();
+/// scene.add_mesh(None, "cube", kepler::solids::cube(2.0).unwrap()).unwrap();
+/// let view = View::orthographic(Vector3::new(-1.0, -2.0, -3.0), Vector3::z()).unwrap();
+/// let options = Options::default();
+/// let mut traced = draw_traced(&scene, &view, &options, &|_, _| {}).unwrap();
+/// // Six silhouette edges around the outline, each drawn whole.
+/// assert_eq!(verify(&scene, &view, &options, &traced).silhouettes, 6);
+/// // Leave out a piece: its edge is no longer drawn whole.
+/// traced.pieces.remove(0);
+/// assert!(verify(&scene, &view, &options, &traced).disagreements > 0);
+/// ```
+pub fn verify(scene: &Scene, view: &View, options: &Options, traced: &Traced) -> Verification {
+    let clock = Instant::now();
+    let mut report = Verification::default();
+    visibility(scene, view, traced, &mut report);
+    contours(scene, view.eye(), traced, &mut report);
+    drawing(options, traced, &mut report);
+    report.seconds = clock.elapsed().as_secs_f64();
+    report
+}
+
+/// What one sample found.
+enum Sampled {
+    Agrees { grazing: bool },
+    NearEnd,
+    Disagrees { t: f64, visibility: Visibility },
+}
+
+/// Check 1: VISP at the samples of every edge piece.
+fn visibility(scene: &Scene, view: &View, traced: &Traced, report: &mut Verification) {
+    let index = VisibilityIndex::whole_scene(scene, view.clone());
+    let eye = view.eye();
+    let found: Vec<(usize, Vec<Sampled>)> = traced
+        .pieces
+        .par_iter()
+        .enumerate()
+        .filter(|(_, p)| matches!(p.source, Source::Edge { .. }))
+        .map(|(i, p)| (i, samples(&index, eye, p)))
+        .collect();
+    report.unchecked_intersections = traced
+        .pieces
+        .iter()
+        .filter(|p| matches!(p.source, Source::Intersection { .. }))
+        .count();
+    for (i, sampled) in found {
+        let p = &traced.pieces[i];
+        for s in sampled {
+            match s {
+                Sampled::Agrees { grazing } => {
+                    report.samples += 1;
+                    report.grazing += usize::from(grazing);
+                }
+                Sampled::NearEnd => report.near_ends += 1,
+                Sampled::Disagrees { t, visibility } => {
+                    report.samples += 1;
+                    report.disagree(Disagreement {
+                        check: Check::Visibility,
+                        object: object_of(scene, &p.source),
+                        line: describe(scene, p),
+                        at: format!("t = {t:e} (piece t = [{:e}, {:e}])", p.t[0], p.t[1]),
+                        expected: visibility.to_string().to_lowercase(),
+                        found: if p.visible { "visible" } else { "hidden" }.to_string(),
+                    });
+                }
+            }
+        }
+    }
+}
+
+/// VISP at the samples of one edge piece.
+fn samples(index: &VisibilityIndex, eye: &Eye, p: &TracedPiece) -> Vec<Sampled> {
+    let [lo, hi] = p.t;
+    SAMPLES
+        .iter()
+        .map(|&f| {
+            let at = |f: f64| lo + (hi - lo) * f;
+            let inside = |t: f64| {
+                let margin = NEAR_END_ULPS * f64::EPSILON * t.abs();
+                t - lo > margin && hi - t > margin && t > 0.0 && t < 1.0
+            };
+            // A sample whose line of sight passes exactly through the edge of the only faces
+            // that hide it (a vertex's picture on the piece, say) stands for no piece around
+            // it: the sample moves (a sixteenth of the piece either way), unless every try
+            // grazes (a piece right behind a contour): then the closed faces hide it.
+            if !inside(at(f)) {
+                return Sampled::NearEnd;
+            }
+            let tries = [at(f), at(f + 1.0 / 16.0), at(f - 1.0 / 16.0)];
+            let mut first = None;
+            for t in tries.into_iter().filter(|&t| inside(t)) {
+                let (visibility, grazing) = visp_at(index, eye, &p.line, t);
+                first.get_or_insert((t, visibility));
+                if !grazing {
+                    return sampled(p, t, visibility, false);
+                }
+            }
+            match first {
+                Some((t, visibility)) => sampled(p, t, visibility, true),
+                None => Sampled::NearEnd,
+            }
+        })
+        .collect()
+}
+
+/// A sample's outcome: VISP found `visibility` at `t`.
+fn sampled(p: &TracedPiece, t: f64, visibility: Visibility, grazing: bool) -> Sampled {
+    if (visibility == Visibility::Visible) == p.visible {
+        Sampled::Agrees { grazing }
+    } else {
+        Sampled::Disagrees { t, visibility }
+    }
+}
+
+/// VISP at `X(t)` on `line`, with the closed faces, and whether the answer rests on lines of
+/// sight through faces' edges only (HIDDEN with the closed faces, VISIBLE with the open ones).
+fn visp_at(index: &VisibilityIndex, eye: &Eye, [a, b]: &[Point3; 2], t: f64) -> (Visibility, bool) {
+    let near = a + (b - a) * t;
+    let grazed = Cell::new(false);
+    let (closed, _) = index.visp_by(&near, |tri| {
+        let (hides, grazes) = hides_at(eye, tri, a, b, t);
+        grazed.set(grazed.get() || grazes);
+        hides
+    });
+    if closed == Visibility::Visible || !grazed.get() {
+        return (closed, false);
+    }
+    let (open, _) = index.visp_by(&near, |tri| hides_at(eye, tri, a, b, t) == (true, false));
+    (closed, open == Visibility::Visible)
+}
+
+/// Whether the triangle `tri` hides `X(t) = a + t·(b − a)` (strictly behind its plane, the
+/// line of sight through the closed triangle), and whether that line of sight passes exactly
+/// through an edge of the triangle.
+fn hides_at(eye: &Eye, tri: &[Point3; 3], a: &Point3, b: &Point3, t: f64) -> (bool, bool) {
+    let facing = eye.orient3d(&tri[0], &tri[1], &tri[2]);
+    if facing == Ordering::Equal || Form::Plane(*tri).sign_along(eye, a, b, t) != facing.reverse() {
+        return (false, false);
+    }
+    let sides = [0, 1, 2].map(|i| Form::Sight(tri[i], tri[(i + 1) % 3]).sign_along(eye, a, b, t));
+    let inside = !(sides.contains(&Ordering::Greater) && sides.contains(&Ordering::Less));
+    (inside, inside && sides.contains(&Ordering::Equal))
+}
+
+/// The path of a piece's object (of its first face's, for an intersection line).
+fn object_of(scene: &Scene, source: &Source) -> String {
+    match source {
+        Source::Edge { object } => scene.path(*object),
+        Source::Intersection { faces } => faces
+            .first()
+            .map(|&(o, _)| scene.path(o))
+            .unwrap_or_default(),
+    }
+}
+
+/// A piece's line, for a person: an edge by its vertex indices, else by its ends.
+fn describe(scene: &Scene, p: &TracedPiece) -> String {
+    let [a, b] = p.line;
+    let class = p.class.name();
+    let vertex = |mesh: &Mesh, x: &Point3| mesh.vertices().iter().position(|v| v == x);
+    if let Source::Edge { object } = p.source
+        && let Some(mesh) = scene[object].mesh()
+        && let (Some(i), Some(j)) = (vertex(mesh, &a), vertex(mesh, &b))
+    {
+        return format!("{class} edge v{i}–v{j}");
+    }
+    format!(
+        "{class} line ({}, {}, {})–({}, {}, {})",
+        a.x, a.y, a.z, b.x, b.y, b.z
+    )
+}
+
+/// The bits of an unordered pair of points, to match an edge with the pieces on it.
+type EdgeKey = [[u64; 3]; 2];
+
+fn edge_key(a: &Point3, b: &Point3) -> EdgeKey {
+    let bits = |p: &Point3| [p.x, p.y, p.z].map(|v| (v + 0.0).to_bits());
+    let (x, y) = (bits(a), bits(b));
+    if x <= y { [x, y] } else { [y, x] }
+}
+
+/// Check 2: every silhouette and boundary edge of the sign test drawn whole.
+fn contours(scene: &Scene, eye: &Eye, traced: &Traced, report: &mut Verification) {
+    let mut on: HashMap<(ObjectId, EdgeKey), Vec<usize>> = HashMap::new();
+    for (i, p) in traced.pieces.iter().enumerate() {
+        if let Source::Edge { object } = p.source {
+            on.entry((object, edge_key(&p.line[0], &p.line[1])))
+                .or_default()
+                .push(i);
+        }
+    }
+    let meshes = scene.mesh_objects(scene.roots());
+    let found: Vec<(ObjectId, Vec<Contour>, usize)> = meshes
+        .par_iter()
+        .map(|&(id, mesh)| {
+            let (contours, unchecked) = contour_edges(mesh, eye);
+            (id, contours, unchecked)
+        })
+        .collect();
+    for (object, contours, unchecked) in found {
+        report.unchecked_edges += unchecked;
+        let Some(mesh) = scene[object].mesh() else {
+            continue;
+        };
+        for c in contours {
+            let (a, b) = (
+                mesh.vertices()[c.vertices[0] as usize],
+                mesh.vertices()[c.vertices[1] as usize],
+            );
+            let (check, class) = match c.class {
+                EdgeClass::Boundary => {
+                    report.boundaries += 1;
+                    (Check::Boundary, EdgeClass::Boundary)
+                }
+                _ => {
+                    report.silhouettes += 1;
+                    (Check::Silhouette, EdgeClass::Silhouette)
+                }
+            };
+            let pieces = on
+                .get(&(object, edge_key(&a, &b)))
+                .map(Vec::as_slice)
+                .unwrap_or_default();
+            if let Err((at, found)) = whole(traced, pieces, class) {
+                report.disagree(Disagreement {
+                    check,
+                    object: scene.path(object),
+                    line: format!("edge v{}–v{}", c.vertices[0], c.vertices[1]),
+                    at,
+                    expected: format!("{} pieces covering it", class.name()),
+                    found,
+                });
+            }
+        }
+    }
+}
+
+/// Whether the pieces `on` an edge, all of `class`, tile its parameter range `[0, 1]`; else
+/// where they do not and what is there.
+fn whole(traced: &Traced, on: &[usize], class: EdgeClass) -> Result<(), (String, String)> {
+    if let Some(&i) = on.iter().find(|&&i| traced.pieces[i].class != class) {
+        let p = &traced.pieces[i];
+        return Err((
+            format!("t = [{:e}, {:e}]", p.t[0], p.t[1]),
+            format!("a {} piece", p.class.name()),
+        ));
+    }
+    let mut ranges: Vec<[f64; 2]> = on.iter().map(|&i| traced.pieces[i].t).collect();
+    ranges.sort_by(|x, y| x[0].total_cmp(&y[0]));
+    let mut reached = 0.0;
+    for r in ranges {
+        if r[0] != reached {
+            let what = if r[0] > reached {
+                "nothing"
+            } else {
+                "overlapping pieces"
+            };
+            return Err((format!("t = {reached:e}"), what.to_string()));
+        }
+        reached = r[1];
+    }
+    if reached != 1.0 {
+        return Err((format!("t = [{reached:e}, 1]"), "nothing".to_string()));
+    }
+    Ok(())
+}
+
+/// A silhouette or boundary edge found by the sign test.
+struct Contour {
+    vertices: [u32; 2],
+    class: EdgeClass,
+}
+
+/// The silhouette and boundary edges of `mesh` by the sign test (see the module
+/// documentation), and the number of edges it does not decide.
+fn contour_edges(mesh: &Mesh, eye: &Eye) -> (Vec<Contour>, usize) {
+    // Each triangle's side: the edge (lower, higher vertex), the triangle, and whether the
+    // triangle runs along the edge from lower to higher.
+    let mut sides: Vec<([u32; 2], usize, bool)> = mesh
+        .triangles()
+        .iter()
+        .enumerate()
+        .flat_map(|(t, tri)| {
+            (0..3).map(move |k| {
+                let (p, q) = (tri[k], tri[(k + 1) % 3]);
+                ([p.min(q), p.max(q)], t, p < q)
+            })
+        })
+        .collect();
+    sides.sort_unstable();
+    let vertices = mesh.vertices();
+    let mut contours = Vec::new();
+    let mut unchecked = 0;
+    for group in sides.chunk_by(|x, y| x.0 == y.0) {
+        let edge = group[0].0;
+        let (a, b) = (&vertices[edge[0] as usize], &vertices[edge[1] as usize]);
+        // The triangle's side of the eye, as if it ran from lower to higher.
+        let facing = |&(_, t, forward): &([u32; 2], usize, bool)| {
+            let [p, q, r] = mesh.triangle(t);
+            let s = eye.orient3d(&p, &q, &r);
+            if forward { s } else { s.reverse() }
+        };
+        let class = match group {
+            [_] if eye.sees_end_on(a, b) => None,
+            [_] => Some(EdgeClass::Boundary),
+            // A diagonal of a face's triangulation: not an edge.
+            [x, y] if mesh.face_of(x.1) == mesh.face_of(y.1) => continue,
+            [x, y] => {
+                let (fx, fy) = (facing(x), facing(y));
+                let edge_on = [fx, fy].iter().filter(|&&f| f == Ordering::Equal).count();
+                if eye.sees_end_on(a, b) || edge_on == 2 {
+                    None
+                } else if fx == fy || edge_on == 1 {
+                    // Made to run the same way along the edge, their sides agree: with the
+                    // triangles oriented alike (one runs the edge the other way), one is
+                    // turned towards the eye and the other away. Or one is seen edge-on, and
+                    // the surface seen ends at the edge.
+                    Some(EdgeClass::Silhouette)
+                } else {
+                    continue;
+                }
+            }
+            _ => None,
+        };
+        match class {
+            Some(class) => contours.push(Contour {
+                vertices: edge,
+                class,
+            }),
+            None => unchecked += 1,
+        }
+    }
+    (contours, unchecked)
+}
+
+/// Check 3: the drawing's segments are the pieces'.
+fn drawing(options: &Options, traced: &Traced, report: &mut Verification) {
+    let key = |p: [f64; 2]| p.map(|x| (x + 0.0).to_bits());
+    let segment = |class: EdgeClass, visible: bool, [p, q]: [[f64; 2]; 2]| {
+        let (p, q) = (key(p), key(q));
+        (class, visible, if p <= q { [p, q] } else { [q, p] })
+    };
+    let mut count: HashMap<(EdgeClass, bool, [[u64; 2]; 2]), i64> = HashMap::new();
+    for p in &traced.pieces {
+        if p.ends[0] != p.ends[1] && (p.visible || options.hidden) {
+            *count
+                .entry(segment(p.class, p.visible, p.ends))
+                .or_default() += 1;
+        }
+    }
+    for l in &traced.drawing.polylines {
+        for w in l.points.windows(2) {
+            report.segments += 1;
+            *count
+                .entry(segment(l.class, l.visible, [w[0], w[1]]))
+                .or_default() -= 1;
+        }
+    }
+    let mut differing: Vec<_> = count.into_iter().filter(|&(_, n)| n != 0).collect();
+    differing.sort_unstable_by_key(|x| x.0);
+    for ((class, visible, [p, q]), n) in differing {
+        let point = |k: [u64; 2]| {
+            let [x, y] = k.map(f64::from_bits);
+            format!("({x}, {y})")
+        };
+        let what = |n: i64| {
+            format!(
+                "{} {} {} segment{}",
+                n.abs(),
+                if visible { "visible" } else { "hidden" },
+                class.name(),
+                if n.abs() == 1 { "" } else { "s" }
+            )
+        };
+        let (expected, found) = if n > 0 {
+            (what(n), "none drawn".to_string())
+        } else {
+            ("no piece".to_string(), what(n))
+        };
+        report.disagree(Disagreement {
+            check: Check::Drawing,
+            object: String::new(),
+            line: format!("segment {}–{}", point(p), point(q)),
+            at: "its ends".to_string(),
+            expected,
+            found,
+        });
+    }
+}
