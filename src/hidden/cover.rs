@@ -29,13 +29,31 @@ const MARGIN: f64 = 1.0 / (1u64 << 40) as f64;
 pub(crate) struct PictureGrid {
     cells: Cells,
     lists: CellLists,
+    /// Triangles whose pictures are unbounded (they cross the plane of a perspective eye that
+    /// clips): candidates everywhere.
+    wide: Vec<u32>,
 }
 
 impl PictureGrid {
     /// Lists the triangles of `mesh` whose vertices' pictures are `pictures`, in cells sized
-    /// for about `queries` queries (see [`cell_factor`]).
-    pub(crate) fn new(mesh: &Mesh, pictures: &[[f64; 2]], queries: usize) -> PictureGrid {
-        let [lo, hi] = bounding_box(pictures.iter().copied());
+    /// for about `queries` queries (see [`cell_factor`]). When the view clips, `front` says
+    /// which vertices are in front of the eye (the others' pictures mean nothing): a triangle
+    /// with none in front hides nothing in front of the eye and is left out, one with some is
+    /// a candidate everywhere.
+    pub(crate) fn new(
+        mesh: &Mesh,
+        pictures: &[[f64; 2]],
+        front: &[bool],
+        queries: usize,
+    ) -> PictureGrid {
+        let in_front = |v: u32| front.get(v as usize).is_none_or(|&f| f);
+        let [lo, hi] = bounding_box(
+            pictures
+                .iter()
+                .enumerate()
+                .filter(|&(v, _)| in_front(v as u32))
+                .map(|(_, p)| *p),
+        );
         let n = mesh.triangles().len().max(1);
         let extent = [0, 1].map(|k| (hi[k] - lo[k]).max(0.0));
         // Cells about the size of a triangle's picture times the factor, no smaller than one
@@ -67,6 +85,7 @@ impl PictureGrid {
             .triangles()
             .par_iter()
             .enumerate()
+            .filter(|(_, tri)| tri.iter().all(|&v| in_front(v)))
             .fold(Vec::new, |mut out, (t, tri)| {
                 let [low, high] = bounding_box(tri.map(|v| pictures[v as usize]));
                 out.extend(
@@ -80,15 +99,30 @@ impl PictureGrid {
                 x.append(&mut y);
                 x
             });
+        let wide = if front.is_empty() {
+            Vec::new()
+        } else {
+            (0..mesh.triangles().len() as u32)
+                .filter(|&t| {
+                    let tri = mesh.triangles()[t as usize];
+                    tri.iter().any(|&v| in_front(v)) && !tri.iter().all(|&v| in_front(v))
+                })
+                .collect()
+        };
         PictureGrid {
             lists: CellLists::new(cells.count(), pairs),
             cells,
+            wide,
         }
     }
 
-    /// The triangles listed in the cell of the picture point `p`.
-    pub(crate) fn at(&self, p: [f64; 2]) -> &[u32] {
-        self.lists.get(self.cells.cell_of(p[0], p[1]))
+    /// The triangles that may hide a point whose picture is `p`: those listed in its cell,
+    /// then the wide ones.
+    pub(crate) fn at(&self, p: [f64; 2]) -> impl Iterator<Item = &u32> {
+        self.lists
+            .get(self.cells.cell_of(p[0], p[1]))
+            .iter()
+            .chain(&self.wide)
     }
 
     /// The number of (cell, triangle) entries.
@@ -123,13 +157,15 @@ impl<'s> Occluders<'s> {
     pub(crate) fn new(
         scene: &'s Scene,
         eye: Eye,
-        meshes: &[(ObjectId, &Mesh, &[[f64; 2]])],
+        meshes: &[(ObjectId, &Mesh, &[[f64; 2]], &[bool])],
         inbox_limit: usize,
         queries: usize,
     ) -> Occluders<'s> {
         let built: Vec<(ObjectId, PictureGrid)> = meshes
             .par_iter()
-            .map(|&(id, mesh, pictures)| (id, PictureGrid::new(mesh, pictures, queries)))
+            .map(|&(id, mesh, pictures, front)| {
+                (id, PictureGrid::new(mesh, pictures, front, queries))
+            })
             .collect();
         let mut grids = SecondaryMap::new();
         grids.extend(built);
@@ -174,7 +210,7 @@ impl<'s> Occluders<'s> {
                 descend(self.scene, id, &sight, &wanted, &|leaf, _| {
                     self.grids
                         .get(leaf)
-                        .is_some_and(|g| g.at(picture).iter().any(|&t| hides(leaf, t as usize)))
+                        .is_some_and(|g| g.at(picture).any(|&t| hides(leaf, t as usize)))
                 })
             }));
         counters.record(stage);

@@ -56,6 +56,7 @@ mod cover;
 mod drawing;
 mod edges;
 pub mod ideographs;
+mod near;
 pub mod verify;
 
 pub use drawing::{Drawing, EdgeClass, Polyline, StageReport};
@@ -74,6 +75,7 @@ use crate::views::{Eye, Picture, View, ViewError};
 use chain::{Piece, chain};
 use cover::Occluders;
 use geo::{Line as GeoLine, coord};
+use near::{NearPlane, contour_in_front};
 use rayon::prelude::*;
 use rstar::RTree;
 use rstar::primitives::{GeomWithData, Rectangle};
@@ -171,6 +173,12 @@ struct Line {
     back: bool,
     /// For an edge: the triangles on its sides (in its mesh).
     triangles: Option<[u32; 2]>,
+    /// Whether the line crosses the plane of a perspective eye that clips: its picture is
+    /// unbounded (see [`near`]).
+    wide: bool,
+    /// Whether the line is not wholly beyond the near plane of a view that clips: its pieces
+    /// on the eye's side are not drawn.
+    clipped: bool,
 }
 
 impl Line {
@@ -301,6 +309,9 @@ struct Leaf<'a> {
     id: ObjectId,
     mesh: &'a Mesh,
     pictures: Vec<[f64; 2]>,
+    /// When the view clips: whether each vertex is strictly in front of the eye (the others'
+    /// pictures mean nothing).
+    front: Vec<bool>,
     lines: std::ops::Range<usize>,
 }
 
@@ -315,24 +326,36 @@ struct Pass<'a> {
     /// Cuts, by line index.
     cuts: Vec<(usize, Cut)>,
     stages: Vec<StageReport>,
+    /// The near plane, when the view clips (a perspective eye with part of the scene not in
+    /// front of it).
+    near: Option<NearPlane>,
 }
 
 impl<'a> Pass<'a> {
-    /// The pass over every mesh of the scene; for a perspective view, an error naming the
-    /// first object with a vertex not strictly in front of the eye.
+    /// The pass over every mesh of the scene; a perspective view with a vertex not strictly
+    /// in front of the eye clips at its near plane (see [`near`]).
     fn new(scene: &'a Scene, view: &View) -> Result<Pass<'a>> {
         let picture = Picture::of(view);
-        let leaves = picture
-            .mesh_objects_in_front(scene)?
+        let (meshes, near) = match picture.mesh_objects_in_front(scene) {
+            Ok(meshes) => (meshes, None),
+            Err(e @ ViewError::NotInFront { .. }) => match NearPlane::of(view) {
+                Some(near) => (scene.mesh_objects(scene.roots()), Some(near)),
+                None => return Err(e.into()),
+            },
+            Err(e) => return Err(e.into()),
+        };
+        let leaves = meshes
             .into_iter()
             .map(|(id, mesh)| Leaf {
                 id,
                 mesh,
                 pictures: Vec::new(),
+                front: Vec::new(),
                 lines: 0..0,
             })
             .collect();
         Ok(Pass {
+            near,
             scene,
             eye: *view.eye(),
             picture,
@@ -356,24 +379,38 @@ impl<'a> Pass<'a> {
     /// Stage 1: every mesh's edges, classified, and its vertices' pictures; the lines to draw.
     fn edges(&mut self, options: &Options) {
         let clock = Instant::now();
-        let (eye, picture) = (&self.eye, &self.picture);
+        let (eye, picture, near) = (&self.eye, &self.picture, self.near);
         let crease_cos = -options.crease_angle.to_radians().cos();
         let classified: Vec<_> = self
             .leaves
             .par_iter()
             .map(|leaf| {
-                let pictures: Vec<[f64; 2]> = leaf
-                    .mesh
-                    .vertices()
+                let vertices = leaf.mesh.vertices();
+                let (front, beyond): (Vec<bool>, Vec<bool>) = match &near {
+                    Some(n) => vertices
+                        .par_iter()
+                        .map(|p| (n.in_front(p), n.beyond(p)))
+                        .unzip(),
+                    None => (Vec::new(), Vec::new()),
+                };
+                let pictures: Vec<[f64; 2]> = vertices
                     .par_iter()
-                    .map(|p| picture.point(p))
+                    .enumerate()
+                    .map(|(i, p)| match front.get(i) {
+                        Some(false) => [0.0, 0.0],
+                        _ => picture.point(p),
+                    })
                     .collect();
-                (edges::classify(leaf.mesh, eye, crease_cos), pictures)
+                let classes = edges::classify(leaf.mesh, eye, crease_cos);
+                (classes, pictures, (front, beyond))
             })
             .collect();
         let (mut flat, mut end_on, mut smooth_left_out) = (0, 0, 0);
         let mut by_class = [0usize; 5];
-        for (leaf, ((edges, counts), pictures)) in self.leaves.iter_mut().zip(classified) {
+        let mut behind = 0;
+        for (leaf, ((edges, counts), pictures, (front, beyond))) in
+            self.leaves.iter_mut().zip(classified)
+        {
             let mesh = leaf.mesh;
             let away = turned_away(self.scene, leaf.id, mesh, eye);
             let first = self.lines.len();
@@ -386,6 +423,13 @@ impl<'a> Pass<'a> {
                     continue;
                 }
                 let (a, b) = (e.a as usize, e.b as usize);
+                let in_front = |v: usize| front.get(v).is_none_or(|&f| f);
+                if !in_front(a) && !in_front(b) {
+                    // Wholly behind the eye: nothing of it is drawn or bounds what is seen.
+                    behind += 1;
+                    continue;
+                }
+                let clipped = !beyond.is_empty() && !(beyond[a] && beyond[b]);
                 let back = e.class != EdgeClass::Boundary
                     && away.is_some_and(|away| {
                         e.triangles.iter().all(|&t| {
@@ -401,9 +445,16 @@ impl<'a> Pass<'a> {
                     on_faces: None,
                     back,
                     triangles: Some(e.triangles),
+                    wide: !(in_front(a) && in_front(b)),
+                    clipped,
                 });
+                if clipped {
+                    let i = self.lines.len() - 1;
+                    self.cuts.extend(near_cut(near, eye, i, &self.lines[i]));
+                }
             }
             leaf.pictures = pictures;
+            leaf.front = front;
             leaf.lines = first..self.lines.len();
         }
         let count = |c: EdgeClass| by_class[c as usize];
@@ -420,8 +471,17 @@ impl<'a> Pass<'a> {
         } else {
             String::new()
         };
+        let clip = if near.is_some() {
+            format!(
+                ", {behind} behind the eye (the view clips at its near plane: part of the scene \
+                 is not in front of the eye)"
+            )
+        } else {
+            String::new()
+        };
         let skipped = format!(
-            "{flat} edges between coplanar faces (no edge), {end_on} seen end-on (a point){smooth}"
+            "{flat} edges between coplanar faces (no edge), {end_on} seen end-on (a point)\
+             {smooth}{clip}"
         );
         self.stage("edges", clock, done, Some(skipped));
     }
@@ -430,7 +490,7 @@ impl<'a> Pass<'a> {
     /// object, and the cuts where edges pierce faces.
     fn intersections(&mut self) {
         let clock = Instant::now();
-        let eye = self.eye;
+        let (eye, near) = (self.eye, self.near);
         let ids: Vec<ObjectId> = self.leaves.iter().map(|l| l.id).collect();
         let pairs = overlapping_cboxes(self.scene, &ids);
         let apart = ids.len() * (ids.len() + 1) / 2 - pairs.len();
@@ -448,6 +508,10 @@ impl<'a> Pass<'a> {
             let (id0, id1) = (ids[i], ids[j]);
             for s in found {
                 segments += 1;
+                let front = s.points.map(|p| near.is_none_or(|n| n.in_front(&p)));
+                if front == [false, false] {
+                    continue;
+                }
                 let triangles = [(id0, s.triangles[0]), (id1, s.triangles[1])];
                 for (x, y) in [(triangles[0], triangles[1]), (triangles[1], triangles[0])] {
                     partners.entry(x).or_default().push(y);
@@ -456,12 +520,21 @@ impl<'a> Pass<'a> {
                 self.lines.push(Line {
                     a: s.points[0],
                     b: s.points[1],
-                    ends: s.ends.map(|e| e.picture(&self.picture, &eye)),
+                    ends: [0, 1].map(|k| match front[k] {
+                        true => s.ends[k].picture(&self.picture, &eye),
+                        false => [0.0, 0.0],
+                    }),
                     class: EdgeClass::Intersection,
                     on_faces: Some([(id0, s.faces[0]), (id1, s.faces[1])]),
                     back: false,
                     triangles: None,
+                    wide: front != [true, true],
+                    clipped: near.is_some_and(|n| !s.points.iter().all(|p| n.beyond(p))),
                 });
+                let i = self.lines.len() - 1;
+                if self.lines[i].clipped {
+                    self.cuts.extend(near_cut(near, &eye, i, &self.lines[i]));
+                }
                 if i == j {
                     self_intersecting.push(i);
                 }
@@ -523,7 +596,7 @@ impl<'a> Pass<'a> {
     /// it, from the uniform grid over the lines' pictures (or every pair, for few lines).
     fn contour_cuts(&mut self) {
         let clock = Instant::now();
-        let (lines, eye, leaves) = (&self.lines, &self.eye, &self.leaves);
+        let (lines, eye, leaves, near) = (&self.lines, &self.eye, &self.leaves, self.near);
         // The triangles on the sides of edge `j` (none for an intersection line).
         let sides = |j: usize| -> Vec<[Point3; 3]> {
             let leaf = leaves.get(leaves.partition_point(|leaf| leaf.lines.end <= j));
@@ -540,7 +613,7 @@ impl<'a> Pass<'a> {
             for (x, y) in [(i, j), (j, i)] {
                 if lines[y].is_contour()
                     && !lines[x].back
-                    && let Some(c) = crossing(eye, &lines[x], &lines[y], || sides(y))
+                    && let Some(c) = crossing(eye, near, &lines[x], &lines[y], || sides(y))
                 {
                     out.extend(c.into_iter().map(|c| (x, c)));
                 }
@@ -559,8 +632,14 @@ impl<'a> Pass<'a> {
             );
             (all, method)
         } else {
-            // Lines hidden by their own solid are neither cut nor contours: not in the grid.
-            let gridded: Vec<usize> = (0..lines.len()).filter(|&i| !lines[i].back).collect();
+            // Lines hidden by their own solid are neither cut nor contours: not in the grid;
+            // nor are wide lines (unbounded pictures), each tested against every other line.
+            let gridded: Vec<usize> = (0..lines.len())
+                .filter(|&i| !lines[i].back && !lines[i].wide)
+                .collect();
+            let wide: Vec<usize> = (0..lines.len())
+                .filter(|&i| !lines[i].back && lines[i].wide)
+                .collect();
             let segments: Vec<GeoLine<f64>> = gridded
                 .iter()
                 .map(|&i| {
@@ -570,9 +649,20 @@ impl<'a> Pass<'a> {
                 .collect();
             let grid = SegmentGrid::new(&segments);
             let candidates = grid.candidates(|i, j| cuts_needed(gridded[i], gridded[j]));
+            let with_wide: Vec<(usize, usize)> = wide
+                .iter()
+                .flat_map(|&w| {
+                    (0..lines.len())
+                        .filter(move |&j| j != w && !lines[j].back && !(lines[j].wide && j < w))
+                        .map(move |j| (w, j))
+                })
+                .filter(|&(i, j)| cuts_needed(i, j))
+                .collect();
             let all: Vec<(usize, Cut)> = candidates
                 .par_iter()
-                .flat_map_iter(|&(i, j)| crossing_cuts(gridded[i], gridded[j]))
+                .map(|&(i, j)| (gridded[i], gridded[j]))
+                .chain(with_wide.par_iter().copied())
+                .flat_map_iter(|(i, j)| crossing_cuts(i, j))
                 .collect();
             let [nx, ny] = grid.shape();
             let method = format!(
@@ -596,16 +686,16 @@ impl<'a> Pass<'a> {
     /// Stage 4: the occluder index, then the visible and hidden runs of every line.
     fn visibility(&mut self, progress: &(dyn Fn(u64, u64) + Sync)) -> Vec<Piece> {
         let clock = Instant::now();
-        let meshes: Vec<(ObjectId, &Mesh, &[[f64; 2]])> = self
+        let meshes: Vec<(ObjectId, &Mesh, &[[f64; 2]], &[bool])> = self
             .leaves
             .iter()
-            .map(|l| (l.id, l.mesh, l.pictures.as_slice()))
+            .map(|l| (l.id, l.mesh, l.pictures.as_slice(), l.front.as_slice()))
             .collect();
         let queries = self.lines.iter().filter(|l| !l.back).count() + self.cuts.len();
         let occluders = Occluders::new(self.scene, self.eye, &meshes, INBOX_LIMIT, queries);
         let large = meshes
             .iter()
-            .filter(|(_, m, _)| m.triangles().len() > INBOX_LIMIT)
+            .filter(|(_, m, _, _)| m.triangles().len() > INBOX_LIMIT)
             .count();
         let done = format!(
             "{} meshes' triangles listed by picture cells ({} entries)",
@@ -633,7 +723,7 @@ impl<'a> Pass<'a> {
         }
         let done = AtomicU64::new(0);
         let total = lines.len() as u64;
-        let (scene, eye, picture) = (self.scene, &self.eye, &self.picture);
+        let (scene, eye, picture, near) = (self.scene, &self.eye, &self.picture, self.near);
         let decided: Vec<(Vec<Piece>, Counters)> = (0..lines.len())
             .into_par_iter()
             .map(|l| {
@@ -645,7 +735,15 @@ impl<'a> Pass<'a> {
                     .iter()
                     .map(|c| c.1)
                     .collect();
-                pieces(&occluders, scene, eye, picture, (l, &lines[l]), &line_cuts)
+                pieces(
+                    &occluders,
+                    scene,
+                    eye,
+                    picture,
+                    near,
+                    (l, &lines[l]),
+                    &line_cuts,
+                )
             })
             .collect();
         let mut counters = Counters::default();
@@ -669,8 +767,11 @@ impl<'a> Pass<'a> {
 /// The cuts on `l` where its picture meets the picture of the contour `c`: a crossing (one
 /// cut), or, for collinear pictures, at the pictures of `c`'s ends inside `l` and where `l`
 /// passes through the plane of one of `c`'s faces (`c_sides`, the triangles on its sides).
+/// When the view clips (`near`), a wide contour cuts only where its point behind the crossing
+/// is in front of the eye.
 fn crossing(
     eye: &Eye,
+    near: Option<NearPlane>,
     l: &Line,
     c: &Line,
     c_sides: impl Fn() -> Vec<[Point3; 3]>,
@@ -690,14 +791,18 @@ fn crossing(
     );
     let zero = Ordering::Equal;
     if [sc, sd, sa, sb].iter().all(|&s| s == zero) {
-        // Collinear pictures: cut at the contour's ends that lie inside this line.
+        // Collinear pictures: cut at the contour's ends that lie inside this line (in front of
+        // the eye, both: the pictures of a wide line's ends are not all meaningful).
         let [p, q] = l.ends;
         let d = [q[0] - p[0], q[1] - p[1]];
         let norm = d[0] * d[0] + d[1] * d[1];
+        let ends_in_front = [c.a, c.b].map(|x| near.is_none_or(|n| n.in_front(&x)));
         let mut cuts: Vec<Cut> = c
             .ends
             .iter()
-            .filter_map(|e| {
+            .zip(ends_in_front)
+            .filter(|&(_, front)| front && !l.wide)
+            .filter_map(|(e, _)| {
                 let t = ((e[0] - p[0]) * d[0] + (e[1] - p[1]) * d[1]) / norm;
                 (t > 0.0 && t < 1.0).then_some(Cut {
                     t,
@@ -726,6 +831,12 @@ fn crossing(
         return Some(cuts);
     }
     if (sc == sd && sc != zero) || (sa == sb && sa != zero) {
+        return None;
+    }
+    if let Some(n) = &near
+        && c.wide
+        && !contour_in_front(n, eye, [&l.a, &l.b], [&c.a, &c.b], [sc, sd])
+    {
         return None;
     }
     // Where the contour passes behind the line it changes nothing on it. Which of two lines
@@ -757,11 +868,12 @@ fn pieces(
     scene: &Scene,
     eye: &Eye,
     picture: &Picture,
+    near: Option<NearPlane>,
     (line, l): (usize, &Line),
     cuts: &[Cut],
 ) -> (Vec<Piece>, Counters) {
     let mut counters = Counters::default();
-    if l.back {
+    if l.back && !l.clipped {
         let piece = Piece {
             class: l.class,
             visible: false,
@@ -779,13 +891,20 @@ fn pieces(
     }
     bounds.push((1.0, None));
     let mut out: Vec<Piece> = Vec::new();
-    let mut run_start = l.ends[0];
-    let mut run_t = 0.0;
-    let mut run_visible: Option<bool> = None;
+    // The current run: its state (`None` where the view clips it away, else its
+    // visibility), the picture of its start and its start's parameter.
+    let mut run: Option<(Option<bool>, [f64; 2], f64)> = None;
     for k in 0..bounds.len() - 1 {
         let (lo, hi) = (bounds[k].0, bounds[k + 1].0);
         let t = lo + (hi - lo) / 2.0;
-        let visible = if t > lo && t < hi {
+        let state = if !(t > lo && t < hi) {
+            // A piece too short to hold a double strictly inside: it takes its neighbour's.
+            run.map_or((!l.clipped).then_some(true), |r| r.0)
+        } else if l.clipped && !near.is_some_and(|n| n.beyond_along(eye, &l.a, &l.b, t)) {
+            None
+        } else if l.back {
+            Some(false)
+        } else {
             let approximate = l.a + (l.b - l.a) * t;
             let hides = |object: ObjectId, tri: usize| {
                 !on_faces(l, scene, object, tri)
@@ -799,36 +918,39 @@ fn pieces(
                 hides,
                 &mut counters,
             );
-            answer == Visibility::Visible
-        } else {
-            // A piece too short to hold a double strictly inside: it takes its neighbour's.
-            run_visible.unwrap_or(true)
+            Some(answer == Visibility::Visible)
         };
-        match run_visible {
-            Some(v) if v != visible => {
+        match run {
+            Some((s, start, from)) if s != state => {
                 let at = cut_picture(picture, eye, l, bounds[k].1);
-                out.push(Piece {
-                    class: l.class,
-                    visible: v,
-                    ends: [run_start, at],
-                    line,
-                    t: [run_t, lo],
-                });
-                run_start = at;
-                run_t = lo;
+                if let Some(visible) = s {
+                    out.push(Piece {
+                        class: l.class,
+                        visible,
+                        ends: [start, at],
+                        line,
+                        t: [from, lo],
+                    });
+                }
+                run = Some((state, at, lo));
             }
+            None => run = Some((state, l.ends[0], 0.0)),
             _ => {}
         }
-        run_visible = Some(visible);
     }
-    if let Some(v) = run_visible {
+    if let Some((Some(visible), start, from)) = run {
         out.push(Piece {
             class: l.class,
-            visible: v,
-            ends: [run_start, l.ends[1]],
+            visible,
+            ends: [start, l.ends[1]],
             line,
-            t: [run_t, 1.0],
+            t: [from, 1.0],
         });
+    }
+    if l.clipped {
+        // A drawn end is beyond the near plane, in front of the eye, so its picture is finite
+        // but for a near cut rounded onto an end: such a piece has no length to draw.
+        out.retain(|p| p.ends.iter().flatten().all(|c| c.is_finite()));
     }
     (out, counters)
 }
@@ -840,6 +962,20 @@ fn on_faces(l: &Line, scene: &Scene, object: ObjectId, tri: usize) -> bool {
             .iter()
             .any(|&(o, f)| o == object && scene[object].mesh().is_some_and(|m| m.face_of(tri) == f))
     })
+}
+
+/// The cut of line `l` (index `i`) where it crosses the near plane of a view that clips,
+/// strictly inside it.
+fn near_cut(near: Option<NearPlane>, eye: &Eye, i: usize, l: &Line) -> Option<(usize, Cut)> {
+    let form = near?.form();
+    let t = form.zero_along(eye, &l.a, &l.b)?;
+    (t > 0.0 && t < 1.0).then_some((
+        i,
+        Cut {
+            t,
+            at: CutAt::Form(form),
+        },
+    ))
 }
 
 /// The picture of a cut of line `l`.

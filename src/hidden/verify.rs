@@ -46,6 +46,7 @@
 //! assert!(verify(&scene, &view, &options, &traced).disagreements > 0);
 //! ```
 
+use super::near::NearPlane;
 use super::{
     Drawing, EdgeClass, Options, Pass, Piece, Result, chained, decided, in_working_range,
     scaled_back,
@@ -56,7 +57,7 @@ use crate::mesh::Mesh;
 use crate::queries::along::Form;
 use crate::queries::visp::{Visibility, VisibilityIndex};
 use crate::scene::{ObjectId, Scene};
-use crate::views::{Eye, View};
+use crate::views::{Eye, Picture, View};
 use rayon::prelude::*;
 use std::cell::Cell;
 use std::cmp::Ordering;
@@ -320,7 +321,8 @@ pub struct Verification {
     /// Samples not checked for lying within a few units in the last place of a piece's end.
     pub near_ends: usize,
     /// Edges the sign test does not decide: seen end-on, between two faces seen edge-on, or of
-    /// more than two triangles.
+    /// more than two triangles; and, in a view that clips, contours not wholly beyond its near
+    /// plane.
     pub unchecked_edges: usize,
     /// The time the checks took, in seconds.
     pub seconds: f64,
@@ -402,7 +404,7 @@ pub fn verify(scene: &Scene, view: &View, options: &Options, traced: &Traced) ->
     let clock = Instant::now();
     let mut report = Verification::default();
     visibility(scene, view, traced, &mut report);
-    contours(scene, view.eye(), traced, &mut report);
+    contours(scene, view, traced, &mut report);
     drawing(options, traced, &mut report);
     report.seconds = clock.elapsed().as_secs_f64();
     report
@@ -568,7 +570,14 @@ fn edge_key(a: &Point3, b: &Point3) -> EdgeKey {
 }
 
 /// Check 2: every silhouette and boundary edge of the sign test drawn whole.
-fn contours(scene: &Scene, eye: &Eye, traced: &Traced, report: &mut Verification) {
+fn contours(scene: &Scene, view: &View, traced: &Traced, report: &mut Verification) {
+    let eye = view.eye();
+    // A view that clips draws contours only beyond its near plane: those are checked.
+    let near = Picture::of(view)
+        .mesh_objects_in_front(scene)
+        .is_err()
+        .then(|| NearPlane::of(view))
+        .flatten();
     let mut on: HashMap<(ObjectId, EdgeKey), Vec<usize>> = HashMap::new();
     for (i, p) in traced.pieces.iter().enumerate() {
         if let Source::Edge { object } = p.source {
@@ -595,6 +604,10 @@ fn contours(scene: &Scene, eye: &Eye, traced: &Traced, report: &mut Verification
                 mesh.vertices()[c.vertices[0] as usize],
                 mesh.vertices()[c.vertices[1] as usize],
             );
+            if near.is_some_and(|n| !(n.beyond(&a) && n.beyond(&b))) {
+                report.unchecked_edges += 1;
+                continue;
+            }
             let (check, class) = match c.class {
                 EdgeClass::Boundary => {
                     report.boundaries += 1;

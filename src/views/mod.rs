@@ -348,7 +348,7 @@ impl View {
 
     /// The same view of the scene scaled by `2^exponent` (see
     /// [`Scene::scaled`](crate::scene::Scene::scaled)): a perspective eye is scaled with it,
-    /// exactly; directions, the frame and the field of view stay.
+    /// exactly, and so is its near distance; directions, the frame and the field of view stay.
     ///
     /// ```
     /// use kepler::{geometry::{Point3, Vector3}, views::{Eye, View}};
@@ -360,7 +360,11 @@ impl View {
             Eye::Point(p) => Eye::Point(p.map(|c| ldexp(c, exponent))),
             Eye::Infinity(u) => Eye::Infinity(u),
         };
-        View { eye, ..*self }
+        View {
+            eye,
+            near: ldexp(self.near, exponent),
+            ..*self
+        }
     }
 
     /// The same view clipped, when the scene is not wholly in front of a perspective eye, to a

@@ -1,0 +1,175 @@
+//! A perspective eye inside the scene: the view clips at its near plane.
+//!
+//! Checked three ways: an object wholly behind the eye changes no bit of the drawing; every
+//! drawing of an eye inside a room or a street passes `verify` (VISP at sample points of every
+//! piece, contours beyond the near plane drawn whole); and the drawing scales bit for bit.
+
+mod common;
+
+use common::Rng;
+use kepler::geometry::{Point3, Vector3};
+use kepler::hidden::verify::{draw_traced, verify};
+use kepler::hidden::{Drawing, EdgeSelection, Options, draw};
+use kepler::scene::{Scene, file};
+use kepler::solids::box_between;
+use kepler::views::View;
+use std::path::Path;
+
+fn boxed(scene: &mut Scene, name: &str, lo: [f64; 3], hi: [f64; 3]) {
+    scene
+        .add_mesh(None, name, box_between(lo, hi).unwrap())
+        .unwrap();
+}
+
+/// Draws and verifies, failing with the disagreements described; the drawing.
+fn verified(name: &str, scene: &Scene, view: &View, options: &Options) -> Drawing {
+    let traced = draw_traced(scene, view, options, &|_, _| {}).unwrap_or_else(|e| panic!("{e}"));
+    let report = verify(scene, view, options, &traced);
+    assert_eq!(report.disagreements, 0, "{name}:\n{report}");
+    assert!(report.samples > 0, "{name}: nothing sampled\n{report}");
+    traced.drawing
+}
+
+fn finite(d: &Drawing) -> bool {
+    d.polylines
+        .iter()
+        .all(|p| p.points.iter().flatten().all(|c| c.is_finite()))
+}
+
+/// Random boxes in front of an eye, with and without a box wholly behind it (which makes the
+/// view clip): the same bits.
+#[test]
+fn an_object_behind_the_eye_changes_nothing() {
+    let mut rng = Rng(0xbe41d);
+    for case in 0..40 {
+        let boxes: Vec<([f64; 3], [f64; 3])> = (0..4)
+            .map(|_| {
+                let lo = [rng.int(-6, 5), rng.int(-6, 5), rng.int(-6, 5)];
+                (lo, lo.map(|c| c + rng.int(1, 4)))
+            })
+            .collect();
+        let build = || {
+            let mut scene = Scene::new();
+            for (i, (lo, hi)) in boxes.iter().enumerate() {
+                boxed(&mut scene, &format!("b{i}"), *lo, *hi);
+            }
+            scene
+        };
+        let scene = build();
+        let direction = rng.vector(1.0);
+        let Some(unit) = (direction.norm() > 0.1).then(|| direction.normalize()) else {
+            continue;
+        };
+        let eye = Point3::origin() + unit * rng.range(30.0, 60.0);
+        let view = View::perspective(eye, Point3::origin(), Vector3::z(), rng.range(20.0, 80.0));
+        let Ok(view) = view else { continue };
+        let options = Options {
+            edges: EdgeSelection::All,
+            ..Options::default()
+        };
+        let plain = draw(&scene, &view, &options).unwrap();
+        let behind = eye + unit * 10.0;
+        let mut with = build();
+        boxed(
+            &mut with,
+            "behind",
+            behind.map(|c| c - 1.0).into(),
+            behind.map(|c| c + 1.0).into(),
+        );
+        let clipped = verified(&format!("case {case}"), &with, &view, &options);
+        assert!(
+            clipped.stages.iter().any(|s| s
+                .skipped
+                .as_deref()
+                .is_some_and(|x| x.contains("near plane"))),
+            "case {case}: the view does not clip"
+        );
+        assert_eq!(plain.polylines, clipped.polylines, "case {case}");
+    }
+}
+
+/// A closed room with boxes standing in it, seen from random points inside it: walls, floor
+/// and ceiling cross the plane of the eye.
+#[test]
+fn eyes_inside_a_room_pass_verify() {
+    let mut rng = Rng(0x500f);
+    for case in 0..30 {
+        let mut scene = Scene::new();
+        boxed(&mut scene, "room", [-10.0, -10.0, 0.0], [10.0, 10.0, 6.0]);
+        let mut inside = Vec::new();
+        for i in 0..3 {
+            let lo = [rng.int(-9, 5), rng.int(-9, 5), 0.0];
+            let hi = [lo[0] + rng.int(1, 4), lo[1] + rng.int(1, 4), rng.int(1, 5)];
+            boxed(&mut scene, &format!("crate{i}"), lo, hi);
+            inside.push((lo, hi));
+        }
+        let eye = Point3::new(
+            rng.range(-9.5, 9.5),
+            rng.range(-9.5, 9.5),
+            rng.range(0.5, 5.5),
+        );
+        if inside
+            .iter()
+            .any(|(lo, hi)| (0..3).all(|k| lo[k] <= eye[k] && eye[k] <= hi[k]))
+        {
+            continue;
+        }
+        let target = eye + rng.vector(1.0);
+        let Ok(view) = View::perspective(eye, target, Vector3::z(), rng.range(30.0, 100.0)) else {
+            continue;
+        };
+        for edges in [EdgeSelection::Feature, EdgeSelection::All] {
+            let options = Options {
+                edges,
+                ..Options::default()
+            };
+            let d = verified(&format!("room case {case}"), &scene, &view, &options);
+            assert!(finite(&d), "room case {case}: a point is not finite");
+        }
+    }
+}
+
+/// The city scene from a street: the ground slab runs under and behind the eye.
+#[test]
+fn the_city_from_its_streets_passes_verify() {
+    let scene = file::load(Path::new("scenes/city.toml")).unwrap();
+    for (eye, target) in [
+        ([0.0, -24.0, 1.7], [0.0, 12.0, 6.0]),
+        ([-2.0, 0.0, 1.7], [-20.0, 8.0, 10.0]),
+        ([6.0, -3.0, 30.0], [6.0, 3.0, 0.0]),
+        ([30.0, 20.0, 3.0], [-30.0, -10.0, 2.0]),
+    ] {
+        let view =
+            View::perspective(Point3::from(eye), Point3::from(target), Vector3::z(), 70.0).unwrap();
+        let d = verified(
+            &format!("city from {eye:?}"),
+            &scene,
+            &view,
+            &Options::default(),
+        );
+        assert!(!d.polylines.is_empty() && finite(&d), "city from {eye:?}");
+    }
+}
+
+/// The clipped drawing of a scene scaled by a power of two, with its eye, is the same drawing
+/// (a perspective picture does not scale), through the engine's range normalisation too.
+#[test]
+fn clipped_drawings_do_not_scale() {
+    let mut scene = Scene::new();
+    boxed(&mut scene, "room", [-8.0, -8.0, 0.0], [8.0, 8.0, 4.0]);
+    boxed(&mut scene, "crate", [2.0, -1.0, 0.0], [4.0, 1.0, 1.5]);
+    let view = View::perspective(
+        Point3::new(-3.0, 0.5, 1.25),
+        Point3::new(5.0, 0.0, 0.5),
+        Vector3::z(),
+        75.0,
+    )
+    .unwrap();
+    let base = draw(&scene, &view, &Options::default()).unwrap();
+    assert!(!base.polylines.is_empty());
+    for k in [-100, -7, 3, 64, 200] {
+        let scaled = scene.scaled(k).unwrap();
+        let d = draw(&scaled, &view.scaled(k), &Options::default()).unwrap();
+        assert_eq!(d.polylines, base.polylines, "scaled by 2^{k}");
+    }
+}
