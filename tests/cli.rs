@@ -895,16 +895,19 @@ fn render_rejects_bad_scenes_views_and_options() {
         "0,0,3",
     ]);
     assert!(parallel.contains("invalid view"), "{parallel}");
-    let behind = fails(&[
-        "render",
-        "scenes/cube.toml",
-        "-o",
-        &svg,
-        "--eye",
-        "0,0,0.5",
-        "--target",
-        "0,0,-5",
-    ]);
+    // An eye inside the scene: render clips, a near distance must be positive, surfaces
+    // does not clip yet.
+    let inside = ["--eye", "0,0,0.5", "--target", "0,0,-5"];
+    ok(&[&["render", "scenes/cube.toml", "-o", &svg][..], &inside].concat());
+    let near = fails(
+        &[
+            &["render", "scenes/cube.toml", "-o", &svg, "--near", "-1"][..],
+            &inside,
+        ]
+        .concat(),
+    );
+    assert!(near.contains("invalid view"), "{near}");
+    let behind = fails(&[&["surfaces", "scenes/cube.toml", "-o", &svg][..], &inside].concat());
     assert!(behind.contains("in front of the eye"), "{behind}");
     let nowhere = format!("{}/no/such/dir/out.svg", temp_path("x"));
     assert!(fails(&["render", "scenes/cube.toml", "-o", &nowhere]).starts_with(&nowhere));

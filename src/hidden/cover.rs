@@ -141,6 +141,10 @@ fn cell_factor(n: usize, queries: usize) -> f64 {
         .clamp(0.25, 2.0)
 }
 
+/// A mesh object with its vertices' pictures and, when the view clips, which vertices are in
+/// front of the eye.
+pub(crate) type PicturedMesh<'a> = (ObjectId, &'a Mesh, &'a [[f64; 2]], &'a [bool]);
+
 /// VISP for the hidden-line pass: Franklin's hierarchy (CBOX rejects, INBOX accepts) over the
 /// whole scene, with each mesh's faces answered through its [`PictureGrid`].
 pub(crate) struct Occluders<'s> {
@@ -157,7 +161,7 @@ impl<'s> Occluders<'s> {
     pub(crate) fn new(
         scene: &'s Scene,
         eye: Eye,
-        meshes: &[(ObjectId, &Mesh, &[[f64; 2]], &[bool])],
+        meshes: &[PicturedMesh],
         inbox_limit: usize,
         queries: usize,
     ) -> Occluders<'s> {

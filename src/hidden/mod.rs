@@ -35,8 +35,9 @@
 //! built from the line's own (rounded) ends.
 //!
 //! Picture coordinates: `x` to the right, `y` up; scene units for an orthographic view; for a
-//! perspective view, the field of view spans `y` in `[-1, 1]`. A perspective view needs every
-//! vertex strictly in front of the eye.
+//! perspective view, the field of view spans `y` in `[-1, 1]`. A perspective view with part of
+//! the scene not strictly in front of its eye (an eye inside a room or a street) draws the
+//! parts of lines inside its frustum (see `frustum.rs`).
 //!
 //! ```
 //! use kepler::{geometry::Vector3, scene::Scene, views::View};
@@ -55,8 +56,8 @@ mod chain;
 mod cover;
 mod drawing;
 mod edges;
+mod frustum;
 pub mod ideographs;
-mod near;
 pub mod verify;
 
 pub use drawing::{Drawing, EdgeClass, Polyline, StageReport};
@@ -73,9 +74,9 @@ use crate::queries::visp::Visibility;
 use crate::scene::{ObjectId, Scene, SceneError};
 use crate::views::{Eye, Picture, View, ViewError};
 use chain::{Piece, chain};
-use cover::Occluders;
+use cover::{Occluders, PicturedMesh};
+use frustum::{Clip, contour_in_front};
 use geo::{Line as GeoLine, coord};
-use near::{NearPlane, contour_in_front};
 use rayon::prelude::*;
 use rstar::RTree;
 use rstar::primitives::{GeomWithData, Rectangle};
@@ -90,8 +91,11 @@ use std::time::Instant;
 /// use kepler::{geometry::{Point3, Vector3}, hidden::{DrawError, Options, draw}, scene::Scene, views::View};
 /// let mut scene = Scene::new();
 /// scene.add_mesh(None, "cube", kepler::solids::cube(2.0).unwrap()).unwrap();
+/// // An eye inside the cube: the view clips to its frustum and draws.
 /// let inside = View::perspective(Point3::origin(), Point3::new(1.0, 0.0, 0.0), Vector3::z(), 40.0).unwrap();
-/// assert!(matches!(draw(&scene, &inside, &Options::default()), Err(DrawError::View(_))));
+/// assert!(draw(&scene, &inside, &Options::default()).is_ok());
+/// let e = DrawError::from(kepler::views::ViewError::EyeAtTarget);
+/// assert!(e.to_string().starts_with("invalid view"));
 /// ```
 #[derive(Debug, thiserror::Error)]
 pub enum DrawError {
@@ -174,10 +178,10 @@ struct Line {
     /// For an edge: the triangles on its sides (in its mesh).
     triangles: Option<[u32; 2]>,
     /// Whether the line crosses the plane of a perspective eye that clips: its picture is
-    /// unbounded (see [`near`]).
+    /// unbounded (see `frustum.rs`).
     wide: bool,
-    /// Whether the line is not wholly beyond the near plane of a view that clips: its pieces
-    /// on the eye's side are not drawn.
+    /// Whether the line is not wholly inside the frustum of a view that clips: its pieces
+    /// outside it are not drawn.
     clipped: bool,
 }
 
@@ -326,20 +330,20 @@ struct Pass<'a> {
     /// Cuts, by line index.
     cuts: Vec<(usize, Cut)>,
     stages: Vec<StageReport>,
-    /// The near plane, when the view clips (a perspective eye with part of the scene not in
+    /// The frustum, when the view clips (a perspective eye with part of the scene not in
     /// front of it).
-    near: Option<NearPlane>,
+    clip: Option<Clip>,
 }
 
 impl<'a> Pass<'a> {
     /// The pass over every mesh of the scene; a perspective view with a vertex not strictly
-    /// in front of the eye clips at its near plane (see [`near`]).
+    /// in front of the eye clips to its frustum (see `frustum.rs`).
     fn new(scene: &'a Scene, view: &View) -> Result<Pass<'a>> {
         let picture = Picture::of(view);
-        let (meshes, near) = match picture.mesh_objects_in_front(scene) {
+        let (meshes, clip) = match picture.mesh_objects_in_front(scene) {
             Ok(meshes) => (meshes, None),
-            Err(e @ ViewError::NotInFront { .. }) => match NearPlane::of(view) {
-                Some(near) => (scene.mesh_objects(scene.roots()), Some(near)),
+            Err(e @ ViewError::NotInFront { .. }) => match Clip::of(view) {
+                Some(clip) => (scene.mesh_objects(scene.roots()), Some(clip)),
                 None => return Err(e.into()),
             },
             Err(e) => return Err(e.into()),
@@ -355,7 +359,7 @@ impl<'a> Pass<'a> {
             })
             .collect();
         Ok(Pass {
-            near,
+            clip,
             scene,
             eye: *view.eye(),
             picture,
@@ -379,17 +383,17 @@ impl<'a> Pass<'a> {
     /// Stage 1: every mesh's edges, classified, and its vertices' pictures; the lines to draw.
     fn edges(&mut self, options: &Options) {
         let clock = Instant::now();
-        let (eye, picture, near) = (&self.eye, &self.picture, self.near);
+        let (eye, picture, clip) = (&self.eye, &self.picture, self.clip);
         let crease_cos = -options.crease_angle.to_radians().cos();
         let classified: Vec<_> = self
             .leaves
             .par_iter()
             .map(|leaf| {
                 let vertices = leaf.mesh.vertices();
-                let (front, beyond): (Vec<bool>, Vec<bool>) = match &near {
+                let (front, inside): (Vec<bool>, Vec<bool>) = match &clip {
                     Some(n) => vertices
                         .par_iter()
-                        .map(|p| (n.in_front(p), n.beyond(p)))
+                        .map(|p| (n.in_front(p), n.contains(eye, p)))
                         .unzip(),
                     None => (Vec::new(), Vec::new()),
                 };
@@ -402,13 +406,13 @@ impl<'a> Pass<'a> {
                     })
                     .collect();
                 let classes = edges::classify(leaf.mesh, eye, crease_cos);
-                (classes, pictures, (front, beyond))
+                (classes, pictures, (front, inside))
             })
             .collect();
         let (mut flat, mut end_on, mut smooth_left_out) = (0, 0, 0);
         let mut by_class = [0usize; 5];
         let mut behind = 0;
-        for (leaf, ((edges, counts), pictures, (front, beyond))) in
+        for (leaf, ((edges, counts), pictures, (front, inside))) in
             self.leaves.iter_mut().zip(classified)
         {
             let mesh = leaf.mesh;
@@ -429,7 +433,7 @@ impl<'a> Pass<'a> {
                     behind += 1;
                     continue;
                 }
-                let clipped = !beyond.is_empty() && !(beyond[a] && beyond[b]);
+                let clipped = !(inside.is_empty() || inside[a] && inside[b]);
                 let back = e.class != EdgeClass::Boundary
                     && away.is_some_and(|away| {
                         e.triangles.iter().all(|&t| {
@@ -450,7 +454,7 @@ impl<'a> Pass<'a> {
                 });
                 if clipped {
                     let i = self.lines.len() - 1;
-                    self.cuts.extend(near_cut(near, eye, i, &self.lines[i]));
+                    self.cuts.extend(frustum_cuts(clip, eye, i, &self.lines[i]));
                 }
             }
             leaf.pictures = pictures;
@@ -471,9 +475,9 @@ impl<'a> Pass<'a> {
         } else {
             String::new()
         };
-        let clip = if near.is_some() {
+        let clipping = if clip.is_some() {
             format!(
-                ", {behind} behind the eye (the view clips at its near plane: part of the scene \
+                ", {behind} behind the eye (the view clips to its frustum: part of the scene \
                  is not in front of the eye)"
             )
         } else {
@@ -481,7 +485,7 @@ impl<'a> Pass<'a> {
         };
         let skipped = format!(
             "{flat} edges between coplanar faces (no edge), {end_on} seen end-on (a point)\
-             {smooth}{clip}"
+             {smooth}{clipping}"
         );
         self.stage("edges", clock, done, Some(skipped));
     }
@@ -490,7 +494,7 @@ impl<'a> Pass<'a> {
     /// object, and the cuts where edges pierce faces.
     fn intersections(&mut self) {
         let clock = Instant::now();
-        let (eye, near) = (self.eye, self.near);
+        let (eye, clip) = (self.eye, self.clip);
         let ids: Vec<ObjectId> = self.leaves.iter().map(|l| l.id).collect();
         let pairs = overlapping_cboxes(self.scene, &ids);
         let apart = ids.len() * (ids.len() + 1) / 2 - pairs.len();
@@ -508,7 +512,7 @@ impl<'a> Pass<'a> {
             let (id0, id1) = (ids[i], ids[j]);
             for s in found {
                 segments += 1;
-                let front = s.points.map(|p| near.is_none_or(|n| n.in_front(&p)));
+                let front = s.points.map(|p| clip.is_none_or(|n| n.in_front(&p)));
                 if front == [false, false] {
                     continue;
                 }
@@ -529,11 +533,12 @@ impl<'a> Pass<'a> {
                     back: false,
                     triangles: None,
                     wide: front != [true, true],
-                    clipped: near.is_some_and(|n| !s.points.iter().all(|p| n.beyond(p))),
+                    clipped: clip.is_some_and(|n| !s.points.iter().all(|p| n.contains(&eye, p))),
                 });
                 let i = self.lines.len() - 1;
                 if self.lines[i].clipped {
-                    self.cuts.extend(near_cut(near, &eye, i, &self.lines[i]));
+                    self.cuts
+                        .extend(frustum_cuts(clip, &eye, i, &self.lines[i]));
                 }
                 if i == j {
                     self_intersecting.push(i);
@@ -596,7 +601,7 @@ impl<'a> Pass<'a> {
     /// it, from the uniform grid over the lines' pictures (or every pair, for few lines).
     fn contour_cuts(&mut self) {
         let clock = Instant::now();
-        let (lines, eye, leaves, near) = (&self.lines, &self.eye, &self.leaves, self.near);
+        let (lines, eye, leaves, clip) = (&self.lines, &self.eye, &self.leaves, self.clip);
         // The triangles on the sides of edge `j` (none for an intersection line).
         let sides = |j: usize| -> Vec<[Point3; 3]> {
             let leaf = leaves.get(leaves.partition_point(|leaf| leaf.lines.end <= j));
@@ -613,7 +618,7 @@ impl<'a> Pass<'a> {
             for (x, y) in [(i, j), (j, i)] {
                 if lines[y].is_contour()
                     && !lines[x].back
-                    && let Some(c) = crossing(eye, near, &lines[x], &lines[y], || sides(y))
+                    && let Some(c) = crossing(eye, clip, &lines[x], &lines[y], || sides(y))
                 {
                     out.extend(c.into_iter().map(|c| (x, c)));
                 }
@@ -686,7 +691,7 @@ impl<'a> Pass<'a> {
     /// Stage 4: the occluder index, then the visible and hidden runs of every line.
     fn visibility(&mut self, progress: &(dyn Fn(u64, u64) + Sync)) -> Vec<Piece> {
         let clock = Instant::now();
-        let meshes: Vec<(ObjectId, &Mesh, &[[f64; 2]], &[bool])> = self
+        let meshes: Vec<PicturedMesh> = self
             .leaves
             .iter()
             .map(|l| (l.id, l.mesh, l.pictures.as_slice(), l.front.as_slice()))
@@ -723,7 +728,7 @@ impl<'a> Pass<'a> {
         }
         let done = AtomicU64::new(0);
         let total = lines.len() as u64;
-        let (scene, eye, picture, near) = (self.scene, &self.eye, &self.picture, self.near);
+        let (scene, eye, picture, clip) = (self.scene, &self.eye, &self.picture, self.clip);
         let decided: Vec<(Vec<Piece>, Counters)> = (0..lines.len())
             .into_par_iter()
             .map(|l| {
@@ -740,7 +745,7 @@ impl<'a> Pass<'a> {
                     scene,
                     eye,
                     picture,
-                    near,
+                    clip,
                     (l, &lines[l]),
                     &line_cuts,
                 )
@@ -767,11 +772,11 @@ impl<'a> Pass<'a> {
 /// The cuts on `l` where its picture meets the picture of the contour `c`: a crossing (one
 /// cut), or, for collinear pictures, at the pictures of `c`'s ends inside `l` and where `l`
 /// passes through the plane of one of `c`'s faces (`c_sides`, the triangles on its sides).
-/// When the view clips (`near`), a wide contour cuts only where its point behind the crossing
+/// When the view clips (`clip`), a wide contour cuts only where its point behind the crossing
 /// is in front of the eye.
 fn crossing(
     eye: &Eye,
-    near: Option<NearPlane>,
+    clip: Option<Clip>,
     l: &Line,
     c: &Line,
     c_sides: impl Fn() -> Vec<[Point3; 3]>,
@@ -796,7 +801,7 @@ fn crossing(
         let [p, q] = l.ends;
         let d = [q[0] - p[0], q[1] - p[1]];
         let norm = d[0] * d[0] + d[1] * d[1];
-        let ends_in_front = [c.a, c.b].map(|x| near.is_none_or(|n| n.in_front(&x)));
+        let ends_in_front = [c.a, c.b].map(|x| clip.is_none_or(|n| n.in_front(&x)));
         let mut cuts: Vec<Cut> = c
             .ends
             .iter()
@@ -833,7 +838,7 @@ fn crossing(
     if (sc == sd && sc != zero) || (sa == sb && sa != zero) {
         return None;
     }
-    if let Some(n) = &near
+    if let Some(n) = &clip
         && c.wide
         && !contour_in_front(n, eye, [&l.a, &l.b], [&c.a, &c.b], [sc, sd])
     {
@@ -868,7 +873,7 @@ fn pieces(
     scene: &Scene,
     eye: &Eye,
     picture: &Picture,
-    near: Option<NearPlane>,
+    clip: Option<Clip>,
     (line, l): (usize, &Line),
     cuts: &[Cut],
 ) -> (Vec<Piece>, Counters) {
@@ -900,7 +905,7 @@ fn pieces(
         let state = if !(t > lo && t < hi) {
             // A piece too short to hold a double strictly inside: it takes its neighbour's.
             run.map_or((!l.clipped).then_some(true), |r| r.0)
-        } else if l.clipped && !near.is_some_and(|n| n.beyond_along(eye, &l.a, &l.b, t)) {
+        } else if l.clipped && !clip.is_some_and(|n| n.contains_along(eye, &l.a, &l.b, t)) {
             None
         } else if l.back {
             Some(false)
@@ -948,8 +953,8 @@ fn pieces(
         });
     }
     if l.clipped {
-        // A drawn end is beyond the near plane, in front of the eye, so its picture is finite
-        // but for a near cut rounded onto an end: such a piece has no length to draw.
+        // A drawn end is inside the frustum, in front of the eye, so its picture is finite but
+        // for a cut rounded onto an end: such a piece has no length to draw.
         out.retain(|p| p.ends.iter().flatten().all(|c| c.is_finite()));
     }
     (out, counters)
@@ -964,18 +969,29 @@ fn on_faces(l: &Line, scene: &Scene, object: ObjectId, tri: usize) -> bool {
     })
 }
 
-/// The cut of line `l` (index `i`) where it crosses the near plane of a view that clips,
-/// strictly inside it.
-fn near_cut(near: Option<NearPlane>, eye: &Eye, i: usize, l: &Line) -> Option<(usize, Cut)> {
-    let form = near?.form();
-    let t = form.zero_along(eye, &l.a, &l.b)?;
-    (t > 0.0 && t < 1.0).then_some((
-        i,
-        Cut {
-            t,
-            at: CutAt::Form(form),
-        },
-    ))
+/// The cuts of line `l` (index `i`) where it crosses the planes of the frustum of a view
+/// that clips, strictly inside it.
+fn frustum_cuts(
+    clip: Option<Clip>,
+    eye: &Eye,
+    i: usize,
+    l: &Line,
+) -> impl Iterator<Item = (usize, Cut)> {
+    clip.into_iter().flat_map(move |n| {
+        n.forms()
+            .collect::<Vec<_>>()
+            .into_iter()
+            .filter_map(move |form| {
+                let t = form.zero_along(eye, &l.a, &l.b)?;
+                (t > 0.0 && t < 1.0).then_some((
+                    i,
+                    Cut {
+                        t,
+                        at: CutAt::Form(form),
+                    },
+                ))
+            })
+    })
 }
 
 /// The picture of a cut of line `l`.

@@ -46,7 +46,7 @@
 //! assert!(verify(&scene, &view, &options, &traced).disagreements > 0);
 //! ```
 
-use super::near::NearPlane;
+use super::frustum::Clip;
 use super::{
     Drawing, EdgeClass, Options, Pass, Piece, Result, chained, decided, in_working_range,
     scaled_back,
@@ -321,8 +321,8 @@ pub struct Verification {
     /// Samples not checked for lying within a few units in the last place of a piece's end.
     pub near_ends: usize,
     /// Edges the sign test does not decide: seen end-on, between two faces seen edge-on, or of
-    /// more than two triangles; and, in a view that clips, contours not wholly beyond its near
-    /// plane.
+    /// more than two triangles; and, in a view that clips, contours not wholly inside its
+    /// frustum.
     pub unchecked_edges: usize,
     /// The time the checks took, in seconds.
     pub seconds: f64,
@@ -572,11 +572,11 @@ fn edge_key(a: &Point3, b: &Point3) -> EdgeKey {
 /// Check 2: every silhouette and boundary edge of the sign test drawn whole.
 fn contours(scene: &Scene, view: &View, traced: &Traced, report: &mut Verification) {
     let eye = view.eye();
-    // A view that clips draws contours only beyond its near plane: those are checked.
-    let near = Picture::of(view)
+    // A view that clips draws contours only inside its frustum: those are checked.
+    let clip = Picture::of(view)
         .mesh_objects_in_front(scene)
         .is_err()
-        .then(|| NearPlane::of(view))
+        .then(|| Clip::of(view))
         .flatten();
     let mut on: HashMap<(ObjectId, EdgeKey), Vec<usize>> = HashMap::new();
     for (i, p) in traced.pieces.iter().enumerate() {
@@ -604,7 +604,7 @@ fn contours(scene: &Scene, view: &View, traced: &Traced, report: &mut Verificati
                 mesh.vertices()[c.vertices[0] as usize],
                 mesh.vertices()[c.vertices[1] as usize],
             );
-            if near.is_some_and(|n| !(n.beyond(&a) && n.beyond(&b))) {
+            if clip.is_some_and(|n| !(n.contains(eye, &a) && n.contains(eye, &b))) {
                 report.unchecked_edges += 1;
                 continue;
             }

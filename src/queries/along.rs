@@ -58,6 +58,11 @@ impl Form {
         Between(at(a), at(b), t).sign()
     }
 
+    /// The exact sign at `x`.
+    pub(crate) fn sign_at(&self, eye: &Eye, x: &Point3) -> Ordering {
+        FormAt { form: self, eye, x }.sign()
+    }
+
     /// The parameter `t` of the zero of the form on the edge `ab`, approximately (for ordering
     /// cuts; [`cut_point`] builds the point itself exactly). `None` when the form has the same
     /// strict sign at both ends or vanishes on the whole edge.

@@ -403,12 +403,11 @@ impl View {
     /// assert!(kepler::views::View::standard().frustum().is_none());
     /// ```
     pub fn frustum(&self) -> Option<Frustum> {
-        let (Eye::Point(eye), Some(fov)) = (self.eye, self.fov) else {
+        let Eye::Point(eye) = self.eye else {
             return None;
         };
         let (f, r, u) = (self.forward, self.right, self.up);
-        let vertical = (fov.to_radians() / 2.0).tan();
-        let horizontal = vertical * self.aspect;
+        let [horizontal, vertical] = self.window()?;
         Some(Frustum {
             planes: [
                 (eye + f * self.near, f),
@@ -418,6 +417,34 @@ impl View {
                 (eye, f * vertical - u),
             ],
         })
+    }
+
+    /// A perspective view's near clipping distance (see [`with_clipping`](Self::with_clipping));
+    /// zero for an orthographic view.
+    ///
+    /// ```
+    /// use kepler::{geometry::{Point3, Vector3}, views::View};
+    /// let v = View::perspective(Point3::origin(), Point3::new(0.0, 1024.0, 0.0), Vector3::z(), 40.0).unwrap();
+    /// assert_eq!(v.near(), 1.0);
+    /// assert_eq!(v.with_clipping(0.25, 1.5).unwrap().near(), 0.25);
+    /// ```
+    pub fn near(&self) -> f64 {
+        self.near
+    }
+
+    /// The half-width and half-height of a perspective view's picture window at unit depth
+    /// (the tangents of half the field of view, across and up); `None` for an orthographic
+    /// view.
+    ///
+    /// ```
+    /// use kepler::{geometry::{Point3, Vector3}, views::View};
+    /// let v = View::perspective(Point3::origin(), Point3::new(0.0, 10.0, 0.0), Vector3::z(), 90.0).unwrap();
+    /// let [h, v] = v.with_clipping(0.5, 2.0).unwrap().window().unwrap();
+    /// assert!((h - 2.0).abs() < 1e-15 && (v - 1.0).abs() < 1e-15);
+    /// ```
+    pub fn window(&self) -> Option<[f64; 2]> {
+        let vertical = (self.fov?.to_radians() / 2.0).tan();
+        Some([vertical * self.aspect, vertical])
     }
 
     /// The binary exponents of the eye's coordinates, when it is a point (none for an eye at

@@ -28,11 +28,22 @@ pub struct ViewArgs {
     /// Vertical field of view of a perspective view, in degrees (default 40).
     #[arg(long, value_name = "DEGREES", allow_hyphen_values = true)]
     fov: Option<f64>,
+    /// `render`: the near clipping distance of a perspective view whose eye is inside the scene
+    /// (default 1/1024 of the distance to the target); lines are clipped to the page's field
+    /// of view too.
+    #[arg(long, value_name = "DIST", allow_hyphen_values = true)]
+    near: Option<f64>,
 }
 
 impl ViewArgs {
     /// The view over the scene's camera.
     pub fn view(&self, scene: &Scene) -> kepler::Result<View> {
+        self.view_on(scene, 1.0)
+    }
+
+    /// The view over the scene's camera, clipping (when its eye is inside the scene) to a
+    /// picture `aspect` times as wide as high.
+    pub fn view_on(&self, scene: &Scene, aspect: f64) -> kepler::Result<View> {
         let options = ViewOptions {
             view_dir: self.view_dir.map(Vector3::from),
             up: self.up.map(Vector3::from),
@@ -40,7 +51,12 @@ impl ViewArgs {
             target: self.target.map(Point3::from),
             fov: self.fov,
         };
-        Ok(options.resolve(scene.camera())?)
+        let view = options.resolve(scene.camera())?;
+        if !view.is_perspective() {
+            return Ok(view);
+        }
+        let near = self.near.unwrap_or(view.near());
+        Ok(view.with_clipping(near, aspect)?)
     }
 }
 

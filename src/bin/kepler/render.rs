@@ -76,13 +76,16 @@ pub fn run(args: Args) -> Result<()> {
     }
     let started = Instant::now();
     let scene = load_drawable(&args.scene)?;
-    let view = args.view.view(&scene)?;
+    let svg_options = svg_options(&args);
+    let room = svg_options.page.map(|side| side - 2.0 * svg_options.margin);
+    // A page the SVG options refuse is reported when writing; its aspect is not used.
+    let aspect = Some(room[0] / room[1]).filter(|a| a.is_finite() && *a > 0.0);
+    let view = args.view.view_on(&scene, aspect.unwrap_or(1.0))?;
     let options = hidden::Options {
         edges: args.edges,
         crease_angle,
         hidden: args.hidden == Hidden::Dashed,
     };
-    let svg_options = svg_options(&args);
     let (scene, culled) = match args.ideograph_below {
         Some(mm2) => {
             let min_area = picture_area(&scene, &view, &svg_options, mm2);

@@ -1,0 +1,152 @@
+//! Clipping to the frustum: a perspective eye inside the scene.
+//!
+//! When some vertex of the scene is not strictly in front of a perspective eye (the eye in a
+//! room, walking down a street), the pass draws only the parts of lines inside the view's
+//! frustum ([`View::frustum`]: beyond the near plane, within the field of view at the aspect
+//! of [`View::with_clipping`]); everything in front of the eye still hides what lies behind
+//! it, as in the world. So:
+//!
+//! - a line wholly behind the eye (no point strictly in front of it) is left out; a line that
+//!   crosses the plane of the eye is *wide*: its picture is unbounded, so it is tested against
+//!   every other line rather than through the grid, and a triangle that crosses that plane is
+//!   listed in every picture cell;
+//! - a line not wholly inside the frustum is cut where it crosses each of its planes, and its
+//!   pieces outside are not drawn;
+//! - where a line's picture crosses a wide contour's, the point of the contour behind the
+//!   crossing must be in front of the eye for the contour to cut the line: decided exactly
+//!   ([`contour_in_front`]).
+//!
+//! Each plane is given by points in doubles, so that each clipped end is the intersection of
+//! an input edge with a plane given exactly, constructed once like every other cut
+//! ([`cut_point`](crate::queries::along::cut_point)): the near plane through the frustum's near
+//! point and that point moved along the picture's right and up directions, each side plane
+//! through the eye and two points of the picture's edge (moves scaled by a power of two to the
+//! points' magnitude). Their rounding turns the planes by about 2⁻⁵³ radians from the exact
+//! frustum: immaterial for drawing, and every decision is made against the same planes.
+
+use crate::geometry::kernel::{Difference, Polynomial, Product};
+use crate::geometry::predicates::Side;
+use crate::geometry::{Point3, Vector3};
+use crate::queries::along::Form;
+use crate::views::{Eye, View};
+use std::cmp::Ordering;
+
+/// The frustum of a perspective view that clips: its near plane and the four planes through
+/// the eye and the picture's edges, and the plane of its eye.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Clip {
+    /// The planes as forms (near, left, right, bottom, top), each with its sign inside.
+    planes: [(Form, Ordering); 5],
+    /// The eye.
+    eye: Point3,
+    /// The view's forward direction: the depth of `x` is `forward·(x − eye)`.
+    forward: Vector3,
+}
+
+impl Clip {
+    /// The frustum of a perspective view; `None` for an orthographic view.
+    pub(crate) fn of(view: &View) -> Option<Clip> {
+        let Eye::Point(eye) = *view.eye() else {
+            return None;
+        };
+        let frustum = view.frustum()?;
+        let q = frustum.planes[0].0;
+        let (forward, (right, up)) = (view.forward(), view.right_up());
+        // Moves of about the points' own magnitude (a power of two: exact products), so the
+        // rounding of the moved points tilts the planes as little as doubles allow.
+        let magnitude = q
+            .coords
+            .amax()
+            .max(eye.coords.amax())
+            .max(f64::MIN_POSITIVE);
+        let step = 2f64.powi(magnitude.log2().ceil() as i32);
+        let [h, v] = view.window()?;
+        // Each side plane through the eye and two points of the picture's edge.
+        let side = |across: Vector3, along: Vector3| {
+            let p = eye + (forward + across) * step;
+            Form::Sight(p, p + along * step)
+        };
+        let forms = [
+            Form::Plane([q, q + right * step, q + up * step]),
+            side(-right * h, up),
+            side(right * h, up),
+            side(-up * v, right),
+            side(up * v, right),
+        ];
+        // Inside is where the centre of the picture is, beyond the near plane.
+        let inside = eye + forward * (2.0 * step);
+        let eye_point = Eye::Point(eye);
+        let mut planes = forms.map(|f| (f, Ordering::Equal));
+        for (form, sign) in &mut planes {
+            *sign = form.sign_at(&eye_point, &inside);
+            if *sign == Ordering::Equal {
+                return None;
+            }
+        }
+        Some(Clip {
+            planes,
+            eye,
+            forward,
+        })
+    }
+
+    /// The planes as forms along lines.
+    pub(crate) fn forms(&self) -> impl Iterator<Item = Form> + '_ {
+        self.planes.iter().map(|p| p.0)
+    }
+
+    /// Whether `x` lies strictly inside the frustum, decided exactly.
+    pub(crate) fn contains(&self, eye: &Eye, x: &Point3) -> bool {
+        self.planes
+            .iter()
+            .all(|(form, inside)| form.sign_at(eye, x) == *inside)
+    }
+
+    /// Whether the point `X(t) = a + t·(b − a)` lies strictly inside the frustum, exactly.
+    pub(crate) fn contains_along(&self, eye: &Eye, a: &Point3, b: &Point3, t: f64) -> bool {
+        self.planes
+            .iter()
+            .all(|(form, inside)| form.sign_along(eye, a, b, t) == *inside)
+    }
+
+    /// The depth of `x` as a polynomial: positive in front of the eye (the same form as the
+    /// picture's depth, so the same decisions).
+    fn depth(&self, x: &Point3) -> Side {
+        Side {
+            origin: self.eye,
+            normal: self.forward,
+            x: *x,
+        }
+    }
+
+    /// Whether `x` lies strictly in front of the eye, exactly.
+    pub(crate) fn in_front(&self, x: &Point3) -> bool {
+        self.depth(x).sign() == Ordering::Greater
+    }
+}
+
+/// Whether the point where the segment `cd` crosses the plane through the eye and the line
+/// `ab` lies strictly in front of the eye, given the sides `sc`, `sd` of `c` and `d` of that
+/// plane (opposite, or one of them zero). With `O(x) = orient3d(a, b, x, eye)` and depth `S`,
+/// the crossing is `X = (O(d)·c − O(c)·d) / (O(d) − O(c))`, so the sign of `S(X)` is that of
+/// `S(c)·O(d) − S(d)·O(c)` times that of `O(d) − O(c)`, which is `sd` (or `−sc`).
+pub(crate) fn contour_in_front(
+    near: &Clip,
+    eye: &Eye,
+    [a, b]: [&Point3; 2],
+    [c, d]: [&Point3; 2],
+    [sc, sd]: [Ordering; 2],
+) -> bool {
+    match (sc, sd) {
+        (Ordering::Equal, _) => near.in_front(c),
+        (_, Ordering::Equal) => near.in_front(d),
+        _ => {
+            let numerator = Difference(
+                Product(near.depth(c), eye.determinant(a, b, d)),
+                Product(near.depth(d), eye.determinant(a, b, c)),
+            );
+            let s = numerator.sign();
+            s != Ordering::Equal && s == sd
+        }
+    }
+}
