@@ -275,8 +275,8 @@ fn a_malformed_scene_fails_with_file_and_line() {
 
 #[test]
 fn an_unknown_mesh_format_fails_cleanly() {
-    let e = fails(&["bounds", "scene.ply"]);
-    assert!(e.starts_with("scene.ply: unknown mesh format"), "{e}");
+    let e = fails(&["bounds", "scene.3ds"]);
+    assert!(e.starts_with("scene.3ds: unknown mesh format"), "{e}");
 }
 
 #[test]

@@ -113,9 +113,17 @@ pub enum EdgeSelection {
     #[default]
     #[cfg_attr(feature = "cli", value(help = None::<&str>))]
     Feature,
-    /// Every edge (smooth ones too) with its hidden parts removed: a wireframe.
+    /// Every edge (smooth ones too) with its hidden parts removed: a wireframe. The diagonals
+    /// of polygons split because they are not exactly planar are drawn only where they are
+    /// feature edges.
     #[cfg_attr(feature = "cli", value(help = None::<&str>))]
     All,
+    /// Every edge of the input polygons, even between coplanar faces, with its hidden parts
+    /// removed (the wireframe of a polygon mesh): no diagonals of triangulated or split
+    /// polygons, no edges of dropped degenerate faces. Edges between coplanar faces are drawn
+    /// as smooth edges.
+    #[cfg_attr(feature = "cli", value(help = None::<&str>))]
+    Mesh,
 }
 
 /// The options of the hidden-line pass.
@@ -319,10 +327,11 @@ impl<'a> Pass<'a> {
                     .par_iter()
                     .map(|p| picture.point(p))
                     .collect();
-                (edges::classify(leaf.mesh, eye, crease_cos), pictures)
+                let edges = edges::classify(leaf.mesh, eye, crease_cos, options.edges);
+                (edges, pictures)
             })
             .collect();
-        let (mut flat, mut end_on, mut smooth_left_out) = (0, 0, 0);
+        let (mut flat, mut end_on, mut left_out) = (0, 0, 0);
         let mut by_class = [0usize; 5];
         for (leaf, ((edges, counts), pictures)) in self.leaves.iter_mut().zip(classified) {
             let mesh = leaf.mesh;
@@ -330,12 +339,11 @@ impl<'a> Pass<'a> {
             let first = self.lines.len();
             flat += counts.flat;
             end_on += counts.end_on;
+            left_out += counts.left_out;
+            for (total, n) in by_class.iter_mut().zip(counts.by_class) {
+                *total += n;
+            }
             for e in edges {
-                by_class[e.class as usize] += 1;
-                if e.class == EdgeClass::Smooth && options.edges == EdgeSelection::Feature {
-                    smooth_left_out += 1;
-                    continue;
-                }
                 let (a, b) = (e.a as usize, e.b as usize);
                 let back = e.class != EdgeClass::Boundary
                     && away.is_some_and(|away| {
@@ -366,10 +374,17 @@ impl<'a> Pass<'a> {
             count(EdgeClass::Crease),
             count(EdgeClass::Smooth)
         );
-        let smooth = if smooth_left_out > 0 {
-            format!(", {smooth_left_out} smooth edges not asked for (--edges all draws them)")
-        } else {
-            String::new()
+        let smooth = match (left_out, options.edges) {
+            (0, _) => String::new(),
+            (n, EdgeSelection::Feature) => {
+                format!(", {n} smooth edges not asked for (--edges all draws them)")
+            }
+            (n, EdgeSelection::All) => {
+                format!(", {n} smooth diagonals of split polygons (not polygon edges)")
+            }
+            (n, EdgeSelection::Mesh) => {
+                format!(", {n} diagonals of split polygons (not polygon edges)")
+            }
         };
         let skipped = format!(
             "{flat} edges between coplanar faces (no edge), {end_on} seen end-on (a point){smooth}"
