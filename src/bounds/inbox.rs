@@ -93,12 +93,15 @@ const SAFE: i32 = 150;
 /// inward where scaling back is not exact, and the box checked again exactly against the
 /// mesh (a box inside the inbox of the scaled mesh is inside the mesh when scaling was exact).
 fn scaled_inbox(mesh: &Mesh, e: i32) -> Option<Inbox> {
-    let factor = Vector3::repeat(1.0).map(|x| times_power_of_two(x, e));
-    if !factor.iter().all(|f| f.is_normal()) {
-        return None;
-    }
-    let m = nalgebra::Matrix4::new_nonuniform_scaling(&factor);
-    let scaled = mesh.transformed(&m).ok()?;
+    // Scaled vertex by vertex: a scaling matrix's determinant (`2^3e`) would overflow or
+    // underflow.
+    let vertices = mesh
+        .vertices()
+        .iter()
+        .map(|p| p.map(|c| times_power_of_two(c, e)))
+        .collect();
+    let faces = mesh.faces().iter().map(|f| f.vertices().to_vec()).collect();
+    let scaled = Mesh::from_polygons(vertices, faces).ok()?;
     // A scaling that lost bits (a mesh spanning more than the range of f64's exponents) can
     // change the mesh: no inbox then.
     if scaled.vertices().len() != mesh.vertices().len() || !scaled.is_solid() {
