@@ -158,6 +158,9 @@ pub(crate) fn classify(
             }
         })
         .collect();
+    if mesh.t_junctions() > 0 {
+        join_pieces(mesh, eye, &groups, &mut decided);
+    }
     let mut counts = EdgeCounts::default();
     for d in &decided {
         match d {
@@ -168,12 +171,14 @@ pub(crate) fn classify(
             }
             Err(Left::Flat) => counts.flat += 1,
             Err(Left::EndOn) => counts.end_on += 1,
+            Err(Left::Joined) => {}
         }
     }
+    let mut edges: Vec<MeshEdge> = decided.into_iter().filter_map(Result::ok).collect();
     if mesh.t_junctions() > 0 {
-        join_pieces(mesh, eye, &groups, &mut decided);
+        // In the order of their ends, as the edges of the mesh without the junctions are.
+        edges.sort_unstable_by_key(|e| key(e.a, e.b));
     }
-    let edges = decided.into_iter().filter_map(Result::ok).collect();
     (edges, counts)
 }
 
@@ -186,6 +191,8 @@ enum Left {
     EndOn,
     /// Of a class the selection leaves out.
     NotAsked(EdgeClass),
+    /// A piece of a side cut at T-junctions, joined into the edge of its first piece.
+    Joined,
 }
 
 /// Joins the consecutive pieces of each side cut at T-junctions that lie between the same two
@@ -273,7 +280,7 @@ fn join_pieces(mesh: &Mesh, eye: &Eye, groups: &[&[Side]], decided: &mut [Result
             if let Ok(e) = decided[g] {
                 ends.extend([e.a, e.b]);
             }
-            decided[g] = Err(Left::Flat);
+            decided[g] = Err(Left::Joined);
         }
         let along = |v: &u32| point(*v)[k];
         let low = ends
