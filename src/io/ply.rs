@@ -22,7 +22,7 @@
 //! assert_eq!(mesh.faces().len(), 1);
 //! ```
 
-use super::{FileError, Result, located, shortened};
+use super::{FileError, Result, located, quoted, shortened};
 use crate::geometry::Point3;
 use crate::mesh::{Mesh, Validation};
 use ply_rs_bw::parser::{ParseError, Parser, Reader};
@@ -113,9 +113,6 @@ pub fn parse_with(bytes: &[u8], path: &str, validation: Validation) -> Result<Me
                     message
                 },
             };
-            if let Some(message) = record.error {
-                return Err(error(message));
-            }
             match kind {
                 Kind::Vertex => {
                     let [Some(x), Some(y), Some(z)] = record.xyz else {
@@ -310,23 +307,37 @@ fn crate_error(path: &str, e: &ParseError, at: &str) -> FileError {
 }
 
 /// The parser's message on one line (it spreads the line it quotes over several), without its
-/// own "Line n:" prefix, and cut where it echoes long input.
+/// own "Line n:" prefix, and cut where it echoes long input. A line it could not parse is
+/// named with what was expected there instead of its grammar's internals.
 fn one_line(e: &ParseError) -> String {
     let text = e.to_string();
     let text = match (e.line(), text.split_once(": ")) {
         (Some(_), Some((prefix, rest))) if prefix.starts_with("Line ") => rest,
         _ => &text,
     };
-    shortened(&text.split_whitespace().collect::<Vec<_>>().join(" "))
+    let text = text.split_whitespace().collect::<Vec<_>>().join(" ");
+    let quoted_line = |after: &str| {
+        let (_, rest) = text.split_once(after)?;
+        let (line, _) = rest.rsplit_once("' Error:")?;
+        Some(quoted(line.trim()))
+    };
+    if let Some(line) = quoted_line("Couldn't parse element line. String: '") {
+        format!("{line} are not the numbers the header declares")
+    } else if let Some(line) = quoted_line("Couldn't parse line. String: '") {
+        format!(
+            "{line} is not a header line (ply, format, comment, obj_info, element, property or \
+             end_header)"
+        )
+    } else {
+        shortened(&text)
+    }
 }
 
-/// One element's values that kepler reads: the coordinates, the face's vertex list, and what
-/// is wrong with a property it needs.
+/// One element's values that kepler reads: the coordinates and the face's vertex list.
 #[derive(Debug, Default)]
 struct Record {
     xyz: [Option<f64>; 3],
     indices: Vec<i64>,
-    error: Option<String>,
 }
 
 impl Record {
