@@ -642,3 +642,78 @@ fn self_crossing_is_decided_exactly_at_every_scale() {
         "{crossing} crossing, {simple} simple"
     );
 }
+
+/// A polygon that is not exactly planar is split along the same diagonals however it is
+/// given: from any vertex, reversed, or mirrored.
+#[test]
+fn a_polygon_not_exactly_planar_is_split_the_same_way_however_given() {
+    let mut rng = Rng(1402);
+    let mut checked = 0;
+    for seed in 0..200 {
+        // A star-shaped polygon around the z axis, bent off its plane.
+        let n = 4 + rng.below(5);
+        let vertices: Vec<Point3> = (0..n)
+            .map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / n as f64;
+                let r = rng.range(0.5, 1.5);
+                p(r * a.cos(), r * a.sin(), rng.pick(&[0.0, 0.0, 1e-9, -3e-7]))
+            })
+            .collect();
+        // The vertex order in the list is shuffled, so the smallest index is anywhere.
+        let mut perm: Vec<u32> = (0..n as u32).collect();
+        for i in (1..n).rev() {
+            perm.swap(i, rng.below(i + 1));
+        }
+        let mut listed = vec![Point3::origin(); n];
+        for (i, &j) in perm.iter().enumerate() {
+            listed[j as usize] = vertices[i];
+        }
+        let face: Vec<u32> = perm.clone();
+        let Ok(m) = Mesh::from_polygons(listed.clone(), vec![face.clone()]) else {
+            continue;
+        };
+        if m.split_polygons() == 0 {
+            continue;
+        }
+        checked += 1;
+        // Each triangle as its vertex set, and whether it turns as the polygon does.
+        let triangles = |m: &Mesh| {
+            let mut t: Vec<[u32; 3]> = m
+                .triangles()
+                .iter()
+                .map(|t| {
+                    let mut s = *t;
+                    s.sort_unstable();
+                    s
+                })
+                .collect();
+            t.sort_unstable();
+            t
+        };
+        let want = triangles(&m);
+        let normal = |m: &Mesh| {
+            m.faces()
+                .iter()
+                .map(|f| f.plane().normal.z.signum())
+                .collect::<Vec<_>>()
+        };
+        assert!(normal(&m).iter().all(|&s| s == 1.0), "seed {seed}");
+        for shift in 0..n {
+            let mut rotated = face.clone();
+            rotated.rotate_left(shift);
+            let mut reversed = rotated.clone();
+            reversed.reverse();
+            let r = Mesh::from_polygons(listed.clone(), vec![rotated]).unwrap();
+            assert_eq!(triangles(&r), want, "seed {seed}, shift {shift}");
+            let r = Mesh::from_polygons(listed.clone(), vec![reversed.clone()]).unwrap();
+            assert_eq!(triangles(&r), want, "seed {seed}, shift {shift}, reversed");
+            assert!(normal(&r).iter().all(|&s| s == -1.0), "seed {seed}");
+            // Mirrored in x (and reversed, so that it still turns the same way seen from
+            // outside).
+            let mirrored: Vec<Point3> = listed.iter().map(|q| p(-q.x, q.y, q.z)).collect();
+            let r = Mesh::from_polygons(mirrored, vec![reversed]).unwrap();
+            assert_eq!(triangles(&r), want, "seed {seed}, shift {shift}, mirrored");
+        }
+    }
+    assert!(checked > 100, "{checked}");
+}

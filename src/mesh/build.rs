@@ -138,12 +138,40 @@ pub(crate) fn shape(
     axes[1..].sort_by(|&i, &j| n[j].abs().total_cmp(&n[i].abs()));
     let tris = axes
         .iter()
-        .find_map(|&axis| triangulate_along(&pts, axis).ok())
+        .find_map(|&axis| match off_plane {
+            None => triangulate_along(&pts, axis).ok(),
+            Some(_) => canonical_split(&idx, &pts, axis),
+        })
         .ok_or(MeshError::NotSimple { face: fi })?;
     Ok(match off_plane {
         None => Shape::Planar(idx, tris),
         Some(_) => Shape::Split(idx, tris),
     })
+}
+
+/// The triangles (indices into the loop `idx`, turning as it does) that split a polygon that
+/// is not exactly planar, in the projection along `axis`, or `None` if it is not simple there.
+/// The split is part of the surface, so it must not depend on how the polygon is given: it is
+/// made on the loop started at its smallest vertex index and run towards the smaller of that
+/// vertex's neighbours, so that the polygon given from another vertex, reversed, or mirrored
+/// (which reverses it) is split along the same diagonals.
+fn canonical_split(idx: &[u32], pts: &[Point3], axis: usize) -> Option<Vec<[usize; 3]>> {
+    let n = idx.len();
+    let start = (0..n).min_by_key(|&i| idx[i])?;
+    let forward = idx[(start + 1) % n] < idx[(start + n - 1) % n];
+    let order: Vec<usize> = (0..n)
+        .map(|k| if forward { start + k } else { start + n - k } % n)
+        .collect();
+    let canonical: Vec<Point3> = order.iter().map(|&i| pts[i]).collect();
+    let tris = triangulate_along(&canonical, axis).ok()?;
+    Some(
+        tris.into_iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|k| order[k]);
+                if forward { [a, b, c] } else { [a, c, b] }
+            })
+            .collect(),
+    )
 }
 
 /// The face with vertex loop `idx` (planar, not degenerate) and triangles `local` (indices
