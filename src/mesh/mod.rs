@@ -542,7 +542,11 @@ impl Mesh {
                     let n = v.len();
                     diagonals = (0..n.min(8)).fold(0, |bits, i| {
                         let old = if i + 1 < n { n - 2 - i } else { n - 1 };
-                        bits | ((f.diagonals >> old) & 1) << i
+                        if f.is_polygon_edge(old) {
+                            bits
+                        } else {
+                            bits | 1 << i
+                        }
                     });
                 }
                 (v, diagonals, f.polygon)
