@@ -1385,19 +1385,10 @@ fn touching_boxes_make_no_intersection_lines() {
 /// The unit cube's corners (index `x + 2y + 4z`), the midpoint of its edge from corner 0 to
 /// corner 1 (index 8), and its quads turned outward.
 fn cube_with_midpoint() -> (Vec<Point3>, Vec<Vec<u32>>) {
-    let mut v: Vec<Point3> = (0..8)
-        .map(|i| Point3::new((i & 1) as f64, (i >> 1 & 1) as f64, (i >> 2 & 1) as f64))
-        .collect();
+    let cube = solids::box_between([0.0; 3], [1.0; 3]).unwrap();
+    let mut v = cube.vertices().to_vec();
     v.push(Point3::new(0.5, 0.0, 0.0));
-    let faces = vec![
-        vec![0, 4, 6, 2],
-        vec![1, 3, 7, 5],
-        vec![0, 1, 5, 4],
-        vec![2, 6, 7, 3],
-        vec![0, 2, 3, 1],
-        vec![4, 5, 7, 6],
-    ];
-    (v, faces)
+    (v, cube.polygons())
 }
 
 /// Orthographic and perspective views from every side of the unit cube.

@@ -432,20 +432,9 @@ fn boxes_and_tetrahedra_are_the_same_mesh_at_every_power_of_two() {
         if (0..3).any(|k| lo[k] == hi[k]) {
             continue;
         }
-        let corners: Vec<Point3> = (0..8)
-            .map(|i| {
-                let c = |k: usize| if i & (1 << k) != 0 { hi[k] } else { lo[k] };
-                p(c(0), c(1), c(2))
-            })
-            .collect();
-        let quads = vec![
-            vec![0, 4, 6, 2],
-            vec![1, 3, 7, 5],
-            vec![0, 1, 5, 4],
-            vec![2, 6, 7, 3],
-            vec![0, 2, 3, 1],
-            vec![4, 5, 7, 6],
-        ];
+        // The library's box, taken apart into its corners and quads.
+        let b = kepler::solids::box_between([lo[0], lo[1], lo[2]], [hi[0], hi[1], hi[2]]).unwrap();
+        let (corners, quads) = (b.vertices().to_vec(), b.polygons());
         let m = same_at_every_scale(&corners, &quads, Validation::Strict, "box").unwrap();
         assert_eq!((m.faces().len(), m.split_polygons()), (6, 0));
         assert!(m.is_solid() && m.volume() > 0.0, "box {seed}");
