@@ -706,3 +706,36 @@ fn a_polygon_not_exactly_planar_is_split_the_same_way_however_given() {
     }
     assert!(checked > 100, "{checked}");
 }
+
+/// Scaling by a power of two with `Mesh::transformed` is exact and never singular: the
+/// determinant of `2^k` times the identity is not a double beyond `|k| > 341`, but its sign
+/// is decided exactly; a mirroring scale still turns the faces outward.
+#[test]
+fn transformed_by_any_power_of_two() {
+    let cube = kepler::solids::box_between([0.5, -0.25, 1.0], [2.0, 1.0, 3.0]).unwrap();
+    for k in [-1000, -700, -342, 342, 700, 1000] {
+        for sign in [1.0, -1.0] {
+            let m =
+                Matrix4::new_nonuniform_scaling(&(Vector3::new(sign, 1.0, 1.0) * ldexp(1.0, k)));
+            let t = cube.transformed(&m).unwrap();
+            let want: Vec<Point3> = cube
+                .vertices()
+                .iter()
+                .map(|q| p(sign * ldexp(q.x, k), ldexp(q.y, k), ldexp(q.z, k)))
+                .collect();
+            assert_eq!(t.vertices(), want.as_slice(), "2^{k}, sign {sign}");
+            assert!(t.is_solid(), "2^{k}, sign {sign}");
+            // Outward: the face of the largest x points along +x.
+            let top = t
+                .faces()
+                .iter()
+                .find(|f| {
+                    f.vertices()
+                        .iter()
+                        .all(|&v| t.vertices()[v as usize].x == want[1].x)
+                })
+                .unwrap();
+            assert_eq!(top.plane().normal.x, sign, "2^{k}, sign {sign}");
+        }
+    }
+}

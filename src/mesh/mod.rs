@@ -48,9 +48,11 @@ pub use topology::Topology;
 pub use tree::TriangleTree;
 
 use crate::geometry::Point3;
+use crate::geometry::predicates::orient3d;
 use build::{Shape, diagonals_of};
 pub(crate) use build::{largest_coordinate, normalising_exponent, times_power_of_two};
 use nalgebra::Matrix4;
+use std::cmp::Ordering;
 use topology::Junction;
 
 /// What [`Mesh::from_polygons_with`] does with input faces that are valid but not faces as
@@ -522,12 +524,23 @@ impl Mesh {
     /// let m = Matrix4::new_nonuniform_scaling(&nalgebra::Vector3::new(2.0, 3.0, -1.0));
     /// let t = c.transformed(&m).unwrap();
     /// assert!((t.volume() - 6.0).abs() < 1e-12);
+    /// // Scalings by large powers of two (whose determinant is not a double) are not singular.
+    /// let huge = c.transformed(&Matrix4::new_scaling(2f64.powi(-600))).unwrap();
+    /// let scaled = |x: f64| x * 2f64.powi(-600);
+    /// assert!(huge.vertices().iter().zip(c.vertices()).all(|(a, b)| *a == b.map(scaled)));
     /// ```
     pub fn transformed(&self, m: &Matrix4<f64>) -> Result<Mesh, MeshError> {
-        let det = m.fixed_view::<3, 3>(0, 0).determinant();
-        if !det.is_finite() || det == 0.0 || m.iter().any(|x| !x.is_finite()) {
+        if m.iter().any(|x| !x.is_finite()) {
             return Err(MeshError::SingularTransform);
         }
+        // The sign of the determinant of the linear part, exactly: a rounded determinant
+        // overflows or underflows for scalings by large powers of two.
+        let row = |i: usize| Point3::new(m[(i, 0)], m[(i, 1)], m[(i, 2)]);
+        let mirrors = match orient3d(&row(0), &row(1), &row(2), &Point3::origin()) {
+            Ordering::Greater => false,
+            Ordering::Less => true,
+            Ordering::Equal => return Err(MeshError::SingularTransform),
+        };
         let vertices = self.vertices.iter().map(|p| m.transform_point(p)).collect();
         let polygons = self
             .faces
@@ -535,7 +548,7 @@ impl Mesh {
             .map(|f| {
                 let mut v = f.vertices.clone();
                 let mut diagonals = f.diagonals;
-                if det < 0.0 {
+                if mirrors {
                     v.reverse();
                     // Side i of the reversed loop is side n - 2 - i of the loop, reversed
                     // (and the last side stays the last).
