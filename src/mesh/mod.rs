@@ -455,7 +455,9 @@ impl Mesh {
         // that the products neither overflow nor underflow; scaled back, the value may
         // overflow to an infinity of the right sign.
         let e = normalising_exponent(largest_coordinate(&self.vertices), 300);
-        let at = |i: u32| (self.vertices[i as usize] - o).map(|c| times_power_of_two(c, e));
+        let scaled = |p: &Point3| p.map(|c| times_power_of_two(c, e));
+        let o = scaled(o);
+        let at = |i: u32| scaled(&self.vertices[i as usize]) - o;
         let six_v: f64 = self
             .triangles
             .iter()
