@@ -42,7 +42,7 @@
 //!   seam), exact predicates, polygons, rays.
 //! - [`clip`]: boolean operations on polygons (intersection, difference, union), to an ulp.
 //! - [`mesh`]: validated polygon meshes (faces, planes, texture coordinate systems, topology).
-//! - [`io`]: mesh files (OBJ, STL, OFF) and point files.
+//! - [`io`]: mesh files (OBJ, STL, OFF, PLY) and point files.
 //! - [`solids`]: built-in closed solids (box, Platonic, Archimedean, prism, sphere, torus,
 //!   cylinder).
 //! - [`bounds`]: CBOX, INBOX and TRIBOX of one object.

@@ -275,8 +275,8 @@ fn a_malformed_scene_fails_with_file_and_line() {
 
 #[test]
 fn an_unknown_mesh_format_fails_cleanly() {
-    let e = fails(&["bounds", "scene.ply"]);
-    assert!(e.starts_with("scene.ply: unknown mesh format"), "{e}");
+    let e = fails(&["bounds", "scene.3ds"]);
+    assert!(e.starts_with("scene.3ds: unknown mesh format"), "{e}");
 }
 
 #[test]
@@ -1277,4 +1277,83 @@ fn render_verify_fails_on_a_disagreement() {
     );
     // The drawing is written all the same.
     assert!(std::fs::read_to_string(&svg).unwrap().contains("<svg"));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Issue 14: degenerate faces, polygons not exactly planar, `--strict`, `--edges mesh`, PLY.
+
+/// A unit cube as OBJ with a zero-area sliver along an edge, a face repeating a vertex, and
+/// its top quad bent by one ulp (not exactly planar), written to a temporary file.
+fn repaired_cube() -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("kepler-cli-issue14-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("repaired.obj");
+    let mut text = String::new();
+    for i in 0..8 {
+        let z = if i == 7 {
+            "1.0000000000000002"
+        } else {
+            ["0", "1"][i >> 2]
+        };
+        text += &format!("v {} {} {z}\n", i & 1, i >> 1 & 1);
+    }
+    text += "v 0.5 0 0\n";
+    for f in [
+        "1 5 7 3", "2 4 8 6", "1 2 6 5", "3 7 8 4", "1 3 4 2", "5 6 8 7", "1 9 2", "5 6 5",
+    ] {
+        text += &format!("f {f}\n");
+    }
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn render_stats_count_the_repairs_and_strict_refuses_them() {
+    let path = repaired_cube();
+    let file = path.to_str().unwrap();
+    let o = kepler(&["render", file, "-o", "-", "--stats", "--edges", "mesh"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).starts_with("<?xml") || stdout(&o).starts_with("<svg"));
+    let stats = stderr(&o);
+    assert!(
+        stats.contains(
+            "faces: 2 degenerate faces dropped, 1 polygons not exactly planar split into \
+             triangles, 0 sides matched at T-junctions (in 1 meshes)"
+        ),
+        "{stats}"
+    );
+    let e = fails(&["render", file, "-o", "-", "--strict"]);
+    assert!(e.ends_with("repaired.obj:15: face 6 is not planar: its corner 4 is off the plane of its first corners"), "{e}");
+    let e = fails(&["bounds", file, "--strict"]);
+    assert!(
+        e.ends_with(
+            ":15: face 6 is not planar: its corner 4 is off the plane of its first corners"
+        ),
+        "{e}"
+    );
+    let table = ok(&["bounds", file]);
+    assert!(
+        table.lines().nth(1).is_some_and(|l| l.contains(" yes ")),
+        "{table}"
+    );
+}
+
+#[test]
+fn an_unknown_scene_key_of_a_megabyte_is_not_echoed_whole() {
+    let dir = std::env::temp_dir().join(format!("kepler-cli-issue14-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("huge-key.toml");
+    let key = "k".repeat(1 << 20);
+    std::fs::write(
+        &path,
+        format!("[[object]]\nname = \"c\"\nsolid = \"cube\"\n{key} = 1\n"),
+    )
+    .unwrap();
+    let e = fails(&["bounds", path.to_str().unwrap()]);
+    assert!(
+        e.len() < 400 && e.contains(":4: unknown field `kkkk"),
+        "{} bytes: {}",
+        e.len(),
+        &e[..e.len().min(400)]
+    );
 }

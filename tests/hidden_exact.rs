@@ -1378,3 +1378,187 @@ fn touching_boxes_make_no_intersection_lines() {
         assert!(d.length(EdgeClass::Crease, true) > 0.0);
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// 7. Degenerate faces and polygon edges (issue 14).
+
+/// The unit cube's corners (index `x + 2y + 4z`), the midpoint of its edge from corner 0 to
+/// corner 1 (index 8), and its quads turned outward.
+fn cube_with_midpoint() -> (Vec<Point3>, Vec<Vec<u32>>) {
+    let cube = solids::box_between([0.0; 3], [1.0; 3]).unwrap();
+    let mut v = cube.vertices().to_vec();
+    v.push(Point3::new(0.5, 0.0, 0.0));
+    (v, cube.polygons())
+}
+
+/// Orthographic and perspective views from every side of the unit cube.
+fn views_around_the_cube() -> Vec<View> {
+    let mut views = Vec::new();
+    for (i, d) in [
+        [-1.0, -2.0, -3.0],
+        [1.0, 2.0, -3.0],
+        [-2.0, 1.0, 3.0],
+        [3.0, -1.0, 2.0],
+        [0.0, 1.0, 0.0],
+        [0.0, -1.0, 1.0],
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let d = Vector3::from(d);
+        let up = if d.x == 0.0 && d.y == 0.0 {
+            Vector3::x()
+        } else {
+            Vector3::z()
+        };
+        views.push(View::orthographic(d, up).unwrap());
+        let eye = Point3::new(0.5, 0.5, 0.5) - d * (2.0 + i as f64);
+        views.push(View::perspective(eye, Point3::new(0.5, 0.5, 0.5), up, 50.0).unwrap());
+    }
+    views
+}
+
+fn drawing_of(
+    vertices: Vec<Point3>,
+    faces: Vec<Vec<u32>>,
+    view: &View,
+    edges: EdgeSelection,
+) -> Drawing {
+    let mut scene = Scene::new();
+    scene
+        .add_mesh(None, "m", Mesh::from_polygons(vertices, faces).unwrap())
+        .unwrap();
+    let options = Options {
+        edges,
+        hidden: true,
+        ..Options::default()
+    };
+    draw(&scene, view, &options).unwrap()
+}
+
+/// Visibility, class and points of each polyline, in order.
+fn lines(d: &Drawing) -> Vec<(EdgeClass, bool, Vec<[f64; 2]>)> {
+    d.polylines
+        .iter()
+        .map(|p| (p.class, p.visible, p.points.clone()))
+        .collect()
+}
+
+/// A cube with a zero-area sliver triangle along an edge draws exactly as the cube: the
+/// sliver alone, the sliver with the edge's midpoint also in one neighbouring face (a
+/// T-junction once the sliver is dropped), and faces repeating a vertex.
+#[test]
+fn a_cube_with_a_sliver_along_an_edge_draws_as_the_cube() {
+    let (v, cube) = cube_with_midpoint();
+    let mut sliver = cube.clone();
+    sliver.push(vec![0, 8, 1]);
+    let mut junction = cube.clone();
+    junction[2] = vec![0, 8, 1, 5, 4];
+    junction.push(vec![1, 8, 0]);
+    let mut repeated = junction.clone();
+    repeated.push(vec![4, 5, 4]);
+    repeated.push(vec![3, 7, 7, 3]);
+    let variants = [
+        ("sliver", sliver),
+        ("junction", junction),
+        ("repeated", repeated),
+    ];
+    for (name, faces) in &variants {
+        let m = Mesh::from_polygons(v.clone(), faces.clone()).unwrap();
+        assert!(m.is_solid(), "{name}");
+        assert_eq!(m.topology().boundary_edges, 0, "{name}");
+        assert!(m.degenerate_faces() >= 1, "{name}");
+    }
+    let corners = v[..8].to_vec();
+    for (i, view) in views_around_the_cube().iter().enumerate() {
+        for edges in [
+            EdgeSelection::Feature,
+            EdgeSelection::All,
+            EdgeSelection::Mesh,
+        ] {
+            let want = lines(&drawing_of(corners.clone(), cube.clone(), view, edges));
+            assert!(!want.is_empty());
+            for (name, faces) in &variants {
+                let got = lines(&drawing_of(v.clone(), faces.clone(), view, edges));
+                assert_eq!(got, want, "{name}, view {i}, {edges:?}");
+            }
+        }
+    }
+}
+
+/// `--edges mesh` draws every polygon edge, even between coplanar faces: a cube whose quads
+/// are given as two triangles each draws as the quad cube with `feature` and `all` (the
+/// diagonals join coplanar faces), and with `mesh` adds the six diagonals as smooth edges,
+/// the visible ones exactly on the pictures of the front faces' diagonals.
+#[test]
+fn edges_mesh_draws_the_edges_between_coplanar_polygons() {
+    let (v, cube) = cube_with_midpoint();
+    let triangles: Vec<Vec<u32>> = cube
+        .iter()
+        .flat_map(|q| [vec![q[0], q[1], q[2]], vec![q[0], q[2], q[3]]])
+        .collect();
+    let view = View::orthographic(Vector3::new(-1.0, -2.0, -3.0), Vector3::z()).unwrap();
+    let rv = RefView::new(&view);
+    for edges in [EdgeSelection::Feature, EdgeSelection::All] {
+        assert_eq!(
+            lines(&drawing_of(v.clone(), triangles.clone(), &view, edges)),
+            lines(&drawing_of(v.clone(), cube.clone(), &view, edges)),
+            "{edges:?}"
+        );
+    }
+    let quads = lines(&drawing_of(
+        v.clone(),
+        cube.clone(),
+        &view,
+        EdgeSelection::Mesh,
+    ));
+    assert_eq!(
+        quads,
+        lines(&drawing_of(
+            v.clone(),
+            cube.clone(),
+            &view,
+            EdgeSelection::All
+        ))
+    );
+    let d = lines(&drawing_of(
+        v.clone(),
+        triangles,
+        &view,
+        EdgeSelection::Mesh,
+    ));
+    let (smooth, rest): (Vec<_>, Vec<_>) = d.into_iter().partition(|l| l.0 == EdgeClass::Smooth);
+    assert_eq!(rest, quads);
+    // Looking along (-1, -2, -3), the eye sees the faces x = 1, y = 1 and z = 1: faces 1, 3
+    // and 5, whose diagonals run from corner q[0] to corner q[2].
+    let picture = |i: u32| f2(&rv.picture(&qp(&v[i as usize])));
+    let mut want: Vec<[[f64; 2]; 2]> = [1, 3, 5]
+        .iter()
+        .map(|&f| [picture(cube[f][0]), picture(cube[f][2])])
+        .collect();
+    let mut visible: Vec<[[f64; 2]; 2]> = smooth
+        .iter()
+        .filter(|l| l.1)
+        .flat_map(|l| l.2.windows(2).map(|w| [w[0], w[1]]).collect::<Vec<_>>())
+        .collect();
+    for s in want.iter_mut().chain(visible.iter_mut()) {
+        s.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    }
+    want.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    visible.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    for (got, want) in visible.iter().zip(&want) {
+        for k in 0..2 {
+            for c in 0..2 {
+                assert!(
+                    (got[k][c] - want[k][c]).abs() <= 1e-15,
+                    "{got:?} vs {want:?}"
+                );
+            }
+        }
+    }
+    assert_eq!(visible.len(), 3, "{visible:?}");
+    assert!(
+        smooth.iter().any(|l| !l.1),
+        "the back diagonals are drawn hidden"
+    );
+}

@@ -11,7 +11,8 @@ use proptest::prelude::*;
 /// The exact certificate: every corner of the box is inside or on the object, the centre is
 /// strictly inside, and no triangle of the object meets the box's open interior.
 fn assert_inside(mesh: &Mesh, b: &Aabb, what: &str) {
-    assert!(b.volume() > 0.0, "{what}: empty inbox");
+    // Each side, not the volume, which underflows for tiny boxes.
+    assert!((0..3).all(|k| b.min[k] < b.max[k]), "{what}: empty inbox");
     for c in b.corners() {
         let at = classify_point_brute_force(mesh, &c);
         assert_ne!(at, Containment::Outside, "{what}: corner {c:?} is outside");
@@ -172,5 +173,73 @@ proptest! {
         let i = inbox(&mesh).unwrap();
         prop_assert_eq!(i.method, InboxMethod::Kernel);
         assert_inside(&mesh, &i.aabb, Polyhedron::ALL[which].name());
+    }
+}
+
+/// `x · 2^k` for `|k| ≤ 2046`, exactly when the result is normal.
+fn ldexp(x: f64, k: i32) -> f64 {
+    let half = k / 2;
+    x * 2f64.powi(half) * 2f64.powi(k - half)
+}
+
+/// The mesh with every vertex scaled by `2^k` (its faces as they are).
+fn scaled_mesh(mesh: &Mesh, k: i32) -> Mesh {
+    let vertices = mesh
+        .vertices()
+        .iter()
+        .map(|p| p.map(|c| ldexp(c, k)))
+        .collect();
+    let faces = mesh.faces().iter().map(|f| f.vertices().to_vec()).collect();
+    Mesh::from_polygons(vertices, faces).unwrap()
+}
+
+/// Building the INBOX of a valid mesh scaled by any power of two does not panic (near 1e77 the
+/// R-tree's nearest-neighbour search met infinite distances), and the box is certified inside
+/// the scaled mesh, at both ends of the range of normal coordinates.
+#[test]
+fn the_inbox_exists_at_every_power_of_two() {
+    let shapes: Vec<(&str, Mesh)> = vec![
+        (
+            "box",
+            solids::box_between([0.0; 3], [1.0, 1.5, 0.7]).unwrap(),
+        ),
+        ("octahedron", solids::octahedron(1.3).unwrap()),
+        ("sphere", solids::uv_sphere(0.9, 12, 6).unwrap()),
+        (
+            "L prism",
+            solids::prism(
+                &geo::Polygon::new(
+                    geo::LineString::from(vec![
+                        (0.0, 0.0),
+                        (6.0, 0.0),
+                        (6.0, 1.0),
+                        (1.0, 1.0),
+                        (1.0, 4.0),
+                        (0.0, 4.0),
+                    ]),
+                    vec![],
+                ),
+                3.0,
+            )
+            .unwrap(),
+        ),
+    ];
+    for (name, mesh) in &shapes {
+        // 1e77 is about 2^256; coordinates stay below 2^1023 and above 2^-1022 (the smallest
+        // nonzero coordinates of these solids are above 2^-4).
+        for k in [
+            -1010, -1000, -700, -256, -151, -150, 150, 151, 250, 256, 257, 500, 1000, 1017,
+        ] {
+            let scaled = scaled_mesh(mesh, k);
+            let what = format!("{name} scaled by 2^{k}");
+            let b = inbox(&scaled).unwrap_or_else(|| panic!("{what}: no inbox"));
+            assert_inside(&scaled, &b.aabb, &what);
+            // At least a tenth of the unscaled inbox, scaled.
+            let unit = inbox(mesh).unwrap().aabb;
+            let ratio = (0..3)
+                .map(|i| (b.aabb.max[i] - b.aabb.min[i]) / ldexp(unit.max[i] - unit.min[i], k))
+                .product::<f64>();
+            assert!(ratio > 0.1, "{what}: inbox {:?} vs {unit:?}", b.aabb);
+        }
     }
 }

@@ -308,7 +308,8 @@ fn instance_vertices_are_the_matrix_applied_once() {
         let m = t.matrix();
         let (from, to) = (mesh_of(&s, src), mesh_of(&s, b));
         assert_eq!(to.vertices().len(), from.vertices().len(), "{what}");
-        assert_eq!(to.faces().len(), from.faces().len(), "{what}");
+        // A rotation can leave polygons not exactly planar: split, they are still polygons.
+        assert_eq!(to.polygons().len(), from.polygons().len(), "{what}");
         for (i, (p, q)) in from.vertices().iter().zip(to.vertices()).enumerate() {
             assert_eq!(*q, m.transform_point(p), "{what}: vertex {i}");
         }
@@ -688,7 +689,8 @@ fn flattening_keeps_every_face_and_the_volume() {
         .unwrap();
     let flat = s.flatten(g).unwrap();
     assert_eq!(flat.faces().len(), s.face_count(g));
-    assert_eq!(flat.faces().len(), 502 + 72);
+    // Polygons that rounding left not exactly planar are split into triangle faces.
+    assert_eq!(flat.polygons().len(), 502 + 72);
     // The solids are apart: no vertex is shared.
     assert_eq!(flat.vertices().len(), s.vertex_count(g));
     assert_no_duplicate_vertices(&flat);

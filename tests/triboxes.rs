@@ -510,7 +510,7 @@ fn tribox_meshes_are_closed_and_match_the_bounds() {
             let m = tribox_mesh(&n.tribox, h.simplify_tolerance()).unwrap();
             assert!(m.is_solid());
             assert!(((m.volume() - n.volume) / n.volume).abs() < 1e-6);
-            assert_eq!(m.faces().len(), n.faces);
+            assert_eq!(m.polygons().len(), n.faces);
             // Simplifying moves planes outward only.
             let b = TriboxBounds::from_points(m.vertices());
             assert!((0..9).all(|d| b.max()[d] >= n.tribox.max()[d] - 1e-9));

@@ -22,7 +22,10 @@
 
 use crate::geometry::predicates::{orient2d, orient3d, project, triangle_meets_open_box};
 use crate::geometry::{Aabb, Point3, Vector3};
-use crate::mesh::{Containment, Mesh, TriangleTree, classify_point};
+use crate::mesh::{
+    Containment, Mesh, TriangleTree, classify_point, largest_coordinate, normalising_exponent,
+    times_power_of_two,
+};
 use nalgebra::{Matrix6, Vector6};
 use serde::Serialize;
 use std::cmp::Ordering;
@@ -73,6 +76,67 @@ pub fn inbox(mesh: &Mesh) -> Option<Inbox> {
     if !mesh.is_solid() {
         return None;
     }
+    // Very large or very small coordinates: the box of the mesh scaled by a power of two
+    // (exactly) towards unit size, scaled back and checked again.
+    match normalising_exponent(largest_coordinate(mesh.vertices()), SAFE) {
+        0 => unscaled_inbox(mesh),
+        e => scaled_inbox(mesh, e),
+    }
+}
+
+/// Meshes whose largest coordinate magnitude lies in `[2^-SAFE, 2^SAFE]` are boxed as they
+/// are: the volumes, squared distances and Newton steps of the constructions stay finite and
+/// normal.
+const SAFE: i32 = 150;
+
+/// The inbox of `mesh` computed on the mesh scaled by `2^e`, scaled back: each side moved
+/// inward where scaling back is not exact, and the box checked again exactly against the
+/// mesh (a box inside the inbox of the scaled mesh is inside the mesh when scaling was exact).
+fn scaled_inbox(mesh: &Mesh, e: i32) -> Option<Inbox> {
+    // Scaled vertex by vertex: a scaling matrix's determinant (`2^3e`) would overflow or
+    // underflow.
+    let vertices = mesh
+        .vertices()
+        .iter()
+        .map(|p| p.map(|c| times_power_of_two(c, e)))
+        .collect();
+    let faces = mesh.faces().iter().map(|f| f.vertices().to_vec()).collect();
+    let scaled = Mesh::from_polygons(vertices, faces).ok()?;
+    // A scaling that lost bits (a mesh spanning more than the range of f64's exponents) can
+    // change the mesh: no inbox then.
+    if scaled.vertices().len() != mesh.vertices().len() || !scaled.is_solid() {
+        return None;
+    }
+    let found = unscaled_inbox(&scaled)?;
+    let back = |x: f64, up: bool| {
+        let y = times_power_of_two(x, -e);
+        let again = times_power_of_two(y, e);
+        match (again == x, up) {
+            (true, _) => y,
+            (false, true) if again > x => y.next_down(),
+            (false, false) if again < x => y.next_up(),
+            _ => y,
+        }
+    };
+    let aabb = Aabb {
+        min: found.aabb.min.map(|x| back(x, false)),
+        max: found.aabb.max.map(|x| back(x, true)),
+    };
+    let tree = TriangleTree::new(mesh);
+    let inside = (0..3).all(|k| aabb.min[k] < aabb.max[k])
+        && classify_point(
+            &tree,
+            &Point3::from([0, 1, 2].map(|k| aabb.min[k] / 2.0 + aabb.max[k] / 2.0)),
+        ) == Containment::Inside
+        && clear(&tree, &aabb);
+    inside.then_some(Inbox {
+        aabb,
+        method: found.method,
+    })
+}
+
+/// [`inbox`] of a mesh of moderate coordinates.
+fn unscaled_inbox(mesh: &Mesh) -> Option<Inbox> {
     let cbox = Aabb::from_points(mesh.vertices());
     if cbox.volume() <= 0.0 {
         return None;

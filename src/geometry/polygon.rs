@@ -65,12 +65,12 @@ pub fn dominant_axis(normal: &Vector3) -> usize {
 pub struct NotSimple;
 
 /// Triangulates a simple polygon (convex or not) whose vertex order turns counter-clockwise
-/// around `normal`, returning index triples into `points` with the same orientation.
+/// around `normal`, returning index triples into `points` with the same orientation: the
+/// triangulation of [`triangulate_along`] the axis of `normal`'s largest component
+/// ([`dominant_axis`]).
 ///
-/// Strictly convex polygons get a fan from the first vertex; others are cut into ears in the
-/// projection that drops [`dominant_axis`]. Every decision is an exact `orient2d`, so the
-/// triangles cover the polygon exactly. Written by hand because geo's spade triangulation
-/// snaps vertices within an absolute radius and its earcut uses inexact tests.
+/// Written by hand because geo's spade triangulation snaps vertices within an absolute radius
+/// and its earcut uses inexact tests.
 ///
 /// ```
 /// use kepler::geometry::{Point3, polygon::{newell_normal, triangulate}};
@@ -81,18 +81,57 @@ pub struct NotSimple;
 /// assert_eq!(tris.len(), 4);
 /// ```
 pub fn triangulate(points: &[Point3], normal: &Vector3) -> Result<Vec<[usize; 3]>, NotSimple> {
+    triangulate_along(points, dominant_axis(normal))
+}
+
+/// Triangulates the polygon `points` in its projection that drops coordinate `axis`, when that
+/// projection is a simple polygon (distinct points, no two edges meeting but neighbours at
+/// their common end); the triangles turn the way the projected polygon does. Every decision is
+/// an exact `orient2d` on input coordinates, so the triangles cover the projection exactly.
+///
+/// Strictly convex projections get a fan from the first vertex; others are cut into ears. The
+/// polygon need not be planar: over a simple projection its triangles make a surface that does
+/// not cross itself.
+///
+/// ```
+/// use kepler::geometry::{Point3, polygon::triangulate_along};
+/// // A quad folded along a diagonal is simple seen along z (axis 2), a segment along y.
+/// let q = [
+///     Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0),
+///     Point3::new(1.0, 1.0, 1e-12), Point3::new(0.0, 1.0, 0.0),
+/// ];
+/// assert_eq!(triangulate_along(&q, 2).unwrap(), vec![[0, 1, 2], [0, 2, 3]]);
+/// assert!(triangulate_along(&q, 0).is_err());
+/// ```
+pub fn triangulate_along(points: &[Point3], axis: usize) -> Result<Vec<[usize; 3]>, NotSimple> {
     let n = points.len();
     if n < 3 {
         return Err(NotSimple);
     }
-    let axis = dominant_axis(normal);
-    // Orientations in the projection carry the sign of the dropped normal component.
-    let want = if normal[axis] >= 0.0 {
-        Ordering::Greater
-    } else {
-        Ordering::Less
-    };
-    let p: Vec<[f64; 2]> = points.iter().map(|q| project(q, axis)).collect();
+    // Adding +0.0 turns -0.0 into +0.0, so equal points sort next to each other.
+    let p: Vec<[f64; 2]> = points
+        .iter()
+        .map(|q| project(q, axis).map(|c| c + 0.0))
+        .collect();
+    let mut sorted = p.clone();
+    sorted.sort_unstable_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
+    if sorted.windows(2).any(|w| w[0] == w[1]) {
+        return Err(NotSimple);
+    }
+    // The lowest vertex (then leftmost) is convex in a simple polygon, so the turn there is
+    // the polygon's orientation; a straight turn there folds back (or all points are on a
+    // line).
+    let low = (0..n)
+        .min_by(|&i, &j| {
+            p[i][1]
+                .total_cmp(&p[j][1])
+                .then(p[i][0].total_cmp(&p[j][0]))
+        })
+        .ok_or(NotSimple)?;
+    let want = orient2d(p[(low + n - 1) % n], p[low], p[(low + 1) % n]);
+    if want == Ordering::Equal {
+        return Err(NotSimple);
+    }
     if n == 3 {
         return Ok(vec![[0, 1, 2]]);
     }

@@ -1,14 +1,22 @@
 //! The edges of a mesh, each once, and their classes in a view.
 //!
-//! An edge is a side of a polygon face (the diagonals of a face's triangulation are not
-//! edges). Its class depends on the view only through exact signs: the side of the picture of
-//! the edge on which each of its faces lies (`orient3d` of the edge, the face's third vertex
-//! and the eye). Two faces on the same side make a silhouette whatever their orientation, so
-//! an inside-out or inconsistently oriented mesh draws as the correct one does. Coplanar
+//! An edge is a side of a face (the diagonals of a face's triangulation are not edges); the
+//! faces of a polygon that was split into triangles because it is not exactly planar meet
+//! along its diagonals, which are edges like any other but not edges of the input polygon.
+//! Its class depends on the view only through exact signs: the side of the picture of the
+//! edge on which each of its faces lies (`orient3d` of the edge, the face's third vertex and
+//! the eye). Two faces on the same side make a silhouette whatever their orientation, so an
+//! inside-out or inconsistently oriented mesh draws as the correct one does. Coplanar
 //! neighbours (decided exactly) share no edge at all, so a triangulated flat face draws as one
 //! polygon. Only the crease angle is a measurement (a user's threshold, not a sign).
+//!
+//! A side with vertices of the mesh lying exactly inside it (a T-junction, as where a sliver
+//! face was dropped) is matched piecewise with the sides that cover it; consecutive pieces
+//! between the same two surfaces (the same triangle on one side, coplanar faces turned the
+//! same way on the other) draw as one edge, so the mesh draws as it would without the
+//! junction.
 
-use super::EdgeClass;
+use super::{EdgeClass, EdgeSelection};
 use crate::geometry::predicates::{orient2d, orient3d, project};
 use crate::geometry::{Point3, Vector3};
 use crate::mesh::Mesh;
@@ -29,46 +37,76 @@ pub(crate) struct MeshEdge {
     pub triangles: [u32; 2],
 }
 
-/// What [`classify`] found besides the edges.
+/// What [`classify`] found besides the edges it returns.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub(crate) struct EdgeCounts {
     /// Edges between coplanar faces, which are not edges of the drawing.
     pub flat: usize,
     /// Edges seen end-on (pointing at the eye), whose picture is a point.
     pub end_on: usize,
+    /// Edges classified but not asked for by the selection.
+    pub left_out: usize,
+    /// The edges classified, by class (those left out included).
+    pub by_class: [usize; 5],
 }
 
-/// A face's side of an edge: the face and its triangle's vertex off the edge.
+/// A face's side of an edge: the face's triangle with that side, its vertex off the edge, and
+/// whether the side is an edge of the input polygon.
 #[derive(Debug, Clone, Copy)]
 struct Side {
     key: u64,
     third: u32,
     triangle: u32,
+    polygon_edge: bool,
 }
 
-/// Every edge of `mesh` with its class as seen from `eye`; `crease_cos` is `-cos` of the
-/// crease angle (an edge is a crease when the cosine of the angle between its faces exceeds
-/// it). Coplanar and end-on edges are left out and counted.
-pub(crate) fn classify(mesh: &Mesh, eye: &Eye, crease_cos: f64) -> (Vec<MeshEdge>, EdgeCounts) {
+/// The undirected key of the edge `pq`.
+fn key(p: u32, q: u32) -> u64 {
+    (u64::from(p.min(q)) << 32) | u64::from(p.max(q))
+}
+
+/// Every edge of `mesh` that `selection` draws, with its class as seen from `eye`;
+/// `crease_cos` is `-cos` of the crease angle (an edge is a crease when the cosine of the
+/// angle between its faces exceeds it). Coplanar (except polygon edges for
+/// [`EdgeSelection::Mesh`], drawn as smooth edges), end-on and unselected edges are left out
+/// and counted.
+pub(crate) fn classify(
+    mesh: &Mesh,
+    eye: &Eye,
+    crease_cos: f64,
+    selection: EdgeSelection,
+) -> (Vec<MeshEdge>, EdgeCounts) {
     let triangles = mesh.triangles();
     let mut sides: Vec<Side> = mesh
         .faces()
         .par_iter()
-        .flat_map_iter(|face| {
+        .enumerate()
+        .flat_map_iter(|(f, face)| {
             let v = face.vertices();
-            (0..v.len()).filter_map(move |i| {
+            (0..v.len()).flat_map(move |i| {
                 let (p, q) = (v[i], v[(i + 1) % v.len()]);
                 // The triangle of the face's triangulation that has this side.
-                face.triangle_range().find_map(|t| {
+                let side = face.triangle_range().find_map(|t| {
                     let tri = triangles[t];
                     if !(tri.contains(&p) && tri.contains(&q)) {
                         return None;
                     }
                     let third = tri.iter().copied().find(|&w| w != p && w != q)?;
                     Some(Side {
-                        key: (u64::from(p.min(q)) << 32) | u64::from(p.max(q)),
+                        key: key(p, q),
                         third,
                         triangle: t as u32,
+                        polygon_edge: face.is_polygon_edge(i),
+                    })
+                });
+                let inner = side.and(mesh.side_junctions(f, i)).unwrap_or_default();
+                let pieces = std::iter::once(p)
+                    .chain(inner.iter().copied())
+                    .zip(inner.iter().copied().chain(std::iter::once(q)));
+                pieces.filter_map(move |(a, b)| {
+                    side.map(|s| Side {
+                        key: key(a, b),
+                        ..s
                     })
                 })
             })
@@ -77,7 +115,7 @@ pub(crate) fn classify(mesh: &Mesh, eye: &Eye, crease_cos: f64) -> (Vec<MeshEdge
     sides.par_sort_unstable_by_key(|s| s.key);
     let groups: Vec<&[Side]> = sides.chunk_by(|x, y| x.key == y.key).collect();
     let vertices = mesh.vertices();
-    let decided: Vec<Result<MeshEdge, Left>> = groups
+    let mut decided: Vec<Result<MeshEdge, Left>> = groups
         .par_iter()
         .map(|group| {
             let (a, b) = ((group[0].key >> 32) as u32, group[0].key as u32);
@@ -96,24 +134,50 @@ pub(crate) fn classify(mesh: &Mesh, eye: &Eye, crease_cos: f64) -> (Vec<MeshEdge
                     eye,
                 )),
             };
-            class.map_or(Err(Left::Flat), |class| {
-                Ok(MeshEdge {
-                    a,
-                    b,
-                    class,
-                    triangles: [group[0].triangle, group[group.len().min(2) - 1].triangle],
-                })
-            })
+            let polygon_edge = group.iter().any(|s| s.polygon_edge);
+            let class = match class {
+                Some(class) => class,
+                None if selection == EdgeSelection::Mesh && polygon_edge => EdgeClass::Smooth,
+                None => return Err(Left::Flat),
+            };
+            let drawn = match selection {
+                EdgeSelection::Feature => class != EdgeClass::Smooth,
+                EdgeSelection::All => class != EdgeClass::Smooth || polygon_edge,
+                EdgeSelection::Mesh => polygon_edge,
+            };
+            let edge = MeshEdge {
+                a,
+                b,
+                class,
+                triangles: [group[0].triangle, group[group.len().min(2) - 1].triangle],
+            };
+            if drawn {
+                Ok(edge)
+            } else {
+                Err(Left::NotAsked(class))
+            }
         })
         .collect();
+    if mesh.t_junctions() > 0 {
+        join_pieces(mesh, eye, &groups, &mut decided);
+    }
     let mut counts = EdgeCounts::default();
-    let mut edges = Vec::with_capacity(decided.len());
-    for d in decided {
+    for d in &decided {
         match d {
-            Ok(e) => edges.push(e),
+            Ok(e) => counts.by_class[e.class as usize] += 1,
+            Err(Left::NotAsked(class)) => {
+                counts.by_class[*class as usize] += 1;
+                counts.left_out += 1;
+            }
             Err(Left::Flat) => counts.flat += 1,
             Err(Left::EndOn) => counts.end_on += 1,
+            Err(Left::Joined) => {}
         }
+    }
+    let mut edges: Vec<MeshEdge> = decided.into_iter().filter_map(Result::ok).collect();
+    if mesh.t_junctions() > 0 {
+        // In the order of their ends, as the edges of the mesh without the junctions are.
+        edges.sort_unstable_by_key(|e| key(e.a, e.b));
     }
     (edges, counts)
 }
@@ -125,6 +189,123 @@ enum Left {
     Flat,
     /// Seen end-on.
     EndOn,
+    /// Of a class the selection leaves out.
+    NotAsked(EdgeClass),
+    /// A piece of a side cut at T-junctions, joined into the edge of its first piece.
+    Joined,
+}
+
+/// Joins the consecutive pieces of each side cut at T-junctions that lie between the same two
+/// surfaces into one edge: the same class, the side's own triangle on one side, and on the
+/// other coplanar triangles on the same side of the edge, turned the same way in the view. The
+/// joined edge replaces the first piece; the others are left out.
+fn join_pieces(mesh: &Mesh, eye: &Eye, groups: &[&[Side]], decided: &mut [Result<MeshEdge, Left>]) {
+    let group_of = |p: u32, q: u32| groups.binary_search_by_key(&key(p, q), |g| g[0].key).ok();
+    let vertices = mesh.vertices();
+    let point = |v: u32| &vertices[v as usize];
+    // Union-find over the groups: each joined run points at its first piece.
+    let mut parent: Vec<usize> = (0..groups.len()).collect();
+    fn root(parent: &mut [usize], mut g: usize) -> usize {
+        while parent[g] != g {
+            parent[g] = parent[parent[g]];
+            g = parent[g];
+        }
+        g
+    }
+    for (f, face) in mesh.faces().iter().enumerate() {
+        let v = face.vertices();
+        for i in 0..v.len() {
+            let Some(inner) = mesh.side_junctions(f, i) else {
+                continue;
+            };
+            let (p, q) = (v[i], v[(i + 1) % v.len()]);
+            let ends: Vec<u32> = std::iter::once(p)
+                .chain(inner.iter().copied())
+                .chain(std::iter::once(q))
+                .collect();
+            for w in ends.windows(3) {
+                let (Some(g1), Some(g2)) = (group_of(w[0], w[1]), group_of(w[1], w[2])) else {
+                    continue;
+                };
+                let (Ok(e1), Ok(e2)) = (&decided[g1], &decided[g2]) else {
+                    continue;
+                };
+                if e1.class != e2.class || groups[g1].len() != 2 || groups[g2].len() != 2 {
+                    continue;
+                }
+                // The triangle both pieces share (this side's), and the other of each.
+                let shared = groups[g1].iter().find_map(|s| {
+                    groups[g2]
+                        .iter()
+                        .any(|t| t.triangle == s.triangle)
+                        .then_some(s.triangle)
+                });
+                let Some(shared) = shared else {
+                    continue;
+                };
+                let other = |g: usize| groups[g].iter().find(|s| s.triangle != shared);
+                let (Some(o1), Some(o2)) = (other(g1), other(g2)) else {
+                    continue;
+                };
+                let (a, b) = (point(w[0]), point(w[2]));
+                let (c1, c2) = (point(o1.third), point(o2.third));
+                let turned = |t: u32| {
+                    let [x, y, z] = mesh.triangle(t as usize);
+                    eye.orient3d(&x, &y, &z)
+                };
+                if same_half_plane(a, b, c1, c2) && turned(o1.triangle) == turned(o2.triangle) {
+                    let (r1, r2) = (root(&mut parent, g1), root(&mut parent, g2));
+                    parent[r2] = r1;
+                }
+            }
+        }
+    }
+    // Each run becomes its first piece stretched to the run's extreme ends, along a
+    // coordinate in which the run's (collinear) ends differ.
+    let mut runs: Vec<(usize, usize)> = (0..groups.len())
+        .filter(|&g| decided[g].is_ok())
+        .map(|g| (root(&mut parent, g), g))
+        .filter(|&(r, g)| r != g)
+        .collect();
+    runs.sort_unstable();
+    for run in runs.chunk_by(|x, y| x.0 == y.0) {
+        let r = run[0].0;
+        let Ok(first) = decided[r] else {
+            continue;
+        };
+        let (pa, pb) = (point(first.a), point(first.b));
+        let k = (0..3).find(|&k| pa[k] != pb[k]).unwrap_or(0);
+        let mut ends: Vec<u32> = vec![first.a, first.b];
+        for &(_, g) in run {
+            if let Ok(e) = decided[g] {
+                ends.extend([e.a, e.b]);
+            }
+            decided[g] = Err(Left::Joined);
+        }
+        let along = |v: &u32| point(*v)[k];
+        let low = ends
+            .iter()
+            .copied()
+            .min_by(|x, y| along(x).total_cmp(&along(y)));
+        let high = ends
+            .iter()
+            .copied()
+            .max_by(|x, y| along(x).total_cmp(&along(y)));
+        if let (Some(low), Some(high), Ok(e)) = (low, high, &mut decided[r]) {
+            (e.a, e.b) = (low.min(high), low.max(high));
+        }
+    }
+}
+
+/// Whether `c1` and `c2` lie in one plane with the line `ab` and on the same side of it.
+fn same_half_plane(a: &Point3, b: &Point3, c1: &Point3, c2: &Point3) -> bool {
+    if orient3d(a, b, c1, c2) != Ordering::Equal {
+        return false;
+    }
+    let side = |k: usize, c: &Point3| orient2d(project(a, k), project(b, k), project(c, k));
+    (0..3)
+        .find(|&k| side(k, c1) != Ordering::Equal)
+        .is_some_and(|k| side(k, c1) == side(k, c2))
 }
 
 /// The class of an edge `ab` of more than two faces (third vertices `thirds`): a silhouette

@@ -124,9 +124,17 @@ pub enum EdgeSelection {
     #[default]
     #[cfg_attr(feature = "cli", value(help = None::<&str>))]
     Feature,
-    /// Every edge (smooth ones too) with its hidden parts removed: a wireframe.
+    /// Every edge (smooth ones too) with its hidden parts removed: a wireframe. The diagonals
+    /// of polygons split because they are not exactly planar are drawn only where they are
+    /// feature edges.
     #[cfg_attr(feature = "cli", value(help = None::<&str>))]
     All,
+    /// Every edge of the input polygons, even between coplanar faces, with its hidden parts
+    /// removed (the wireframe of a polygon mesh): no diagonals of triangulated or split
+    /// polygons, no edges of dropped degenerate faces. Edges between coplanar faces are drawn
+    /// as smooth edges.
+    #[cfg_attr(feature = "cli", value(help = None::<&str>))]
+    Mesh,
 }
 
 /// The options of the hidden-line pass.
@@ -405,11 +413,11 @@ impl<'a> Pass<'a> {
                         _ => picture.point(p),
                     })
                     .collect();
-                let classes = edges::classify(leaf.mesh, eye, crease_cos);
+                let classes = edges::classify(leaf.mesh, eye, crease_cos, options.edges);
                 (classes, pictures, (front, inside))
             })
             .collect();
-        let (mut flat, mut end_on, mut smooth_left_out) = (0, 0, 0);
+        let (mut flat, mut end_on, mut left_out) = (0, 0, 0);
         let mut by_class = [0usize; 5];
         let mut behind = 0;
         for (leaf, ((edges, counts), pictures, (front, inside))) in
@@ -420,12 +428,11 @@ impl<'a> Pass<'a> {
             let first = self.lines.len();
             flat += counts.flat;
             end_on += counts.end_on;
+            left_out += counts.left_out;
+            for (total, n) in by_class.iter_mut().zip(counts.by_class) {
+                *total += n;
+            }
             for e in edges {
-                by_class[e.class as usize] += 1;
-                if e.class == EdgeClass::Smooth && options.edges == EdgeSelection::Feature {
-                    smooth_left_out += 1;
-                    continue;
-                }
                 let (a, b) = (e.a as usize, e.b as usize);
                 let in_front = |v: usize| front.get(v).is_none_or(|&f| f);
                 if !in_front(a) && !in_front(b) {
@@ -470,10 +477,17 @@ impl<'a> Pass<'a> {
             count(EdgeClass::Crease),
             count(EdgeClass::Smooth)
         );
-        let smooth = if smooth_left_out > 0 {
-            format!(", {smooth_left_out} smooth edges not asked for (--edges all draws them)")
-        } else {
-            String::new()
+        let smooth = match (left_out, options.edges) {
+            (0, _) => String::new(),
+            (n, EdgeSelection::Feature) => {
+                format!(", {n} smooth edges not asked for (--edges all draws them)")
+            }
+            (n, EdgeSelection::All) => {
+                format!(", {n} smooth diagonals of split polygons (not polygon edges)")
+            }
+            (n, EdgeSelection::Mesh) => {
+                format!(", {n} diagonals of split polygons (not polygon edges)")
+            }
         };
         let clipping = if clip.is_some() {
             format!(

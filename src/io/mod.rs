@@ -1,12 +1,15 @@
-//! Mesh files: Wavefront OBJ, STL (ASCII and binary) and OFF; and point files ([`points`]).
+//! Mesh files: Wavefront OBJ, STL (ASCII and binary), OFF and PLY (ASCII and binary); and
+//! point files ([`points`]).
 //!
-//! [`read_mesh`] picks the reader from the file's extension; [`obj::parse`], [`stl::parse`]
-//! and [`off::parse`] read text or bytes already in memory. Every reader keeps the input as it
-//! is: polygons stay polygons, coordinates are parsed with Rust's correctly rounded
-//! `str::parse::<f64>` (binary STL's `f32` are widened exactly), and anything a reader cannot
-//! represent is an error rather than something skipped. Errors name the file and the 1-based
-//! line (for binary STL, the 1-based triangle) of the offending statement, including the
-//! errors [`Mesh::from_polygons`] finds in a face or vertex.
+//! [`read_mesh`] picks the reader from the file's extension; [`obj::parse`], [`stl::parse`],
+//! [`off::parse`] and [`ply::parse`] read text or bytes already in memory (their `parse_with`
+//! take a [`Validation`]). Every reader keeps the input as it is: polygons stay polygons,
+//! coordinates are parsed with Rust's correctly rounded `str::parse::<f64>` (binary `f32` are
+//! widened exactly), and anything a reader cannot represent is an error rather than something
+//! skipped. Errors name the file and the 1-based line (for binary files, the 1-based triangle
+//! or element) of the offending statement, including the errors [`Mesh::from_polygons_with`]
+//! finds in a face or vertex. Input echoed in an error is cut to a readable length
+//! ([`quoted`]).
 //!
 //! The readers are written by hand rather than with `tobj` or `stl_io`: `tobj`'s errors carry
 //! no line numbers and it parses `f32` by default, and `stl_io` reads ASCII STL into `f32`.
@@ -22,10 +25,11 @@
 
 pub mod obj;
 pub mod off;
+pub mod ply;
 pub mod points;
 pub mod stl;
 
-use crate::mesh::{Mesh, MeshError};
+use crate::mesh::{Mesh, MeshError, Validation};
 use std::path::Path;
 
 /// What went wrong reading a file, naming the file and the place in it: the io layer's error.
@@ -104,9 +108,11 @@ impl FileError {
 /// `Result` with the io layer's [`FileError`].
 type Result<T, E = FileError> = std::result::Result<T, E>;
 
-/// Reads a mesh file, choosing the format from its extension: `obj`, `stl` or `off`, in any
-/// letter case. An unknown extension, a file that cannot be read, a file without faces and
-/// bad content are errors naming the file (and, for content, the line or triangle).
+/// Reads a mesh file, choosing the format from its extension: `obj`, `stl`, `off` or `ply`,
+/// in any letter case; degenerate faces are dropped and polygons that are not exactly planar
+/// split ([`Validation::Repair`], see [`read_mesh_with`]). An unknown extension, a file that
+/// cannot be read, a file without faces and bad content are errors naming the file (and, for
+/// content, the line, triangle or element).
 ///
 /// OBJ and OFF files are decoded as UTF-8; bytes that are not UTF-8 can only be valid in text
 /// the readers ignore (comments, group and material names), and anywhere else they make the
@@ -121,20 +127,38 @@ type Result<T, E = FileError> = std::result::Result<T, E>;
 /// assert_eq!(tet.faces().len(), 4);
 /// assert!(tet.is_solid());
 ///
-/// let err = read_mesh(std::path::Path::new("scene.ply")).unwrap_err();
-/// assert!(err.to_string().starts_with("scene.ply: unknown mesh format"));
+/// let err = read_mesh(std::path::Path::new("scene.3ds")).unwrap_err();
+/// assert!(err.to_string().starts_with("scene.3ds: unknown mesh format"));
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn read_mesh(path: &Path) -> Result<Mesh> {
+    read_mesh_with(path, Validation::Repair)
+}
+
+/// [`read_mesh`] with the given treatment of degenerate faces and polygons that are not
+/// exactly planar: [`Validation::Strict`] refuses them, naming the file and the face's line
+/// (or triangle, or element).
+///
+/// ```
+/// use kepler::{io::read_mesh_with, mesh::Validation};
+/// let path = std::env::temp_dir().join(format!("kepler-doc-strict-{}.obj", std::process::id()));
+/// std::fs::write(&path, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\n")?;
+/// let err = read_mesh_with(&path, Validation::Strict).unwrap_err();
+/// assert!(err.to_string().ends_with(":6: face 2 has zero area"));
+/// assert_eq!(read_mesh_with(&path, Validation::Repair)?.degenerate_faces(), 1);
+/// std::fs::remove_file(&path)?;
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn read_mesh_with(path: &Path, validation: Validation) -> Result<Mesh> {
     let name = path.display().to_string();
     let extension = path
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
     let format = match extension.as_deref() {
-        Some(f @ ("obj" | "stl" | "off")) => f,
+        Some(f @ ("obj" | "stl" | "off" | "ply")) => f,
         _ => {
-            let message = "unknown mesh format: the extension must be .obj, .stl or .off";
+            let message = "unknown mesh format: the extension must be .obj, .stl, .off or .ply";
             return Err(FileError::io(
                 name,
                 std::io::Error::new(std::io::ErrorKind::InvalidInput, message),
@@ -143,9 +167,10 @@ pub fn read_mesh(path: &Path) -> Result<Mesh> {
     };
     let bytes = std::fs::read(path).map_err(|e| FileError::io(&name, e))?;
     let mesh = match format {
-        "stl" => stl::parse(&bytes, &name),
-        "obj" => obj::parse(&String::from_utf8_lossy(&bytes), &name),
-        _ => off::parse(&String::from_utf8_lossy(&bytes), &name),
+        "stl" => stl::parse_with(&bytes, &name, validation),
+        "ply" => ply::parse_with(&bytes, &name, validation),
+        "obj" => obj::parse_with(&String::from_utf8_lossy(&bytes), &name, validation),
+        _ => off::parse_with(&String::from_utf8_lossy(&bytes), &name, validation),
     }?;
     if mesh.faces().is_empty() {
         return Err(FileError::Input {
@@ -157,18 +182,68 @@ pub fn read_mesh(path: &Path) -> Result<Mesh> {
     Ok(mesh)
 }
 
+/// The most characters of an input that a message echoes.
+const ECHOED: usize = 40;
+
+/// A piece of input for an error message: in quotes, and cut after 40 characters, saying how
+/// long it was, so that a huge token does not make a huge message.
+///
+/// ```
+/// use kepler::io::quoted;
+/// assert_eq!(quoted("vertex"), "'vertex'");
+/// let long = "abcdefghij".repeat(100_000);
+/// assert_eq!(quoted(&long), format!("'{}…' (1000000 bytes)", &long[..40]));
+/// ```
+pub fn quoted(input: &str) -> String {
+    match input.char_indices().nth(ECHOED) {
+        None => format!("'{input}'"),
+        Some((cut, _)) => format!("'{}…' ({} bytes)", &input[..cut], input.len()),
+    }
+}
+
+/// A message from another parser (TOML, PLY) that may echo input: every word (run of
+/// characters without whitespace) longer than [`quoted`] allows is cut the same way.
+///
+/// ```
+/// use kepler::io::shortened;
+/// let message = format!("unknown field `{}`, expected `name`", "x".repeat(1 << 20));
+/// let short = shortened(&message);
+/// assert!(short.len() < 100, "{short}");
+/// assert!(short.ends_with("(1048579 bytes) expected `name`"));
+/// ```
+pub fn shortened(message: &str) -> String {
+    let mut out = String::with_capacity(message.len().min(1024));
+    let mut rest = message;
+    while let Some(start) = rest.find(|c: char| !c.is_whitespace()) {
+        out.push_str(&rest[..start]);
+        rest = &rest[start..];
+        let end = rest.find(char::is_whitespace).unwrap_or(rest.len());
+        let word = &rest[..end];
+        match word.char_indices().nth(ECHOED) {
+            None => out.push_str(word),
+            Some((cut, _)) => {
+                out.push_str(&format!("{}… ({} bytes)", &word[..cut], word.len()));
+            }
+        }
+        rest = &rest[end..];
+    }
+    out.push_str(rest);
+    out
+}
+
 /// Parses a number with Rust's correctly rounded `str::parse::<f64>`, requiring it to be
 /// finite; `what` names it in the error message.
 fn finite(token: &str, what: &str) -> Result<f64, String> {
     match token.parse::<f64>() {
         Ok(x) if x.is_finite() => Ok(x),
         Ok(x) if x.is_nan() || token.to_ascii_lowercase().contains("inf") => {
-            Err(format!("{what} '{token}' is not a finite number"))
+            Err(format!("{what} {} is not a finite number", quoted(token)))
         }
         Ok(_) => Err(format!(
-            "{what} '{token}' is not a finite number: it is too large for f64"
+            "{what} {} is not a finite number: it is too large for f64",
+            quoted(token)
         )),
-        Err(_) => Err(format!("{what} '{token}' is not a number")),
+        Err(_) => Err(format!("{what} {} is not a number", quoted(token))),
     }
 }
 
@@ -197,7 +272,7 @@ fn located(
     face_at: impl Fn(usize) -> Option<String>,
 ) -> FileError {
     let at = match err {
-        MeshError::NonFinite { vertex } | MeshError::OutOfRange { vertex } => vertex_at(vertex),
+        MeshError::NonFinite { vertex } => vertex_at(vertex),
         MeshError::TooFewVertices { face, .. }
         | MeshError::IndexOutOfRange { face, .. }
         | MeshError::RepeatedVertex { face, .. }

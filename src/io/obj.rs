@@ -24,9 +24,9 @@
 //! ```
 
 use super::{FileError, Result};
-use super::{finite, located_at_lines, strip_bom, strip_comment};
+use super::{finite, located_at_lines, quoted, strip_bom, strip_comment};
 use crate::geometry::Point3;
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, Validation};
 use std::borrow::Cow;
 
 /// Parses the text of an OBJ file; `path` names the file in error messages.
@@ -43,6 +43,20 @@ use std::borrow::Cow;
 /// assert_eq!(err.to_string(), "bad.obj:2: y coordinate 'nan' is not a finite number");
 /// ```
 pub fn parse(text: &str, path: &str) -> Result<Mesh> {
+    parse_with(text, path, Validation::Repair)
+}
+
+/// [`parse`] with the given treatment of degenerate faces and polygons that are not exactly
+/// planar.
+///
+/// ```
+/// use kepler::{io::obj, mesh::Validation};
+/// let text = "v 0 0 0\nv 1 0 0\nv 1 1 0.001\nv 0 1 0\nf 1 2 3 4\n";
+/// assert_eq!(obj::parse(text, "q.obj").unwrap().split_polygons(), 1);
+/// let err = obj::parse_with(text, "q.obj", Validation::Strict).unwrap_err();
+/// assert!(err.to_string().starts_with("q.obj:5: face 1 is not planar"));
+/// ```
+pub fn parse_with(text: &str, path: &str, validation: Validation) -> Result<Mesh> {
     let mut vertices = Vec::new();
     let mut vertex_lines = Vec::new();
     let mut faces = Vec::new();
@@ -85,10 +99,10 @@ pub fn parse(text: &str, path: &str) -> Result<Mesh> {
                      only polygon faces ('f') are read"
                 )));
             }
-            _ => return Err(at_line(format!("unknown keyword '{keyword}'"))),
+            _ => return Err(at_line(format!("unknown keyword {}", quoted(keyword)))),
         }
     }
-    Mesh::from_polygons(vertices, faces)
+    Mesh::from_polygons_with(vertices, faces, validation)
         .map_err(|e| located_at_lines(path, e, &vertex_lines, &face_lines))
 }
 
@@ -153,7 +167,8 @@ fn vertex<'a>(tokens: impl Iterator<Item = &'a str>) -> Result<Point3, String> {
         && finite(w, "w coordinate")? != 1.0
     {
         return Err(format!(
-            "w coordinate '{w}' is not 1: kepler does not rescale coordinates by w"
+            "w coordinate {} is not 1: kepler does not rescale coordinates by w",
+            quoted(w)
         ));
     }
     Ok(p)
@@ -196,7 +211,10 @@ fn face_corner(corner: &str, defined: &Defined) -> Result<u32, String> {
 
 /// The message for a face corner that is not `v`, `v/vt`, `v/vt/vn` or `v//vn`.
 fn malformed_corner(corner: &str) -> String {
-    format!("malformed face corner '{corner}': expected v, v/vt, v/vt/vn or v//vn")
+    format!(
+        "malformed face corner {}: expected v, v/vt, v/vt/vn or v//vn",
+        quoted(corner)
+    )
 }
 
 /// Resolves a 1-based or negative (relative) OBJ index to a 0-based one, given how many
@@ -204,7 +222,7 @@ fn malformed_corner(corner: &str) -> String {
 fn index(token: &str, kind: &str, kinds: &str, defined: usize) -> Result<usize, String> {
     let i: i64 = token
         .parse()
-        .map_err(|_| format!("{kind} index '{token}' is not an integer"))?;
+        .map_err(|_| format!("{kind} index {} is not an integer", quoted(token)))?;
     if i == 0 {
         return Err(format!(
             "{kind} index 0 is invalid: OBJ indices count from 1 (or back from -1)"

@@ -22,9 +22,9 @@
 //! ```
 
 use super::{FileError, Result};
-use super::{finite, last_line, located_at_lines, strip_bom, strip_comment};
+use super::{finite, last_line, located_at_lines, quoted, strip_bom, strip_comment};
 use crate::geometry::Point3;
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, Validation};
 
 /// Parses the text of an OFF file; `path` names the file in error messages.
 ///
@@ -43,6 +43,20 @@ use crate::mesh::Mesh;
 /// );
 /// ```
 pub fn parse(text: &str, path: &str) -> Result<Mesh> {
+    parse_with(text, path, Validation::Repair)
+}
+
+/// [`parse`] with the given treatment of degenerate faces and polygons that are not exactly
+/// planar.
+///
+/// ```
+/// use kepler::{io::off, mesh::Validation};
+/// let text = "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n2 0 0\n3 0 1 2\n3 0 1 3\n";
+/// assert_eq!(off::parse(text, "t.off").unwrap().degenerate_faces(), 1);
+/// let err = off::parse_with(text, "t.off", Validation::Strict).unwrap_err();
+/// assert_eq!(err.to_string(), "t.off:8: face 2 has zero area");
+/// ```
+pub fn parse_with(text: &str, path: &str, validation: Validation) -> Result<Mesh> {
     let text = strip_bom(text);
     let mut records = text
         .lines()
@@ -118,7 +132,7 @@ pub fn parse(text: &str, path: &str) -> Result<Mesh> {
             ),
         ));
     }
-    Mesh::from_polygons(vertices, faces)
+    Mesh::from_polygons_with(vertices, faces, validation)
         .map_err(|e| located_at_lines(path, e, &vertex_lines, &face_lines))
 }
 
@@ -143,10 +157,12 @@ impl Variant {
             "NOFF" => Ok(Variant::Normal),
             "CNOFF" => Ok(Variant::NormalColour),
             k if k.ends_with("OFF") => Err(format!(
-                "unsupported OFF variant '{k}': only OFF, COFF, NOFF and CNOFF are read"
+                "unsupported OFF variant {}: only OFF, COFF, NOFF and CNOFF are read",
+                quoted(k)
             )),
             k => Err(format!(
-                "expected the header 'OFF' or the counts 'vertices faces edges', found '{k}'"
+                "expected the header 'OFF' or the counts 'vertices faces edges', found {}",
+                quoted(k)
             )),
         }
     }
@@ -196,13 +212,13 @@ fn parse_counts(tokens: &[&str]) -> Result<(usize, usize), String> {
         [v, f, e] => match (count(v), count(f), count(e)) {
             (Some(v), Some(f), Some(_)) => Ok((v, f)),
             _ => Err(format!(
-                "the counts '{}' are not 3 non-negative integers",
-                tokens.join(" ")
+                "the counts {} are not 3 non-negative integers",
+                quoted(&tokens.join(" "))
             )),
         },
         _ => Err(format!(
-            "expected the counts 'vertices faces edges', found '{}'",
-            tokens.join(" ")
+            "expected the counts 'vertices faces edges', found {}",
+            quoted(&tokens.join(" "))
         )),
     }
 }
@@ -212,9 +228,12 @@ fn face(tokens: &[&str], vertex_count: usize) -> Result<Vec<u32>, String> {
     let Some((n, rest)) = tokens.split_first() else {
         return Err("expected a face".into());
     };
-    let n: usize = n
-        .parse()
-        .map_err(|_| format!("the face's vertex count '{n}' is not a non-negative integer"))?;
+    let n: usize = n.parse().map_err(|_| {
+        format!(
+            "the face's vertex count {} is not a non-negative integer",
+            quoted(n)
+        )
+    })?;
     let Some((indices, colour)) = rest.split_at_checked(n) else {
         return Err(format!(
             "the face announces {n} vertices but lists {}",
@@ -235,7 +254,9 @@ fn face(tokens: &[&str], vertex_count: usize) -> Result<Vec<u32>, String> {
         .map(|i| {
             let k: usize = i
                 .parse()
-                .map_err(|_| format!("vertex index '{i}' is not a non-negative integer"))?;
+                .map_err(|_| {
+                    format!("vertex index {} is not a non-negative integer", quoted(i))
+                })?;
             if k >= vertex_count {
                 return Err(format!(
                     "vertex index {k} is out of range: the file has {vertex_count} vertices, numbered from 0"

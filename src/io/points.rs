@@ -16,7 +16,7 @@
 //! ```
 
 use super::{FileError, Result};
-use super::{finite, strip_bom, strip_comment};
+use super::{finite, quoted, strip_bom, strip_comment};
 use crate::geometry::Point3;
 use crate::geometry::predicates::MAX_COORDINATE;
 use geo::{Coord, Line};
@@ -92,7 +92,8 @@ fn parse_rows<const N: usize>(
             c[k] = finite(field, "coordinate").map_err(at)?;
             if c[k].abs() > MAX_COORDINATE {
                 return Err(at(format!(
-                    "coordinate {field} is larger in magnitude than {MAX_COORDINATE:e}"
+                    "coordinate {} is larger in magnitude than {MAX_COORDINATE:e}",
+                    quoted(field)
                 )));
             }
         }

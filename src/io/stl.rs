@@ -31,9 +31,9 @@
 //! ```
 
 use super::{FileError, Result};
-use super::{finite, last_line, located, located_at_lines, strip_bom};
+use super::{finite, last_line, located, located_at_lines, quoted, strip_bom};
 use crate::geometry::Point3;
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, Validation};
 use std::iter::Peekable;
 
 /// Parses the bytes of an STL file, ASCII or binary; `path` names the file in error messages.
@@ -54,11 +54,26 @@ use std::iter::Peekable;
 /// assert!(err.to_string().starts_with("t.stl:header: neither a binary STL"));
 /// ```
 pub fn parse(bytes: &[u8], path: &str) -> Result<Mesh> {
+    parse_with(bytes, path, Validation::Repair)
+}
+
+/// [`parse`] with the given treatment of degenerate faces.
+///
+/// ```
+/// use kepler::{io::stl, mesh::Validation};
+/// let facet = |a: &str| format!("facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n\
+///                                vertex {a}\nendloop\nendfacet\n");
+/// let text = format!("solid t\n{}{}endsolid t\n", facet("0 1 0"), facet("2 0 0"));
+/// assert_eq!(stl::parse(text.as_bytes(), "t.stl").unwrap().degenerate_faces(), 1);
+/// let err = stl::parse_with(text.as_bytes(), "t.stl", Validation::Strict).unwrap_err();
+/// assert_eq!(err.to_string(), "t.stl:9: face 2 has zero area");
+/// ```
+pub fn parse_with(bytes: &[u8], path: &str, validation: Validation) -> Result<Mesh> {
     if let Some(records) = binary_records(bytes) {
-        return binary(records, path);
+        return binary(records, path, validation);
     }
     if looks_like_ascii(bytes) {
-        return ascii(&String::from_utf8_lossy(bytes), path);
+        return ascii(&String::from_utf8_lossy(bytes), path, validation);
     }
     let binary_reason = match declared_triangles(bytes) {
         None => format!(
@@ -114,7 +129,7 @@ fn looks_like_ascii(bytes: &[u8]) -> bool {
             .any(|b| b.is_ascii_control() && !b.is_ascii_whitespace())
 }
 
-fn binary(records: &[[u8; 50]], path: &str) -> Result<Mesh> {
+fn binary(records: &[[u8; 50]], path: &str, validation: Validation) -> Result<Mesh> {
     let at_triangle = |t: usize| format!("triangle {}", t + 1);
     let mut vertices = Vec::new();
     let mut faces = Vec::new();
@@ -146,7 +161,7 @@ fn binary(records: &[[u8; 50]], path: &str) -> Result<Mesh> {
         }
         faces.push(face);
     }
-    Mesh::from_polygons(vertices, faces).map_err(|e| {
+    Mesh::from_polygons_with(vertices, faces, validation).map_err(|e| {
         located(
             path,
             e,
@@ -172,7 +187,7 @@ fn floats(record: &[u8; 50]) -> [f64; 12] {
     out
 }
 
-fn ascii(text: &str, path: &str) -> Result<Mesh> {
+fn ascii(text: &str, path: &str, validation: Validation) -> Result<Mesh> {
     let text = strip_bom(text);
     let mut tokens = Tokens {
         iter: text
@@ -199,7 +214,7 @@ fn ascii(text: &str, path: &str) -> Result<Mesh> {
             return Err(FileError::at_line(
                 path,
                 line,
-                format!("expected 'facet' or 'endsolid', found '{token}'"),
+                format!("expected 'facet' or 'endsolid', found {}", quoted(token)),
             ));
         }
         tokens.keyword("normal")?;
@@ -227,10 +242,10 @@ fn ascii(text: &str, path: &str) -> Result<Mesh> {
         return Err(FileError::at_line(
             path,
             line,
-            format!("unexpected '{token}' after 'endsolid'"),
+            format!("unexpected {} after 'endsolid'", quoted(token)),
         ));
     }
-    Mesh::from_polygons(vertices, faces)
+    Mesh::from_polygons_with(vertices, faces, validation)
         .map_err(|e| located_at_lines(path, e, &vertex_lines, &face_lines))
 }
 
@@ -262,7 +277,7 @@ impl<'a, I: Iterator<Item = (usize, &'a str)>> Tokens<'a, I> {
             Err(FileError::at_line(
                 self.path,
                 line,
-                format!("expected '{keyword}', found '{token}'"),
+                format!("expected '{keyword}', found {}", quoted(token)),
             ))
         }
     }

@@ -206,6 +206,11 @@ pub struct Face {
     pub(crate) texture: TextureFrame,
     pub(crate) area: f64,
     pub(crate) triangles: std::ops::Range<usize>,
+    /// The sides that are diagonals of a split polygon, not edges of the input polygon (bit
+    /// `i`: the side from vertex `i`).
+    pub(crate) diagonals: u8,
+    /// The input polygon the face is (part of).
+    pub(crate) polygon: u32,
 }
 
 impl Face {
@@ -257,5 +262,40 @@ impl Face {
     /// ```
     pub fn triangle_range(&self) -> std::ops::Range<usize> {
         self.triangles.clone()
+    }
+
+    /// Whether side `side` of the face (from vertex `side` to the next) is an edge of the
+    /// input polygon: false for the diagonals along which a polygon that is not exactly planar
+    /// was split into triangle faces ([`Mesh::split_polygons`](super::Mesh::split_polygons)).
+    ///
+    /// ```
+    /// use kepler::{mesh::Mesh, geometry::Point3};
+    /// let p = |x: f64, y: f64, z: f64| Point3::new(x, y, z);
+    /// let quad = vec![p(0., 0., 0.), p(1., 0., 0.), p(1., 1., 1e-9), p(0., 1., 0.)];
+    /// let m = Mesh::from_polygons(quad, vec![vec![0, 1, 2, 3]]).unwrap();
+    /// // Split along the diagonal from vertex 0 to vertex 2.
+    /// let f = &m.faces()[0];
+    /// assert_eq!(f.vertices(), &[0, 1, 2]);
+    /// assert_eq!((0..3).map(|s| f.is_polygon_edge(s)).collect::<Vec<_>>(), [true, true, false]);
+    /// ```
+    pub fn is_polygon_edge(&self, side: usize) -> bool {
+        side >= 8 || self.diagonals >> side & 1 == 0
+    }
+
+    /// The index of the input polygon this face is, or is part of (a polygon that is not
+    /// exactly planar becomes several triangle faces): its position among the faces given to
+    /// [`Mesh::from_polygons`](super::Mesh::from_polygons), kept by
+    /// [`Mesh::transformed`](super::Mesh::transformed).
+    ///
+    /// ```
+    /// use kepler::{mesh::Mesh, geometry::Point3};
+    /// let p = |x: f64, y: f64, z: f64| Point3::new(x, y, z);
+    /// let v = vec![p(0., 0., 0.), p(1., 0., 0.), p(1., 1., 1e-9), p(0., 1., 0.), p(2., 0., 0.)];
+    /// // The first face has zero area and is dropped; the quad is split in two.
+    /// let m = Mesh::from_polygons(v, vec![vec![0, 1, 4], vec![0, 1, 2, 3]]).unwrap();
+    /// assert_eq!(m.faces().iter().map(|f| f.polygon()).collect::<Vec<_>>(), [1, 1]);
+    /// ```
+    pub fn polygon(&self) -> usize {
+        self.polygon as usize
     }
 }

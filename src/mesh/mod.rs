@@ -1,11 +1,27 @@
 //! Validated polygon meshes: the vertices and faces of a leaf object (Franklin's VERT and FACE).
 //!
-//! [`Mesh::from_polygons`] checks everything the engine relies on and says what is wrong with
-//! which vertex or face: finite coordinates of at most [`MAX_COORDINATE`] in magnitude, faces
-//! of at least 3 distinct vertices with valid indices, no zero-area faces, faces planar within
-//! [`PLANARITY_TOLERANCE`] of their size, and simple (not self-crossing). Vertices with exactly
-//! equal coordinates are merged, as the paper requires ("no two vertices may have the same
+//! [`Mesh::from_polygons`] decides everything the engine relies on exactly, at every scale,
+//! and says what is wrong with which vertex or face: finite coordinates, faces of at least 3
+//! vertices with valid indices, simple (not self-crossing) faces. Vertices with exactly equal
+//! coordinates are merged, as the paper requires ("no two vertices may have the same
 //! coordinates"); the number merged is kept ([`Mesh::merged_vertices`]).
+//!
+//! What is valid input but not a face as it is gets repaired, and counted
+//! ([`Validation::Repair`]), or refused ([`Validation::Strict`]):
+//!
+//! - A face that repeats a vertex (the same index, or equal coordinates) or has zero area (its
+//!   vertices exactly collinear) is dropped: it hides nothing and has no edges
+//!   ([`Mesh::degenerate_faces`]). A vertex repeated in a row is only a zero-length side: the
+//!   face without the repetition is kept.
+//! - A polygon of more than 3 vertices that is not exactly planar (every vertex on the plane
+//!   of three of them, decided by `orient3d`), such as the usual rounding of an exported quad,
+//!   is split into triangles in a projection where it is simple, each a face
+//!   ([`Mesh::split_polygons`]). The diagonals of the split are edges between two faces like
+//!   any other, but not edges of the input polygon ([`Face::is_polygon_edge`]).
+//!
+//! Where faces meet in T-junctions (a vertex lying exactly inside another face's side, as
+//! after a dropped sliver), the side is matched piecewise with the sides that cover it, so
+//! such a mesh is closed ([`Topology`]) and draws as the mesh without the junctions.
 //!
 //! ```
 //! use kepler::{mesh::Mesh, geometry::Point3};
@@ -18,6 +34,7 @@
 //! assert!((tet.volume() - 1.0 / 6.0).abs() < 1e-15);
 //! ```
 
+mod build;
 mod containment;
 mod face;
 mod topology;
@@ -30,21 +47,37 @@ pub use face::{Face, Plane, TextureFrame};
 pub use topology::Topology;
 pub use tree::TriangleTree;
 
-use crate::geometry::polygon::{newell_normal, triangulate};
-use crate::geometry::predicates::{MAX_COORDINATE, collinear};
-use crate::geometry::{Point3, Vector3};
+use crate::geometry::Point3;
+use crate::geometry::predicates::orient3d;
+use build::{Shape, diagonals_of};
+pub(crate) use build::{largest_coordinate, normalising_exponent, times_power_of_two};
 use nalgebra::Matrix4;
+use std::cmp::Ordering;
+use topology::Junction;
 
-/// Faces may deviate from their plane by at most this fraction of their size (the diagonal of
-/// their bounding box). Exported meshes often print coordinates with 6 to
-/// 9 significant digits, so quads are planar only to about that precision; beyond it a face
-/// is rejected as non-planar. The exact predicates treat each face as its triangulation, so a
-/// face within the tolerance is still handled exactly.
+/// What [`Mesh::from_polygons_with`] does with input faces that are valid but not faces as
+/// they are: degenerate ones (a repeated vertex, zero area) and polygons that are not exactly
+/// planar.
 ///
 /// ```
-/// assert_eq!(kepler::mesh::PLANARITY_TOLERANCE, 1e-6);
+/// use kepler::{mesh::{Mesh, MeshError, Validation}, geometry::Point3};
+/// let p = |x: f64, y: f64, z: f64| Point3::new(x, y, z);
+/// let bent = vec![p(0., 0., 0.), p(1., 0., 0.), p(1., 1., 1e-12), p(0., 1., 0.)];
+/// let m = Mesh::from_polygons_with(bent.clone(), vec![vec![0, 1, 2, 3]], Validation::Repair).unwrap();
+/// assert_eq!((m.faces().len(), m.split_polygons()), (2, 1));
+/// let e = Mesh::from_polygons_with(bent, vec![vec![0, 1, 2, 3]], Validation::Strict).unwrap_err();
+/// assert_eq!(e, MeshError::NonPlanar { face: 0, corner: 3 });
 /// ```
-pub const PLANARITY_TOLERANCE: f64 = 1e-6;
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Validation {
+    /// Drop degenerate faces and split polygons that are not exactly planar into triangles,
+    /// counting both ([`Mesh::degenerate_faces`], [`Mesh::split_polygons`]).
+    #[default]
+    Repair,
+    /// Refuse them: [`MeshError::RepeatedVertex`], [`MeshError::ZeroArea`],
+    /// [`MeshError::NonPlanar`].
+    Strict,
+}
 
 /// What is wrong with a mesh, naming the vertex or face: indices are 0-based in input order,
 /// messages number from 1 (the first face is "face 1").
@@ -60,13 +93,6 @@ pub enum MeshError {
     /// A coordinate is NaN or infinite.
     #[error("vertex {} has a coordinate that is not a finite number", vertex + 1)]
     NonFinite {
-        /// The vertex.
-        vertex: usize,
-    },
-    /// A coordinate is larger in magnitude than [`MAX_COORDINATE`].
-    #[error(
-        "vertex {} has a coordinate larger than 1e100 in magnitude (exact predicates could overflow)", vertex + 1)]
-    OutOfRange {
         /// The vertex.
         vertex: usize,
     },
@@ -89,7 +115,7 @@ pub enum MeshError {
         vertex_count: usize,
     },
     /// A face visits the same point twice (the same index, or two vertices with equal
-    /// coordinates).
+    /// coordinates). Refused only by [`Validation::Strict`].
     #[error("face {} visits the point ({x}, {y}, {z}) twice", face + 1)]
     RepeatedVertex {
         /// The face.
@@ -101,23 +127,26 @@ pub enum MeshError {
         /// z.
         z: f64,
     },
-    /// A face has zero area: its vertices are collinear, or its loop cancels itself.
+    /// A face has zero area: its vertices are exactly collinear. Refused only by
+    /// [`Validation::Strict`].
     #[error("face {} has zero area", face + 1)]
     ZeroArea {
         /// The face.
         face: usize,
     },
-    /// A face is not planar within [`PLANARITY_TOLERANCE`].
+    /// A polygon is not exactly planar. Refused only by [`Validation::Strict`].
     #[error(
-        "face {} is not planar: a vertex is {deviation:.3e} of the face's size off its plane (tolerance 1e-6)", face + 1
+        "face {} is not planar: its corner {} is off the plane of its first corners", face + 1, corner + 1
     )]
     NonPlanar {
         /// The face.
         face: usize,
-        /// The largest distance of a vertex from the plane, relative to the face's size.
-        deviation: f64,
+        /// The first corner (0-based, in the face's order) off the plane of the first two and
+        /// the first corner not on their line.
+        corner: usize,
     },
-    /// A face crosses or overlaps itself.
+    /// A face crosses or overlaps itself (in every projection along a coordinate axis, for a
+    /// polygon that is not planar).
     #[error("face {} crosses or overlaps itself", face + 1)]
     NotSimple {
         /// The face.
@@ -143,21 +172,54 @@ pub struct Mesh {
     triangles: Vec<[u32; 3]>,
     topology: Topology,
     merged_vertices: usize,
+    degenerate_faces: usize,
+    split_polygons: usize,
+    /// The sides of faces cut by vertices lying exactly inside them, by face and side.
+    junctions: Vec<Junction>,
 }
+
+/// A polygon to become faces: its vertex loop, which of its sides are diagonals of a split
+/// polygon (bit `i`: the side from vertex `i`), and the input polygon it is (part of).
+type Polygon = (Vec<u32>, u8, u32);
 
 impl Mesh {
     /// Builds a mesh from vertices and faces (each a loop of vertex indices, counter-clockwise
-    /// seen from outside), validating them and merging vertices with equal coordinates.
+    /// seen from outside), validating them, merging vertices with equal coordinates, dropping
+    /// degenerate faces and splitting polygons that are not exactly planar
+    /// ([`Validation::Repair`]).
     ///
     /// ```
     /// use kepler::{mesh::{Mesh, MeshError}, geometry::Point3};
-    /// let v = vec![Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0), Point3::new(2.0, 0.0, 0.0)];
-    /// assert_eq!(Mesh::from_polygons(v, vec![vec![0, 1, 2]]), Err(MeshError::ZeroArea { face: 0 }));
+    /// let p = |x: f64, y: f64| Point3::new(x, y, 0.0);
+    /// // The second face is a line: dropped.
+    /// let m = Mesh::from_polygons(vec![p(0., 0.), p(1., 0.), p(0., 1.), p(2., 0.)],
+    ///     vec![vec![0, 1, 2], vec![0, 1, 3]]).unwrap();
+    /// assert_eq!((m.faces().len(), m.degenerate_faces()), (1, 1));
+    /// // A bow tie crosses itself: refused.
+    /// let e = Mesh::from_polygons(vec![p(0., 0.), p(1., 1.), p(1., 0.), p(0., 1.)], vec![vec![0, 1, 2, 3]]);
+    /// assert_eq!(e, Err(MeshError::NotSimple { face: 0 }));
     /// ```
     pub fn from_polygons(vertices: Vec<Point3>, faces: Vec<Vec<u32>>) -> Result<Mesh, MeshError> {
-        let (vertices, remap, merged_vertices) = merge_duplicates(vertices)?;
-        let mut out_faces = Vec::with_capacity(faces.len());
-        let mut triangles = Vec::with_capacity(faces.len() * 2);
+        Mesh::from_polygons_with(vertices, faces, Validation::Repair)
+    }
+
+    /// [`Mesh::from_polygons`] with the given treatment of degenerate faces and polygons that
+    /// are not exactly planar: [`Validation::Strict`] refuses them with the error naming the
+    /// first.
+    ///
+    /// ```
+    /// use kepler::{mesh::{Mesh, MeshError, Validation}, geometry::Point3};
+    /// let v = vec![Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0), Point3::new(2.0, 0.0, 0.0)];
+    /// let e = Mesh::from_polygons_with(v, vec![vec![0, 1, 2]], Validation::Strict);
+    /// assert_eq!(e, Err(MeshError::ZeroArea { face: 0 }));
+    /// ```
+    pub fn from_polygons_with(
+        vertices: Vec<Point3>,
+        faces: Vec<Vec<u32>>,
+        validation: Validation,
+    ) -> Result<Mesh, MeshError> {
+        let (vertices, remap, merged_vertices) = build::merge_duplicates(vertices)?;
+        let mut polygons = Vec::with_capacity(faces.len());
         for (fi, face) in faces.into_iter().enumerate() {
             if face.len() < 3 {
                 return Err(MeshError::TooFewVertices {
@@ -176,17 +238,63 @@ impl Mesh {
                 };
                 idx.push(j);
             }
-            let (face, tris) = build_face(&vertices, idx, fi, triangles.len())?;
-            triangles.extend(tris);
-            out_faces.push(face);
+            polygons.push((idx, 0, fi as u32));
         }
-        let topology = Topology::of_faces(out_faces.iter().map(|f| f.vertices()));
+        let mut mesh = Mesh::assemble(vertices, polygons, validation)?;
+        mesh.merged_vertices = merged_vertices;
+        Ok(mesh)
+    }
+
+    /// The mesh of the polygons (indices valid, vertices distinct), with their faces,
+    /// triangles, counts of repairs, T-junctions and topology.
+    fn assemble(
+        vertices: Vec<Point3>,
+        polygons: Vec<Polygon>,
+        validation: Validation,
+    ) -> Result<Mesh, MeshError> {
+        let mut faces = Vec::with_capacity(polygons.len());
+        let mut triangles = Vec::with_capacity(polygons.len() * 2);
+        let (mut degenerate_faces, mut split_polygons) = (0, 0);
+        for (fi, (idx, diagonals, polygon)) in polygons.into_iter().enumerate() {
+            match build::shape(&vertices, idx, fi, validation)? {
+                Shape::Degenerate => degenerate_faces += 1,
+                Shape::Planar(idx, local) => {
+                    let (face, tris) = build::face(
+                        &vertices,
+                        (idx, diagonals, polygon),
+                        &local,
+                        triangles.len(),
+                    );
+                    triangles.extend(tris);
+                    faces.push(face);
+                }
+                Shape::Split(idx, local) => {
+                    split_polygons += 1;
+                    for t in &local {
+                        let corners = t.iter().map(|&k| idx[k]).collect();
+                        let (face, tris) = build::face(
+                            &vertices,
+                            (corners, diagonals_of(t, idx.len()), polygon),
+                            &[[0, 1, 2]],
+                            triangles.len(),
+                        );
+                        triangles.extend(tris);
+                        faces.push(face);
+                    }
+                }
+            }
+        }
+        let junctions = topology::junctions(&vertices, &faces);
+        let topology = Topology::of_mesh_faces(&faces, &junctions);
         Ok(Mesh {
             vertices,
-            faces: out_faces,
+            faces,
             triangles,
             topology,
-            merged_vertices,
+            merged_vertices: 0,
+            degenerate_faces,
+            split_polygons,
+            junctions,
         })
     }
 
@@ -273,6 +381,65 @@ impl Mesh {
         self.merged_vertices
     }
 
+    /// How many input faces were dropped as degenerate: a vertex repeated (not in a row), or
+    /// zero area ([`Validation::Repair`]).
+    ///
+    /// ```
+    /// use kepler::{mesh::Mesh, geometry::Point3};
+    /// let p = |x: f64, y: f64| Point3::new(x, y, 0.0);
+    /// let m = Mesh::from_polygons(vec![p(0., 0.), p(1., 0.), p(0., 1.)],
+    ///     vec![vec![0, 1, 2], vec![0, 1, 0], vec![2, 1, 1, 0]]).unwrap();
+    /// // [0, 1, 0] is dropped; [2, 1, 1, 0] is the triangle [2, 1, 0].
+    /// assert_eq!((m.faces().len(), m.degenerate_faces()), (2, 1));
+    /// ```
+    pub fn degenerate_faces(&self) -> usize {
+        self.degenerate_faces
+    }
+
+    /// How many input polygons were not exactly planar and were split into triangles
+    /// ([`Validation::Repair`]).
+    ///
+    /// ```
+    /// use kepler::{mesh::Mesh, geometry::Point3};
+    /// let p = |x: f64, y: f64, z: f64| Point3::new(x, y, z);
+    /// let one_ulp = 1.0 + f64::EPSILON;
+    /// let quad = vec![p(0., 0., 0.), p(1., 0., 0.), p(1., 1., one_ulp - 1.0), p(0., 1., 0.)];
+    /// let m = Mesh::from_polygons(quad, vec![vec![0, 1, 2, 3]]).unwrap();
+    /// assert_eq!((m.faces().len(), m.split_polygons()), (2, 1));
+    /// ```
+    pub fn split_polygons(&self) -> usize {
+        self.split_polygons
+    }
+
+    /// How many sides of faces have vertices of the mesh lying exactly inside them
+    /// (T-junctions), where they are matched piecewise with the sides that cover them.
+    ///
+    /// ```
+    /// use kepler::{mesh::Mesh, geometry::Point3};
+    /// let p = |x: f64, y: f64| Point3::new(x, y, 0.0);
+    /// // Two triangles below the side (0,0)-(2,0) of a third one, meeting at (1,0).
+    /// let v = vec![p(0., 0.), p(2., 0.), p(1., 1.), p(1., 0.), p(1., -1.)];
+    /// let m = Mesh::from_polygons(v, vec![vec![0, 1, 2], vec![0, 4, 3], vec![3, 4, 1]]).unwrap();
+    /// assert_eq!(m.t_junctions(), 1);
+    /// assert_eq!(m.topology().boundary_edges, 4);
+    /// ```
+    pub fn t_junctions(&self) -> usize {
+        self.junctions.len()
+    }
+
+    /// The vertices lying exactly inside side `side` of face `face`, in order from its first
+    /// vertex, if there are any (see [`Mesh::t_junctions`]).
+    pub(crate) fn side_junctions(&self, face: usize, side: usize) -> Option<&[u32]> {
+        if self.junctions.is_empty() {
+            return None;
+        }
+        let at = (face as u32, side as u32);
+        self.junctions
+            .binary_search_by(|j| (j.face, j.side).cmp(&at))
+            .ok()
+            .map(|k| self.junctions[k].inner.as_slice())
+    }
+
     /// The signed volume enclosed (divergence theorem over the triangles): positive for a
     /// closed mesh whose faces point outward, negative for one turned inside out. Meaningful
     /// only for closed meshes.
@@ -284,15 +451,22 @@ impl Mesh {
         let Some(o) = self.vertices.first() else {
             return 0.0;
         };
+        // On coordinates scaled by a power of two when they are very large or very small, so
+        // that the products neither overflow nor underflow; scaled back, the value may
+        // overflow to an infinity of the right sign.
+        let e = normalising_exponent(largest_coordinate(&self.vertices), 300);
+        let scaled = |p: &Point3| p.map(|c| times_power_of_two(c, e));
+        let o = scaled(o);
+        let at = |i: u32| scaled(&self.vertices[i as usize]) - o;
         let six_v: f64 = self
             .triangles
             .iter()
             .map(|t| {
-                let [a, b, c] = t.map(|i| self.vertices[i as usize] - o);
+                let [a, b, c] = t.map(at);
                 a.dot(&b.cross(&c))
             })
             .sum();
-        six_v / 6.0
+        times_power_of_two(six_v / 6.0, -3 * e)
     }
 
     /// The total area of the faces.
@@ -302,6 +476,31 @@ impl Mesh {
     /// ```
     pub fn surface_area(&self) -> f64 {
         self.faces.iter().map(Face::area).sum()
+    }
+
+    /// The input polygons the faces are: each face's vertex loop, except that the triangle
+    /// faces of a split polygon ([`Mesh::split_polygons`]) make one loop again, along their
+    /// polygon edges ([`Face::is_polygon_edge`]), starting at a vertex of its first face. In
+    /// the order of [`Face::polygon`]; dropped faces have none.
+    ///
+    /// ```
+    /// use kepler::{mesh::Mesh, geometry::Point3};
+    /// let p = |x: f64, y: f64, z: f64| Point3::new(x, y, z);
+    /// let v = vec![p(0., 0., 0.), p(1., 0., 0.), p(2., 1., 1e-9), p(1., 2., 0.), p(0., 1., 0.)];
+    /// let m = Mesh::from_polygons(v, vec![vec![0, 1, 2, 3, 4]]).unwrap();
+    /// assert_eq!(m.faces().len(), 3);
+    /// assert_eq!(m.polygons(), [vec![0, 1, 2, 3, 4]]);
+    /// ```
+    pub fn polygons(&self) -> Vec<Vec<u32>> {
+        self.faces
+            .chunk_by(|f, g| f.polygon == g.polygon)
+            .map(|faces| {
+                let [face] = faces else {
+                    return polygon_loop(faces);
+                };
+                face.vertices.clone()
+            })
+            .collect()
     }
 
     /// The vertices of face `f`, in order.
@@ -327,135 +526,134 @@ impl Mesh {
     /// let m = Matrix4::new_nonuniform_scaling(&nalgebra::Vector3::new(2.0, 3.0, -1.0));
     /// let t = c.transformed(&m).unwrap();
     /// assert!((t.volume() - 6.0).abs() < 1e-12);
+    /// // Scalings by large powers of two (whose determinant is not a double) are not singular.
+    /// let huge = c.transformed(&Matrix4::new_scaling(2f64.powi(-600))).unwrap();
+    /// let scaled = |x: f64| x * 2f64.powi(-600);
+    /// assert!(huge.vertices().iter().zip(c.vertices()).all(|(a, b)| *a == b.map(scaled)));
     /// ```
     pub fn transformed(&self, m: &Matrix4<f64>) -> Result<Mesh, MeshError> {
-        let det = m.fixed_view::<3, 3>(0, 0).determinant();
-        if !det.is_finite() || det == 0.0 || m.iter().any(|x| !x.is_finite()) {
+        if m.iter().any(|x| !x.is_finite()) {
             return Err(MeshError::SingularTransform);
         }
+        // The sign of the determinant of the linear part, exactly: a rounded determinant
+        // overflows or underflows for scalings by large powers of two.
+        let row = |i: usize| Point3::new(m[(i, 0)], m[(i, 1)], m[(i, 2)]);
+        let mirrors = match orient3d(&row(0), &row(1), &row(2), &Point3::origin()) {
+            Ordering::Greater => false,
+            Ordering::Less => true,
+            Ordering::Equal => return Err(MeshError::SingularTransform),
+        };
         let vertices = self.vertices.iter().map(|p| m.transform_point(p)).collect();
-        let faces = self
+        let polygons = self
             .faces
             .iter()
             .map(|f| {
                 let mut v = f.vertices.clone();
-                if det < 0.0 {
+                let mut diagonals = f.diagonals;
+                if mirrors {
                     v.reverse();
+                    // Side i of the reversed loop is side n - 2 - i of the loop, reversed
+                    // (and the last side stays the last).
+                    let n = v.len();
+                    diagonals = (0..n.min(8)).fold(0, |bits, i| {
+                        let old = if i + 1 < n { n - 2 - i } else { n - 1 };
+                        if f.is_polygon_edge(old) {
+                            bits
+                        } else {
+                            bits | 1 << i
+                        }
+                    });
                 }
-                v
+                (v, diagonals, f.polygon)
             })
             .collect();
-        Mesh::from_polygons(vertices, faces)
+        Mesh::rebuilt(vertices, polygons, [self])
+    }
+
+    /// The meshes as one: their vertex lists appended (equal vertices merged) and their faces
+    /// renumbered, each keeping what it is of its input polygon (renumbered after the
+    /// polygons of the meshes before it); the counts of repairs add up.
+    ///
+    /// ```
+    /// use kepler::{mesh::Mesh, solids};
+    /// let (a, b) = (solids::cube(1.0).unwrap(), solids::dodecahedron(1.0).unwrap());
+    /// let both = Mesh::concatenate([&a, &b]).unwrap();
+    /// assert_eq!(both.faces().len(), a.faces().len() + b.faces().len());
+    /// assert_eq!(both.polygons().len(), 6 + 12);
+    /// assert_eq!(both.split_polygons(), b.split_polygons());
+    /// ```
+    pub fn concatenate<'a>(meshes: impl IntoIterator<Item = &'a Mesh>) -> Result<Mesh, MeshError> {
+        let meshes: Vec<&Mesh> = meshes.into_iter().collect();
+        let mut vertices: Vec<Point3> = Vec::new();
+        let mut polygons = Vec::new();
+        let mut first_polygon = 0;
+        for mesh in &meshes {
+            let offset = vertices.len() as u32;
+            vertices.extend_from_slice(&mesh.vertices);
+            polygons.extend(mesh.faces.iter().map(|f| {
+                let v = f.vertices.iter().map(|&i| i + offset).collect();
+                (v, f.diagonals, f.polygon + first_polygon)
+            }));
+            first_polygon += mesh.faces.iter().map(|f| f.polygon + 1).max().unwrap_or(0);
+        }
+        Mesh::rebuilt(vertices, polygons, meshes)
+    }
+
+    /// The mesh of `polygons` over `vertices` (not yet merged), faces of meshes `from`, whose
+    /// counts of repairs it inherits.
+    fn rebuilt<'a>(
+        vertices: Vec<Point3>,
+        polygons: Vec<Polygon>,
+        from: impl IntoIterator<Item = &'a Mesh>,
+    ) -> Result<Mesh, MeshError> {
+        let (vertices, remap, merged_vertices) = build::merge_duplicates(vertices)?;
+        let polygons = polygons
+            .into_iter()
+            .map(|(v, diagonals, polygon)| {
+                (
+                    v.iter().map(|&i| remap[i as usize]).collect(),
+                    diagonals,
+                    polygon,
+                )
+            })
+            .collect();
+        let mut mesh = Mesh::assemble(vertices, polygons, Validation::Repair)?;
+        mesh.merged_vertices = merged_vertices;
+        for m in from {
+            mesh.merged_vertices += m.merged_vertices;
+            mesh.degenerate_faces += m.degenerate_faces;
+            mesh.split_polygons += m.split_polygons;
+        }
+        Ok(mesh)
     }
 }
 
-/// Merges vertices with exactly equal coordinates (`-0.0` equals `0.0`) after checking that
-/// they are finite and in range; returns the distinct vertices in first-seen order, the map
-/// from input index to output index, and how many were merged.
-fn merge_duplicates(
-    mut vertices: Vec<Point3>,
-) -> Result<(Vec<Point3>, Vec<u32>, usize), MeshError> {
-    for (i, p) in vertices.iter_mut().enumerate() {
-        if p.iter().any(|c| !c.is_finite()) {
-            return Err(MeshError::NonFinite { vertex: i });
-        }
-        if p.iter().any(|c| c.abs() > MAX_COORDINATE) {
-            return Err(MeshError::OutOfRange { vertex: i });
-        }
-        // Adding +0.0 turns -0.0 into +0.0, so both sort and compare as one value.
-        p.apply(|c| *c += 0.0);
-    }
-    let key = |p: &Point3| (p.x.to_bits(), p.y.to_bits(), p.z.to_bits());
-    let mut order: Vec<u32> = (0..vertices.len() as u32).collect();
-    order.sort_unstable_by(|&a, &b| {
-        let (pa, pb) = (&vertices[a as usize], &vertices[b as usize]);
-        pa.x.total_cmp(&pb.x)
-            .then(pa.y.total_cmp(&pb.y))
-            .then(pa.z.total_cmp(&pb.z))
-            .then(a.cmp(&b))
-    });
-    // Representative of each vertex: the first (lowest index) with the same coordinates.
-    let mut rep: Vec<u32> = (0..vertices.len() as u32).collect();
-    for w in order.chunk_by(|&a, &b| key(&vertices[a as usize]) == key(&vertices[b as usize])) {
-        for &i in w {
-            rep[i as usize] = w[0];
-        }
-    }
-    let mut remap = vec![0u32; vertices.len()];
-    let mut out = Vec::with_capacity(vertices.len());
-    for i in 0..vertices.len() {
-        if rep[i] as usize == i {
-            remap[i] = out.len() as u32;
-            out.push(vertices[i]);
-        } else {
-            remap[i] = remap[rep[i] as usize];
-        }
-    }
-    let merged = vertices.len() - out.len();
-    Ok((out, remap, merged))
-}
-
-/// Validates one face and computes its plane, texture frame, area and triangles (with
-/// indices offset into the mesh's triangle list starting at `first_triangle`).
-fn build_face(
-    vertices: &[Point3],
-    idx: Vec<u32>,
-    fi: usize,
-    first_triangle: usize,
-) -> Result<(Face, Vec<[u32; 3]>), MeshError> {
-    let pts: Vec<Point3> = idx.iter().map(|&i| vertices[i as usize]).collect();
-    let mut sorted = idx.clone();
-    sorted.sort_unstable();
-    if let Some(w) = sorted.windows(2).find(|w| w[0] == w[1]) {
-        let p = vertices[w[0] as usize];
-        return Err(MeshError::RepeatedVertex {
-            face: fi,
-            x: p.x,
-            y: p.y,
-            z: p.z,
-        });
-    }
-    let a = &pts[0];
-    let b = &pts[1];
-    if pts[2..].iter().all(|c| collinear(a, b, c)) {
-        return Err(MeshError::ZeroArea { face: fi });
-    }
-    let n2 = newell_normal(&pts);
-    // The face's size: the diagonal of its bounding box (linear time; between its diameter
-    // and √3 times it).
-    let diameter = crate::geometry::Aabb::from_points(&pts)
-        .size()
+/// The loop of a split polygon from its triangle faces: its polygon edges chained from the
+/// first face's first one.
+fn polygon_loop(faces: &[Face]) -> Vec<u32> {
+    let mut next: Vec<(u32, u32)> = faces
         .iter()
-        .map(|d| d * d)
-        .sum::<f64>()
-        .sqrt();
-    let len = n2.norm();
-    if len.is_nan() || len <= 1e-14 * diameter * diameter {
-        return Err(MeshError::ZeroArea { face: fi });
-    }
-    let normal: Vector3 = n2 / len;
-    let centroid = pts.iter().fold(Vector3::zeros(), |s, p| s + p.coords) / pts.len() as f64;
-    let deviation = pts
-        .iter()
-        .map(|p| (p.coords - centroid).dot(&normal).abs())
-        .fold(0.0, f64::max)
-        / diameter;
-    if deviation > PLANARITY_TOLERANCE {
-        return Err(MeshError::NonPlanar {
-            face: fi,
-            deviation,
-        });
-    }
-    let local = triangulate(&pts, &normal).map_err(|_| MeshError::NotSimple { face: fi })?;
-    let tris: Vec<[u32; 3]> = local.iter().map(|t| t.map(|k| idx[k])).collect();
-    let d = -normal.dot(&centroid);
-    let horizontal = pts.iter().all(|p| p.z == a.z);
-    let face = Face {
-        texture: TextureFrame::new(&normal, d, horizontal),
-        plane: Plane::new(normal, d),
-        area: len / 2.0,
-        triangles: first_triangle..first_triangle + tris.len(),
-        vertices: idx,
+        .flat_map(|f| {
+            let v = &f.vertices;
+            (0..v.len())
+                .filter(|&i| f.is_polygon_edge(i))
+                .map(move |i| (v[i], v[(i + 1) % v.len()]))
+        })
+        .collect();
+    let Some(&(start, _)) = next.first() else {
+        return Vec::new();
     };
-    Ok((face, tris))
+    next.sort_unstable();
+    let mut out = vec![start];
+    while out.len() <= next.len() {
+        let last = out[out.len() - 1];
+        let Ok(k) = next.binary_search_by_key(&last, |e| e.0) else {
+            break;
+        };
+        if next[k].1 == start {
+            break;
+        }
+        out.push(next[k].1);
+    }
+    out
 }

@@ -1,4 +1,11 @@
-//! Edge structure of a mesh: whether it is closed and consistently oriented.
+//! Edge structure of a mesh: whether it is closed and consistently oriented, and where faces
+//! meet in T-junctions.
+
+use super::face::Face;
+use crate::geometry::Point3;
+use crate::geometry::predicates::collinear;
+use rstar::primitives::GeomWithData;
+use rstar::{AABB, RTree};
 
 /// How the faces of a mesh fit together along their edges.
 ///
@@ -43,14 +50,34 @@ impl Topology {
     /// assert!(!t.closed && t.consistently_oriented);
     /// ```
     pub fn of_faces<'a>(faces: impl IntoIterator<Item = &'a [u32]>) -> Topology {
-        // (low, high, forward) per directed edge; sorting groups the uses of each edge.
-        let mut uses: Vec<(u32, u32, bool)> = Vec::new();
+        let mut uses = Vec::new();
         for f in faces {
             for (i, &a) in f.iter().enumerate() {
-                let b = f[(i + 1) % f.len()];
-                uses.push((a.min(b), a.max(b), a < b));
+                uses.push(edge_use(a, f[(i + 1) % f.len()], 0));
             }
         }
+        Topology::of_uses(uses)
+    }
+
+    /// The topology of a mesh's faces, each side cut into pieces at its T-junctions.
+    pub(crate) fn of_mesh_faces(faces: &[Face], junctions: &[Junction]) -> Topology {
+        let mut uses = Vec::new();
+        let mut cut = junctions.iter().peekable();
+        for (fi, f) in faces.iter().enumerate() {
+            let v = f.vertices();
+            for (i, &a) in v.iter().enumerate() {
+                let b = v[(i + 1) % v.len()];
+                match cut.next_if(|j| (j.face as usize, j.side as usize) == (fi, i)) {
+                    Some(j) => uses.extend(pieces(a, b, &j.inner).map(|(p, q)| edge_use(p, q, 0))),
+                    None => uses.push(edge_use(a, b, 0)),
+                }
+            }
+        }
+        Topology::of_uses(uses)
+    }
+
+    /// The topology of the edge uses ([`edge_use`]).
+    fn of_uses(mut uses: Vec<(u64, u32)>) -> Topology {
         uses.sort_unstable();
         let mut t = Topology {
             edges: 0,
@@ -61,9 +88,9 @@ impl Topology {
             closed: false,
             consistently_oriented: false,
         };
-        for group in uses.chunk_by(|x, y| x.0 == y.0 && x.1 == y.1) {
+        for group in uses.chunk_by(|x, y| x.0 == y.0) {
             t.edges += 1;
-            let forward = group.iter().filter(|u| u.2).count();
+            let forward = group.iter().filter(|u| u.1 & 1 == 1).count();
             match group.len() {
                 1 => t.boundary_edges += 1,
                 2 => {}
@@ -80,4 +107,103 @@ impl Topology {
         t.consistently_oriented = t.misoriented_edges == 0;
         t
     }
+}
+
+/// A use of the edge from `a` to `b` by side `index` of the mesh's faces: the undirected key
+/// (low vertex, high vertex) and the index with the direction in its low bit (1 when `a < b`).
+fn edge_use(a: u32, b: u32, index: u32) -> (u64, u32) {
+    (
+        u64::from(a.min(b)) << 32 | u64::from(a.max(b)),
+        index << 1 | u32::from(a < b),
+    )
+}
+
+/// The pieces of the side from `a` to `b` cut at the vertices `inner` (in order from `a`).
+pub(crate) fn pieces(a: u32, b: u32, inner: &[u32]) -> impl Iterator<Item = (u32, u32)> + '_ {
+    let ends = std::iter::once(a).chain(inner.iter().copied());
+    ends.clone()
+        .zip(inner.iter().copied().chain(std::iter::once(b)))
+}
+
+/// A side of a face with vertices of the mesh lying exactly inside it (a T-junction): side
+/// `side` of face `face` runs from its vertex `side` to the next, through `inner` in order.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Junction {
+    pub face: u32,
+    pub side: u32,
+    pub inner: Vec<u32>,
+}
+
+/// The T-junctions of the faces, by face and side: where a side used by one face only has
+/// vertices exactly inside it that are ends of such sides too (the sides that cover it from the
+/// other face). Only unmatched sides are searched, their candidate vertices in an R-tree, so
+/// a mesh without them costs one sort of its sides.
+pub(crate) fn junctions(vertices: &[Point3], faces: &[Face]) -> Vec<Junction> {
+    let mut first_use = Vec::with_capacity(faces.len() + 1);
+    let mut uses = Vec::new();
+    for f in faces {
+        first_use.push(uses.len());
+        let v = f.vertices();
+        for (i, &a) in v.iter().enumerate() {
+            uses.push(edge_use(a, v[(i + 1) % v.len()], uses.len() as u32));
+        }
+    }
+    uses.sort_unstable();
+    let side_of = |u: u32| {
+        let u = (u >> 1) as usize;
+        let f = first_use.partition_point(|&first| first <= u) - 1;
+        let v = faces[f].vertices();
+        let i = u - first_use[f];
+        (f, i, v[i], v[(i + 1) % v.len()])
+    };
+    let unmatched: Vec<_> = uses
+        .chunk_by(|x, y| x.0 == y.0)
+        .filter(|group| group.len() == 1)
+        .map(|group| side_of(group[0].1))
+        .collect();
+    if unmatched.is_empty() {
+        return Vec::new();
+    }
+    let mut candidates: Vec<u32> = unmatched.iter().flat_map(|s| [s.2, s.3]).collect();
+    candidates.sort_unstable();
+    candidates.dedup();
+    let tree = RTree::bulk_load(
+        candidates
+            .iter()
+            .map(|&c| GeomWithData::<[f64; 3], u32>::new(vertices[c as usize].into(), c))
+            .collect(),
+    );
+    let mut found: Vec<Junction> = unmatched
+        .iter()
+        .filter_map(|&(f, i, a, b)| {
+            let (pa, pb) = (&vertices[a as usize], &vertices[b as usize]);
+            let envelope = AABB::from_corners(pa.inf(pb).into(), pa.sup(pb).into());
+            let mut inner: Vec<u32> = tree
+                .locate_in_envelope(&envelope)
+                .map(|c| c.data)
+                .filter(|&c| c != a && c != b && collinear(pa, pb, &vertices[c as usize]))
+                .collect();
+            if inner.is_empty() {
+                return None;
+            }
+            // Along the segment, a coordinate in which its ends differ is strictly monotonic
+            // (its points are exactly collinear).
+            let k = (0..3).find(|&k| pa[k] != pb[k]).unwrap_or(0);
+            inner.sort_unstable_by(|&c, &d| {
+                let order = vertices[c as usize][k].total_cmp(&vertices[d as usize][k]);
+                if pa[k] < pb[k] {
+                    order
+                } else {
+                    order.reverse()
+                }
+            });
+            Some(Junction {
+                face: f as u32,
+                side: i as u32,
+                inner,
+            })
+        })
+        .collect();
+    found.sort_unstable_by_key(|j| (j.face, j.side));
+    found
 }

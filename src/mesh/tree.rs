@@ -1,27 +1,64 @@
 //! An R-tree (rstar) over the triangles of a mesh, for the queries the bounds need: triangles
 //! near a box, triangles above a point, and the nearest triangle.
+//!
+//! The tree holds the triangles' boxes scaled by a power of two when the mesh's coordinates are
+//! very large or very small, so that the squared distances rstar computes neither overflow
+//! (into infinities whose differences are NaN, which its nearest-neighbour search cannot
+//! order) nor underflow; the boxes are rounded outward where the scaling is not exact, and
+//! every query is scaled the same way, so the answers are the same triangles.
 
 use super::Mesh;
+use super::build::{largest_coordinate, normalising_exponent, times_power_of_two};
 use crate::geometry::{Aabb, Point3, Vector3};
 use rstar::{AABB, PointDistance, RTree, RTreeObject, SelectionFunction};
 
+/// Coordinates below `2^SAFE` in magnitude (and not too small) are used as they are: the
+/// fourth powers in the distances stay finite and normal.
+const SAFE: i32 = 200;
+
 /// One triangle of the mesh in the tree: its index in [`Mesh::triangles`], corners, and box
-/// (kept, not recomputed: bulk loading asks for it at every comparison of its sorts).
+/// in the tree's scaled coordinates (kept, not recomputed: bulk loading asks for it at every
+/// comparison of its sorts).
 #[derive(Debug, Clone, Copy)]
 struct Entry {
     index: usize,
     corners: [Point3; 3],
     envelope: AABB<[f64; 3]>,
+    exponent: i32,
 }
 
 impl Entry {
-    fn new(index: usize, corners: [Point3; 3]) -> Entry {
-        let b = Aabb::from_points(&corners);
+    fn new(index: usize, corners: [Point3; 3], exponent: i32) -> Entry {
+        let b = scaled_box(&Aabb::from_points(&corners), exponent);
         Entry {
             index,
             corners,
             envelope: AABB::from_corners(b.min, b.max),
+            exponent,
         }
+    }
+}
+
+/// `x · 2^e` rounded down (`up` false) or up, exactly when it can be.
+fn scaled_toward(x: f64, e: i32, up: bool) -> f64 {
+    let y = times_power_of_two(x, e);
+    let back = times_power_of_two(y, -e);
+    match (back == x, up) {
+        (true, _) => y,
+        (false, false) if back > x => y.next_down(),
+        (false, true) if back < x => y.next_up(),
+        _ => y,
+    }
+}
+
+/// The box `b` scaled by `2^e`, rounded outward (so it still holds what `b` holds).
+fn scaled_box(b: &Aabb, e: i32) -> Aabb {
+    if e == 0 {
+        return *b;
+    }
+    Aabb {
+        min: b.min.map(|x| scaled_toward(x, e, false)),
+        max: b.max.map(|x| scaled_toward(x, e, true)),
     }
 }
 
@@ -33,8 +70,13 @@ impl RTreeObject for Entry {
 }
 
 impl PointDistance for Entry {
+    /// The squared distance from `p` (in the tree's scaled coordinates) to the triangle,
+    /// rounded.
     fn distance_2(&self, p: &[f64; 3]) -> f64 {
-        let q = closest_point_on_triangle(&Point3::from(*p), &self.corners);
+        let corners = self
+            .corners
+            .map(|c| c.map(|x| times_power_of_two(x, self.exponent)));
+        let q = closest_point_on_triangle(&Point3::from(*p), &corners);
         (q - Point3::from(*p)).norm_squared()
     }
 }
@@ -52,6 +94,8 @@ impl PointDistance for Entry {
 #[derive(Debug)]
 pub struct TriangleTree {
     tree: RTree<Entry>,
+    /// The tree's coordinates are the mesh's times `2^exponent`.
+    exponent: i32,
 }
 
 impl TriangleTree {
@@ -62,11 +106,13 @@ impl TriangleTree {
     /// assert_eq!(t.len(), 12);
     /// ```
     pub fn new(mesh: &Mesh) -> TriangleTree {
+        let exponent = normalising_exponent(largest_coordinate(mesh.vertices()), SAFE);
         let entries = (0..mesh.triangles().len())
-            .map(|index| Entry::new(index, mesh.triangle(index)))
+            .map(|index| Entry::new(index, mesh.triangle(index), exponent))
             .collect();
         TriangleTree {
             tree: RTree::bulk_load(entries),
+            exponent,
         }
     }
 
@@ -99,6 +145,7 @@ impl TriangleTree {
     /// assert_eq!(t.in_box(&inside).count(), 0);
     /// ```
     pub fn in_box(&self, b: &Aabb) -> impl Iterator<Item = (usize, [Point3; 3])> + use<> {
+        let b = scaled_box(b, self.exponent);
         let envelope = AABB::from_corners(b.min, b.max);
         let found: Vec<_> = self
             .tree
@@ -134,7 +181,7 @@ impl TriangleTree {
         F: Fn(&Aabb) -> bool + 'a,
     {
         self.tree
-            .locate_with_selection_function(BoxTest(meets))
+            .locate_with_selection_function(BoxTest(meets, self.exponent))
             .map(|e| (e.index, e.corners))
     }
 
@@ -147,22 +194,27 @@ impl TriangleTree {
     /// assert!((t.distance(&Point3::new(0.5, 0.0, 0.0)) - 0.5).abs() < 1e-15);
     /// ```
     pub fn distance(&self, p: &Point3) -> f64 {
-        let q = [p.x, p.y, p.z];
-        self.tree
-            .nearest_neighbor(&q)
-            .map_or(f64::INFINITY, |e| e.distance_2(&q).sqrt())
+        let q = p
+            .coords
+            .map(|x| times_power_of_two(x, self.exponent))
+            .into();
+        self.tree.nearest_neighbor(&q).map_or(f64::INFINITY, |e| {
+            times_power_of_two(e.distance_2(&q).sqrt(), -self.exponent)
+        })
     }
 }
 
-/// An rstar selection function from a test on boxes.
-struct BoxTest<F>(F);
+/// An rstar selection function from a test on boxes (in the mesh's coordinates: the tree's
+/// scaled by `2^-exponent`, rounded outward).
+struct BoxTest<F>(F, i32);
 
 impl<F: Fn(&Aabb) -> bool> SelectionFunction<Entry> for BoxTest<F> {
     fn should_unpack_parent(&self, envelope: &AABB<[f64; 3]>) -> bool {
-        (self.0)(&Aabb {
+        let b = Aabb {
             min: envelope.lower(),
             max: envelope.upper(),
-        })
+        };
+        (self.0)(&scaled_box(&b, -self.1))
     }
 
     fn should_unpack_leaf(&self, leaf: &Entry) -> bool {

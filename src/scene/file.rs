@@ -34,7 +34,7 @@
 //! ```
 //!
 //! An object has a `name` and exactly one of: `solid` (a built-in solid with its
-//! parameters), `mesh` (an OBJ, STL or OFF file, relative to the scene file), `instance` (a
+//! parameters), `mesh` (an OBJ, STL, OFF or PLY file, relative to the scene file), `instance` (a
 //! `[define.NAME]` prototype) or subobjects (`[[object.object]]` tables). Placement keys:
 //! `scale` (a number or `[x, y, z]`), `rotate` (degrees about x, then y, then z),
 //! `translate`, applied in that order and on top of the placement of the enclosing objects;
@@ -43,8 +43,8 @@
 //! that name the file and line.
 
 use super::{Camera, ObjectId, Projection, Result, Scene, SceneError, Transform};
-use crate::io::FileError;
-use crate::mesh::Mesh;
+use crate::io::{FileError, shortened};
+use crate::mesh::{Mesh, Validation};
 use crate::solids::{self, Polyhedron};
 use nalgebra::{Matrix4, Vector3};
 use serde::Deserialize;
@@ -53,14 +53,27 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use toml::Spanned;
 
-/// Loads a scene: a scene file (`.toml`), or a single mesh file (`.obj`, `.stl`, `.off`)
-/// that becomes a scene of one object named after the file.
+/// Loads a scene: a scene file (`.toml`), or a single mesh file (`.obj`, `.stl`, `.off`,
+/// `.ply`) that becomes a scene of one object named after the file. Mesh files are read with
+/// [`Validation::Repair`] (see [`load_with`]).
 ///
 /// ```
 /// let scene = kepler::scene::file::load("scenes/cube.toml".as_ref()).unwrap();
 /// assert_eq!(scene.roots().len(), 1);
 /// ```
 pub fn load(path: &Path) -> Result<Scene> {
+    load_with(path, Validation::Repair)
+}
+
+/// [`load`] reading mesh files with the given treatment of degenerate faces and polygons that
+/// are not exactly planar ([`Validation::Strict`] refuses them, naming the file and line).
+///
+/// ```
+/// use kepler::{mesh::Validation, scene::file::load_with};
+/// let scene = load_with("scenes/meshes.toml".as_ref(), Validation::Strict).unwrap();
+/// assert_eq!(scene.roots().len(), 3);
+/// ```
+pub fn load_with(path: &Path, validation: Validation) -> Result<Scene> {
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
@@ -68,9 +81,9 @@ pub fn load(path: &Path) -> Result<Scene> {
     if ext.as_deref() == Some("toml") {
         let text = std::fs::read_to_string(path)
             .map_err(|e| FileError::io(path.display().to_string(), e))?;
-        return parse(&text, path);
+        return parse_with(&text, path, validation);
     }
-    let mesh = crate::io::read_mesh(path)?;
+    let mesh = crate::io::read_mesh_with(path, validation)?;
     let mut scene = Scene::new();
     let name = path
         .file_stem()
@@ -91,6 +104,20 @@ pub fn load(path: &Path) -> Result<Scene> {
 /// assert!(bad.unwrap_err().to_string().starts_with("x.toml:2: unknown field `colour`"));
 /// ```
 pub fn parse(text: &str, path: &Path) -> Result<Scene> {
+    parse_with(text, path, Validation::Repair)
+}
+
+/// [`parse`] reading mesh files with the given treatment of degenerate faces and polygons that
+/// are not exactly planar. Errors that echo the text cut what they echo ([`shortened`]).
+///
+/// ```
+/// use kepler::{mesh::Validation, scene::file::parse_with};
+/// let key = "k".repeat(1 << 20);
+/// let err = parse_with(&format!("[[object]]\n{key} = 3\n"), "x.toml".as_ref(), Validation::Repair);
+/// let message = err.unwrap_err().to_string();
+/// assert!(message.starts_with("x.toml:2: unknown field `kkkk") && message.len() < 300);
+/// ```
+pub fn parse_with(text: &str, path: &Path, validation: Validation) -> Result<Scene> {
     let name = path.display().to_string();
     let line_of = |offset: usize| text[..offset.min(text.len())].matches('\n').count() + 1;
     let spec: FileSpec = toml::from_str(text).map_err(|e| FileError::Input {
@@ -98,7 +125,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Scene> {
         at: e
             .span()
             .map_or("1".to_string(), |s| line_of(s.start).to_string()),
-        message: e.message().to_string(),
+        message: shortened(e.message()),
     })?;
     let mut b = Builder {
         path: name,
@@ -108,6 +135,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Scene> {
         protos: HashMap::new(),
         building: Vec::new(),
         meshes: HashMap::new(),
+        validation,
     };
     let mut scene = Scene::new();
     if let Some(c) = &spec.camera {
@@ -368,11 +396,13 @@ struct Builder<'a> {
     protos: HashMap<String, Proto>,
     building: Vec<String>,
     meshes: HashMap<PathBuf, Arc<Mesh>>,
+    validation: Validation,
 }
 
 impl Builder<'_> {
     /// Bad input at the line of `at`.
     fn err<T>(&self, at: &Spanned<T>, message: impl Into<String>) -> SceneError {
+        let message = shortened(&message.into());
         FileError::at_line(self.path.clone(), (self.line_of)(at.span().start), message).into()
     }
 
@@ -591,7 +621,8 @@ impl Builder<'_> {
         let mesh = match self.meshes.get(&path) {
             Some(m) => m.clone(),
             None => {
-                let m = Arc::new(crate::io::read_mesh(&path).map_err(|e| self.at(o, e))?);
+                let m = crate::io::read_mesh_with(&path, self.validation);
+                let m = Arc::new(m.map_err(|e| self.at(o, e))?);
                 self.meshes.insert(path.clone(), m.clone());
                 m
             }

@@ -29,7 +29,6 @@ pub use transform::Transform;
 
 use crate::bounds::tribox::TriboxBounds;
 use crate::bounds::{Aabb, Inbox, InboxMethod, inbox};
-use crate::geometry::Point3;
 use crate::geometry::kernel::Exponents;
 use crate::io::FileError;
 use crate::mesh::{Mesh, MeshError};
@@ -798,7 +797,7 @@ impl Scene {
     /// assert_eq!((flat.faces().len(), flat.vertices().len()), (12, 12));
     /// ```
     pub fn flatten(&self, id: ObjectId) -> Result<Mesh> {
-        concatenate(self.meshes(id)).map_err(|e| SceneError::Object {
+        Mesh::concatenate(self.meshes(id)).map_err(|e| SceneError::Object {
             object: self.path(id),
             problem: ObjectProblem::Flatten(e),
         })
@@ -873,27 +872,10 @@ impl Scene {
     /// assert_eq!((flat.faces().len(), flat.vertices().len()), (12, 16));
     /// ```
     pub fn flatten_all(&self) -> Result<Mesh> {
-        let meshes = self.roots().iter().flat_map(|&r| self.meshes(r)).collect();
-        concatenate(meshes).map_err(|e| SceneError::Object {
+        let meshes = self.roots().iter().flat_map(|&r| self.meshes(r));
+        Mesh::concatenate(meshes).map_err(|e| SceneError::Object {
             object: "(all objects)".to_string(),
             problem: ObjectProblem::Flatten(e),
         })
     }
-}
-
-/// The meshes' vertex lists appended and their faces renumbered, as one mesh (equal vertices
-/// merged by [`Mesh::from_polygons`]).
-fn concatenate(meshes: Vec<&Mesh>) -> Result<Mesh, MeshError> {
-    let mut vertices: Vec<Point3> = Vec::new();
-    let mut faces: Vec<Vec<u32>> = Vec::new();
-    for mesh in meshes {
-        let offset = vertices.len() as u32;
-        vertices.extend_from_slice(mesh.vertices());
-        faces.extend(
-            mesh.faces()
-                .iter()
-                .map(|f| f.vertices().iter().map(|&v| v + offset).collect()),
-        );
-    }
-    Mesh::from_polygons(vertices, faces)
 }

@@ -3,8 +3,10 @@
 //! and cylinders.
 //!
 //! Every solid is a validated [`Mesh`] that is closed and consistently oriented, with faces
-//! counter-clockwise seen from outside. Faces are kept as polygons (a cube has 6 quads, a
-//! dodecahedron 12 pentagons, a prism's caps are single polygons), not triangulated.
+//! counter-clockwise seen from outside. Faces are given as polygons (a cube has 6 quads, a
+//! dodecahedron 12 pentagons, a prism's caps are single polygons), not triangulated; a polygon
+//! that rounding leaves not exactly planar is split into triangle faces
+//! ([`Mesh::split_polygons`]), and [`Mesh::polygons`] gives the polygons back.
 //!
 //! - [`Polyhedron`]: the 18 Platonic and Archimedean solids, centred at the origin, at any
 //!   edge length, with their counts and closed-form volumes and surface areas;
@@ -22,7 +24,7 @@
 //! assert_eq!(c.faces().len(), 6);
 //! assert!((c.volume() - 8.0).abs() < 1e-12);
 //! let ti = Polyhedron::TruncatedIcosahedron.mesh(1.0).unwrap();
-//! assert_eq!(ti.faces().len(), 32);
+//! assert_eq!(ti.polygons().len(), 32);
 //! let e = solids::uv_sphere(1.0, 2, 8).unwrap_err();
 //! assert_eq!(e.to_string(), "sphere: segments must be at least 3, got 2");
 //! ```
@@ -38,7 +40,7 @@ pub use prism::prism;
 pub use round::{cylinder, torus, uv_sphere};
 
 use crate::geometry::{Point3, Vector3};
-use crate::mesh::{Mesh, MeshError};
+use crate::mesh::{Mesh, MeshError, Validation};
 
 /// The largest number of faces a sphere or torus may have; larger requests are errors.
 ///
@@ -130,7 +132,7 @@ pub fn octahedron(edge: f64) -> Result<Mesh, SolidError> {
 ///
 /// ```
 /// let d = kepler::solids::dodecahedron(1.0).unwrap();
-/// assert!(d.faces().iter().all(|f| f.vertices().len() == 5));
+/// assert!(d.polygons().iter().all(|f| f.len() == 5));
 /// ```
 pub fn dodecahedron(edge: f64) -> Result<Mesh, SolidError> {
     Polyhedron::Dodecahedron.mesh(edge)
@@ -188,7 +190,12 @@ pub fn box_between(min: [f64; 3], max: [f64; 3]) -> Result<Mesh, SolidError> {
         vec![0, 2, 3, 1],
         vec![4, 5, 7, 6],
     ];
-    Ok(Mesh::from_polygons(vertices, faces)?)
+    // Its faces are exactly planar; strict validation refuses a flat box's degenerate faces.
+    Ok(Mesh::from_polygons_with(
+        vertices,
+        faces,
+        Validation::Strict,
+    )?)
 }
 
 /// `value` if it is finite and greater than 0, else the error naming `solid` and `parameter`.

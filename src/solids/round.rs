@@ -15,7 +15,7 @@ use std::f64::consts::{PI, TAU};
 ///
 /// ```
 /// let s = kepler::solids::uv_sphere(1.0, 16, 8).unwrap();
-/// assert_eq!((s.vertices().len(), s.faces().len()), (16 * 7 + 2, 16 * 8));
+/// assert_eq!((s.vertices().len(), s.polygons().len()), (16 * 7 + 2, 16 * 8));
 /// assert!(s.volume() < 4.0 / 3.0 * std::f64::consts::PI);
 /// let e = kepler::solids::uv_sphere(1.0, 16, 1).unwrap_err();
 /// assert_eq!(e.to_string(), "sphere: rings must be at least 2, got 1");
@@ -66,7 +66,7 @@ pub fn uv_sphere(radius: f64, segments: u32, rings: u32) -> Result<Mesh, SolidEr
 ///
 /// ```
 /// let t = kepler::solids::torus(2.0, 0.5, 24, 12).unwrap();
-/// assert_eq!((t.vertices().len(), t.faces().len()), (24 * 12, 24 * 12));
+/// assert_eq!((t.vertices().len(), t.polygons().len()), (24 * 12, 24 * 12));
 /// assert!(t.is_solid());
 /// let e = kepler::solids::torus(1.0, 2.0, 24, 12).unwrap_err();
 /// assert_eq!(e.to_string(), "torus: minor radius must be less than the major radius 1, got 2");

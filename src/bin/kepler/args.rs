@@ -4,6 +4,7 @@
 use anyhow::Result;
 use kepler::geometry::{Point3, Vector3};
 use kepler::hidden::EdgeClass;
+use kepler::mesh::Validation;
 use kepler::output::SvgOptions;
 use kepler::scene::{ObjectId, Scene, file};
 use kepler::views::{View, ViewOptions};
@@ -82,9 +83,32 @@ impl PageArgs {
     }
 }
 
-/// Loads a scene to draw: an error naming the file if it holds no mesh.
-pub fn load_drawable(path: &Path) -> Result<Scene> {
-    let scene = file::load(path)?;
+/// What the commands that read meshes do with faces that are valid input but not faces as
+/// they are.
+#[derive(clap::Args)]
+pub struct FaceArgs {
+    /// Refuse degenerate faces (zero area, a repeated vertex) and polygons that are not exactly
+    /// planar, naming the file and line, instead of dropping the first and splitting the
+    /// second into triangles.
+    #[arg(long)]
+    strict: bool,
+}
+
+impl FaceArgs {
+    /// The validation asked for.
+    pub fn validation(&self) -> Validation {
+        if self.strict {
+            Validation::Strict
+        } else {
+            Validation::Repair
+        }
+    }
+}
+
+/// Loads a scene to draw, its mesh files validated as asked: an error naming the file if it
+/// holds no mesh.
+pub fn load_drawable(path: &Path, validation: Validation) -> Result<Scene> {
+    let scene = file::load_with(path, validation)?;
     if scene.mesh_objects(scene.roots()).is_empty() {
         anyhow::bail!("{}: the scene has no objects to draw", path.display());
     }

@@ -4,6 +4,7 @@ use crate::args::{ViewArgs, load_drawable};
 use crate::output::{emit, write_json_file};
 use anyhow::Result;
 use kepler::lab::culling::{CullReport, cull};
+use kepler::mesh::Validation;
 use std::path::PathBuf;
 
 /// Culling experiment: for one view, how many pairs of objects each bounding volume
@@ -22,7 +23,7 @@ pub struct Args {
 
 /// Prints the culling table of the view.
 pub fn run(args: Args) -> Result<()> {
-    let scene = load_drawable(&args.scene)?;
+    let scene = load_drawable(&args.scene, Validation::Repair)?;
     let view = args.view.view(&scene)?;
     let report = cull(&scene, &view)?;
     emit(&cull_table(&report))?;

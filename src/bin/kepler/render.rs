@@ -1,6 +1,6 @@
 //! `kepler render`: the exact hidden-line drawing of a scene, as SVG (and JSON).
 
-use crate::args::{PageArgs, ViewArgs, load_drawable, parse_area, parse_stroke};
+use crate::args::{FaceArgs, PageArgs, ViewArgs, load_drawable, parse_area, parse_stroke};
 use crate::output::{progress_bar, write_file};
 use anyhow::Result;
 use kepler::geometry::polygon::bounding_box;
@@ -17,13 +17,14 @@ use std::time::{Duration, Instant};
 /// Draw the scene's visible (and hidden) lines exactly, as SVG (and JSON).
 #[derive(clap::Args)]
 pub struct Args {
-    /// A scene file (.toml) or a mesh file (.obj, .stl, .off).
+    /// A scene file (.toml) or a mesh file (.obj, .stl, .off, .ply).
     scene: PathBuf,
     /// The SVG file to write (`-` writes standard output).
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     output: PathBuf,
-    /// Which edges: `feature` (silhouette, boundary, crease, intersection) or `all` (smooth
-    /// edges too: a wireframe with hidden parts removed).
+    /// Which edges: `feature` (silhouette, boundary, crease, intersection), `all` (smooth
+    /// edges too: a wireframe with hidden parts removed) or `mesh` (every edge of the input
+    /// polygons, even between coplanar faces, with hidden parts removed).
     #[arg(long, value_enum, default_value_t = EdgeSelection::Feature)]
     edges: EdgeSelection,
     /// An edge whose faces bend by more than this many degrees is a crease.
@@ -41,8 +42,9 @@ pub struct Args {
     /// Also write the polylines as JSON, in view coordinates, to this file.
     #[arg(long, value_name = "FILE")]
     json: Option<PathBuf>,
-    /// Print what each stage computed and skipped, its time, and the visible and hidden
-    /// length of each edge class (to stderr).
+    /// Print the degenerate faces dropped and the polygons split, what each stage computed
+    /// and skipped, its time, and the visible and hidden length of each edge class (to
+    /// stderr).
     #[arg(long)]
     stats: bool,
     /// Check the drawing independently (VISP at points of every piece, silhouettes by a sign
@@ -50,6 +52,8 @@ pub struct Args {
     /// and fail on any disagreement. The files written are the same.
     #[arg(long)]
     verify: bool,
+    #[command(flatten)]
+    faces: FaceArgs,
     /// Franklin's ideographs: an object whose CBOX's picture is smaller than this many
     /// square millimetres on the page is drawn as its CBOX, or left out (`--ideograph`).
     #[arg(long, value_name = "MM2", value_parser = parse_area)]
@@ -75,7 +79,8 @@ pub fn run(args: Args) -> Result<()> {
         anyhow::bail!("--crease-angle must be between 0 and 180 degrees, not {crease_angle}");
     }
     let started = Instant::now();
-    let scene = load_drawable(&args.scene)?;
+    let scene = load_drawable(&args.scene, args.faces.validation())?;
+    let repairs = repairs(&scene);
     let svg_options = svg_options(&args);
     let room = svg_options.page.map(|side| side - 2.0 * svg_options.margin);
     // A page the SVG options refuse is reported when writing; its aspect is not used.
@@ -114,6 +119,7 @@ pub fn run(args: Args) -> Result<()> {
                 args.ideograph_below.unwrap_or(0.0)
             );
         }
+        eprintln!("{repairs}");
         eprint!("{}", stats_report(drawing, loaded, written));
     }
     if args.verify {
@@ -128,6 +134,22 @@ pub fn run(args: Args) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// What validation repaired in the scene's meshes: the `--stats` line.
+fn repairs(scene: &Scene) -> String {
+    let meshes = scene.mesh_objects(scene.roots());
+    let sum = |count: fn(&kepler::mesh::Mesh) -> usize| {
+        meshes.iter().map(|(_, m)| count(m)).sum::<usize>()
+    };
+    format!(
+        "faces: {} degenerate faces dropped, {} polygons not exactly planar split into \
+         triangles, {} sides matched at T-junctions (in {} meshes)",
+        sum(kepler::mesh::Mesh::degenerate_faces),
+        sum(kepler::mesh::Mesh::split_polygons),
+        sum(kepler::mesh::Mesh::t_junctions),
+        meshes.len()
+    )
 }
 
 /// The SVG options of the page, with the stroke widths given.

@@ -1,6 +1,6 @@
 //! `kepler surfaces`: every face's visible polygons, as a shaded SVG (and JSON).
 
-use crate::args::{PageArgs, ViewArgs, load_drawable, parse_triple};
+use crate::args::{FaceArgs, PageArgs, ViewArgs, load_drawable, parse_triple};
 use crate::output::write_file;
 use anyhow::Result;
 use kepler::geometry::Vector3;
@@ -12,7 +12,7 @@ use std::path::PathBuf;
 /// (and JSON).
 #[derive(clap::Args)]
 pub struct Args {
-    /// A scene file (.toml) or a mesh file (.obj, .stl, .off).
+    /// A scene file (.toml) or a mesh file (.obj, .stl, .off, .ply).
     scene: PathBuf,
     /// The SVG file to write (`-` writes standard output).
     #[arg(short = 'o', long = "output", value_name = "FILE")]
@@ -27,6 +27,8 @@ pub struct Args {
     #[arg(long)]
     outlines: bool,
     #[command(flatten)]
+    faces: FaceArgs,
+    #[command(flatten)]
     page: PageArgs,
     #[command(flatten)]
     view: ViewArgs,
@@ -37,7 +39,7 @@ pub fn run(args: Args) -> Result<()> {
     if args.light == Some([0.0; 3]) {
         anyhow::bail!("--light 0,0,0 has no direction: give a nonzero vector towards the light");
     }
-    let scene = load_drawable(&args.scene)?;
+    let scene = load_drawable(&args.scene, args.faces.validation())?;
     let view = args.view.view(&scene)?;
     let faces = visible_surfaces(&scene, &view)?;
     let options = args.page.svg_options();

@@ -9,6 +9,7 @@ use kepler::lab::tribox_hierarchy::{
     Hierarchy, HierarchyOptions, Level, SplitRule, Stop, TriboxesError,
 };
 use kepler::mesh::Mesh;
+use kepler::mesh::Validation;
 use kepler::output::write_svg;
 use kepler::scene::Scene;
 use std::path::{Path, PathBuf};
@@ -63,7 +64,7 @@ pub struct Args {
 
 /// Builds the hierarchy, prints its levels and writes the JSON and the drawing.
 pub fn run(args: Args) -> Result<()> {
-    let scene = load_drawable(&args.scene)?;
+    let scene = load_drawable(&args.scene, Validation::Repair)?;
     let (name, mesh) = object(&scene, &args.scene, args.object.as_deref())?;
     let options = HierarchyOptions {
         gain: args.gain,

@@ -1,0 +1,293 @@
+//! Building a mesh's faces from input polygons: each polygon is decided exactly (repeated
+//! vertices, zero area, planarity, simplicity) and becomes a face, several faces (a polygon
+//! that is not exactly planar, split into triangles), or none (a degenerate one).
+//!
+//! Every sign is an exact predicate on the input coordinates. The rounded quantities of a face
+//! (its plane, texture frame and area) are computed on its points scaled by a power of two
+//! (exact) when they are very large or very small, then scaled back, so they neither overflow
+//! nor underflow into nonsense at any scale.
+
+use super::face::{Face, Plane, TextureFrame};
+use super::{MeshError, Validation};
+use crate::geometry::polygon::{dominant_axis, newell_normal, triangulate_along};
+use crate::geometry::predicates::{collinear, orient2d, orient3d, project};
+use crate::geometry::{Point3, Vector3};
+use std::cmp::Ordering;
+
+/// Points whose largest coordinate magnitude lies in `[2^-SAFE, 2^SAFE]` (or is 0) are used
+/// as they are: products of up to four of their coordinates neither overflow nor underflow,
+/// and the results are the same bits as with any power-of-two scaling. Others are scaled.
+const SAFE: i32 = 200;
+
+/// `x · 2^e`, exact unless the result overflows or falls below the normal range, for any `e`
+/// (in steps, since `2^e` itself is representable only for `e` in −1074..=1023).
+pub(crate) fn times_power_of_two(mut x: f64, mut e: i32) -> f64 {
+    while e != 0 {
+        let step = e.clamp(-1000, 1000);
+        x *= 2f64.powi(step);
+        e -= step;
+    }
+    x
+}
+
+/// The power of two `e` by which to scale coordinates whose largest magnitude is `largest`
+/// so that it comes near 1: 0 when it is 0, not finite, or within `2^±safe` already.
+pub(crate) fn normalising_exponent(largest: f64, safe: i32) -> i32 {
+    if largest == 0.0 || !largest.is_finite() {
+        return 0;
+    }
+    // log2 of a positive finite f64 is finite and within about 1 of its exponent.
+    let k = largest.log2().floor() as i32;
+    if k.abs() <= safe { 0 } else { -k }
+}
+
+/// The largest coordinate magnitude of the points.
+pub(crate) fn largest_coordinate<'a>(points: impl IntoIterator<Item = &'a Point3>) -> f64 {
+    points
+        .into_iter()
+        .flat_map(|p| p.iter().map(|c| c.abs()))
+        .fold(0.0, f64::max)
+}
+
+/// The points scaled by `2^e`.
+fn scaled(points: &[Point3], e: i32) -> Vec<Point3> {
+    if e == 0 {
+        return points.to_vec();
+    }
+    points
+        .iter()
+        .map(|p| p.map(|c| times_power_of_two(c, e)))
+        .collect()
+}
+
+/// What an input polygon becomes.
+pub(crate) enum Shape {
+    /// Nothing: a degenerate face (repeated vertices, or zero area), left out.
+    Degenerate,
+    /// One planar face: its vertex loop and its triangles (indices into the loop).
+    Planar(Vec<u32>, Vec<[usize; 3]>),
+    /// A polygon that is not exactly planar, split into these triangles (indices into the
+    /// loop), each a face.
+    Split(Vec<u32>, Vec<[usize; 3]>),
+}
+
+/// Decides what the input polygon `idx` (face `fi`, vertex indices already merged) becomes,
+/// or the error that refuses it (`Strict` refuses degenerate and non-planar polygons, both
+/// modes refuse polygons that cross themselves).
+pub(crate) fn shape(
+    vertices: &[Point3],
+    mut idx: Vec<u32>,
+    fi: usize,
+    validation: Validation,
+) -> Result<Shape, MeshError> {
+    let repeated = |idx: &[u32]| {
+        let mut sorted = idx.to_vec();
+        sorted.sort_unstable();
+        sorted.windows(2).find(|w| w[0] == w[1]).map(|w| w[0])
+    };
+    match validation {
+        Validation::Strict => {
+            if let Some(v) = repeated(&idx) {
+                let p = vertices[v as usize];
+                return Err(MeshError::RepeatedVertex {
+                    face: fi,
+                    x: p.x,
+                    y: p.y,
+                    z: p.z,
+                });
+            }
+        }
+        Validation::Repair => {
+            // A vertex repeated in a row is a zero-length side: the loop without it is the
+            // same polygon. A vertex repeated elsewhere makes the loop touch itself.
+            idx.dedup();
+            while idx.len() > 1 && idx.first() == idx.last() {
+                idx.pop();
+            }
+            if idx.len() < 3 || repeated(&idx).is_some() {
+                return Ok(Shape::Degenerate);
+            }
+        }
+    }
+    let pts: Vec<Point3> = idx.iter().map(|&i| vertices[i as usize]).collect();
+    let (a, b) = (&pts[0], &pts[1]);
+    let Some(k) = (2..pts.len()).find(|&k| !collinear(a, b, &pts[k])) else {
+        return match validation {
+            Validation::Strict => Err(MeshError::ZeroArea { face: fi }),
+            Validation::Repair => Ok(Shape::Degenerate),
+        };
+    };
+    if pts.len() == 3 {
+        return Ok(Shape::Planar(idx, vec![[0, 1, 2]]));
+    }
+    let c = &pts[k];
+    let off_plane =
+        (2..pts.len()).find(|&j| j != k && orient3d(a, b, c, &pts[j]) != Ordering::Equal);
+    if let (Some(corner), Validation::Strict) = (off_plane, validation) {
+        return Err(MeshError::NonPlanar { face: fi, corner });
+    }
+    // Projections in the order of the normal's components, largest first: for a planar
+    // polygon the first is simple exactly when the polygon is; a polygon that is not planar
+    // is split in the first projection where it is simple.
+    let n = newell_normal(&scaled(
+        &pts,
+        normalising_exponent(largest_coordinate(&pts), SAFE),
+    ));
+    let first = dominant_axis(&n);
+    let mut axes = [first, (first + 1) % 3, (first + 2) % 3];
+    axes[1..].sort_by(|&i, &j| n[j].abs().total_cmp(&n[i].abs()));
+    let tris = axes
+        .iter()
+        .find_map(|&axis| match off_plane {
+            None => triangulate_along(&pts, axis).ok(),
+            Some(_) => canonical_split(&idx, &pts, axis),
+        })
+        .ok_or(MeshError::NotSimple { face: fi })?;
+    Ok(match off_plane {
+        None => Shape::Planar(idx, tris),
+        Some(_) => Shape::Split(idx, tris),
+    })
+}
+
+/// The triangles (indices into the loop `idx`, turning as it does) that split a polygon that
+/// is not exactly planar, in the projection along `axis`, or `None` if it is not simple there.
+/// The split is part of the surface, so it must not depend on how the polygon is given: it is
+/// made on the loop started at its smallest vertex index and run towards the smaller of that
+/// vertex's neighbours, so that the polygon given from another vertex, reversed, or mirrored
+/// (which reverses it) is split along the same diagonals.
+fn canonical_split(idx: &[u32], pts: &[Point3], axis: usize) -> Option<Vec<[usize; 3]>> {
+    let n = idx.len();
+    let start = (0..n).min_by_key(|&i| idx[i])?;
+    let forward = idx[(start + 1) % n] < idx[(start + n - 1) % n];
+    let order: Vec<usize> = (0..n)
+        .map(|k| if forward { start + k } else { start + n - k } % n)
+        .collect();
+    let canonical: Vec<Point3> = order.iter().map(|&i| pts[i]).collect();
+    let tris = triangulate_along(&canonical, axis).ok()?;
+    Some(
+        tris.into_iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|k| order[k]);
+                if forward { [a, b, c] } else { [a, c, b] }
+            })
+            .collect(),
+    )
+}
+
+/// The face with vertex loop `idx` (planar, not degenerate) and triangles `local` (indices
+/// into the loop), whose triangles start at `first_triangle` in the mesh's list; `diagonals`
+/// marks the sides that are diagonals of a split polygon (bit `i`: the side from vertex `i`),
+/// and `polygon` is the input polygon it comes from.
+pub(crate) fn face(
+    vertices: &[Point3],
+    (idx, diagonals, polygon): (Vec<u32>, u8, u32),
+    local: &[[usize; 3]],
+    first_triangle: usize,
+) -> (Face, Vec<[u32; 3]>) {
+    let pts: Vec<Point3> = idx.iter().map(|&i| vertices[i as usize]).collect();
+    let e = normalising_exponent(largest_coordinate(&pts), SAFE);
+    let q = scaled(&pts, e);
+    let n2 = newell_normal(&q);
+    let len = n2.norm();
+    let normal: Vector3 = if len > 0.0 && len.is_finite() {
+        n2 / len
+    } else {
+        // The rounded normal vanished (a face extremely thin for its distance from the
+        // origin): the axis of the exact projection its triangulation was made in, signed
+        // by the exact orientation there.
+        exact_axis_normal(&pts, local)
+    };
+    let centroid = q.iter().fold(Vector3::zeros(), |s, p| s + p.coords) / q.len() as f64;
+    let d = times_power_of_two(-normal.dot(&centroid), -e);
+    let area = times_power_of_two(len / 2.0, -2 * e);
+    let tris: Vec<[u32; 3]> = local.iter().map(|t| t.map(|k| idx[k])).collect();
+    let horizontal = pts.iter().all(|p| p.z == pts[0].z);
+    let face = Face {
+        texture: TextureFrame::new(&normal, d, horizontal),
+        plane: Plane::new(normal, d),
+        area,
+        triangles: first_triangle..first_triangle + tris.len(),
+        vertices: idx,
+        diagonals,
+        polygon,
+    };
+    (face, tris)
+}
+
+/// A unit normal along a coordinate axis in which the first triangle of `local` is not
+/// degenerate, pointing the way its vertices turn (exact).
+fn exact_axis_normal(pts: &[Point3], local: &[[usize; 3]]) -> Vector3 {
+    let Some(&[i, j, k]) = local.first() else {
+        return Vector3::z();
+    };
+    (0..3)
+        .find_map(|axis| {
+            let o = orient2d(
+                project(&pts[i], axis),
+                project(&pts[j], axis),
+                project(&pts[k], axis),
+            );
+            let sign = match o {
+                Ordering::Greater => 1.0,
+                Ordering::Less => -1.0,
+                Ordering::Equal => return None,
+            };
+            let mut n = Vector3::zeros();
+            n[axis] = sign;
+            Some(n)
+        })
+        .unwrap_or_else(Vector3::z)
+}
+
+/// The sides of triangle `t` (indices into a polygon of `n` vertices) that are not sides of
+/// the polygon: bit `i` for the side from `t[i]` to `t[(i + 1) % 3]`.
+pub(crate) fn diagonals_of(t: &[usize; 3], n: usize) -> u8 {
+    (0..3).fold(0, |bits, i| {
+        let (u, v) = (t[i], t[(i + 1) % 3]);
+        let side = (u + 1) % n == v || (v + 1) % n == u;
+        if side { bits } else { bits | 1 << i }
+    })
+}
+
+/// Merges vertices with exactly equal coordinates (`-0.0` equals `0.0`) after checking that
+/// they are finite; returns the distinct vertices in first-seen order, the map from input
+/// index to output index, and how many were merged.
+pub(crate) fn merge_duplicates(
+    mut vertices: Vec<Point3>,
+) -> Result<(Vec<Point3>, Vec<u32>, usize), MeshError> {
+    for (i, p) in vertices.iter_mut().enumerate() {
+        if p.iter().any(|c| !c.is_finite()) {
+            return Err(MeshError::NonFinite { vertex: i });
+        }
+        // Adding +0.0 turns -0.0 into +0.0, so both sort and compare as one value.
+        p.apply(|c| *c += 0.0);
+    }
+    let key = |p: &Point3| (p.x.to_bits(), p.y.to_bits(), p.z.to_bits());
+    let mut order: Vec<u32> = (0..vertices.len() as u32).collect();
+    order.sort_unstable_by(|&a, &b| {
+        let (pa, pb) = (&vertices[a as usize], &vertices[b as usize]);
+        pa.x.total_cmp(&pb.x)
+            .then(pa.y.total_cmp(&pb.y))
+            .then(pa.z.total_cmp(&pb.z))
+            .then(a.cmp(&b))
+    });
+    // Representative of each vertex: the first (lowest index) with the same coordinates.
+    let mut rep: Vec<u32> = (0..vertices.len() as u32).collect();
+    for w in order.chunk_by(|&a, &b| key(&vertices[a as usize]) == key(&vertices[b as usize])) {
+        for &i in w {
+            rep[i as usize] = w[0];
+        }
+    }
+    let mut remap = vec![0u32; vertices.len()];
+    let mut out = Vec::with_capacity(vertices.len());
+    for i in 0..vertices.len() {
+        if rep[i] as usize == i {
+            remap[i] = out.len() as u32;
+            out.push(vertices[i]);
+        } else {
+            remap[i] = remap[rep[i] as usize];
+        }
+    }
+    let merged = vertices.len() - out.len();
+    Ok((out, remap, merged))
+}
