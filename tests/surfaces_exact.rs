@@ -36,16 +36,16 @@
 //!   scale from all of them is a stray (a ring without area, a spike, a visible part where
 //!   there is none).
 //!
-//! Why ulps of the scale: the clipper builds the crossings of the polygons from rounded
-//! pictures (within half an ulp of the largest coordinate of the exact crossing of those
-//! rounded segments, say the docs of `kepler::surfaces`), so a crossing's error is a few ulps
-//! of the segments' magnitude, not of its own coordinates: a crossing near the picture's
-//! origin may have exact coordinates of 1e-17, whose own ulps mean nothing there. The summaries also print, for information, the worst error in ulps of
-//! each exact coordinate (of the scale for an exact 0): within 2 ulps for the pictures of input
-//! vertices, up to 1e16 for crossings near 0.
+//! Why ulps of the scale: every vertex is built once from the input (a ratio of exact
+//! polynomials, each rounded once), but the picture of an input vertex off F's plane stands for
+//! the point where its line of sight meets F's plane, and for an orthographic view the rounded
+//! rows of the picture are not exactly orthogonal to the view direction: the two pictures differ
+//! by about an ulp of the picture's magnitude, not of their own coordinates (a vertex near the
+//! picture's origin may have exact coordinates of 1e-17, whose own ulps mean nothing there). The
+//! summaries also print, for information, the worst error in ulps of each exact coordinate (of
+//! the scale for an exact 0).
 //!
-//! Disagreements known today are listed in [`KNOWN`], each tolerated only for its case, mesh,
-//! face and kinds, and only while it still occurs.
+//! There must be no disagreement at all.
 
 use geo::{Area, MultiPolygon};
 use kepler::geometry::{Point3, Vector3};
@@ -65,7 +65,7 @@ use common::{Q, Rng, q, qcross, qdot, qsign, qsub};
 
 /// The largest error allowed for a vertex of a visible polygon, per coordinate, in units in the
 /// last place of the scene's scale.
-const MAX_ULPS: f64 = 4.0;
+const MAX_ULPS: f64 = 2.0;
 
 /// The largest error allowed for the area of a face's visible polygons, relative to the largest
 /// face's picture area in the scene.
@@ -882,167 +882,6 @@ fn compare(case: &str, want: &Reference, got: &[FaceReport]) -> Outcome {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Known disagreements.
-
-/// A disagreement of the library with the exact reference known today, tolerated by the tests
-/// only for that case, mesh, face and those kinds. Each must still occur: an entry that no
-/// longer does fails its test (remove it then).
-struct Known {
-    case: &'static str,
-    object: usize,
-    face: usize,
-    kinds: &'static [Kind],
-}
-
-const fn known(case: &'static str, object: usize, face: usize, kinds: &'static [Kind]) -> Known {
-    Known {
-        case,
-        object,
-        face,
-        kinds,
-    }
-}
-
-/// A face hidden exactly, reported MIXED with a ring of no area (below the area tolerance).
-const HIDDEN_AS_SLIVER: &[Kind] = &[Kind::Status, Kind::Stray];
-/// A MIXED face whose polygons have rings of no area or spikes besides the right ones.
-const SLIVERS: &[Kind] = &[Kind::Stray];
-/// A vertex farther than MAX_ULPS from its exact place.
-const ULPS: &[Kind] = &[Kind::Ulps];
-
-/// KNOWN DISAGREEMENTS of the library with the exact reference.
-///
-/// 1. `HIDDEN_AS_SLIVER`: a face that the union of faces of several solids hides exactly (no
-///    one face hides it alone) is reported MIXED, with a ring of no area (about 1e-18) along a
-///    seam between the pieces that hide it: there, HIDDEN is decided by the emptiness of the
-///    difference of rounded polygons. (The back faces of a solid are hidden exactly by the
-///    solid exit, see `a_convex_solid_alone_hides_its_back_faces`; these cases are faces
-///    covered by other solids.)
-/// 2. `SLIVERS`: the polygons of a MIXED face (right status, right area) carry rings of a few
-///    ulps or spikes (a vertex near the line of an edge, beyond its end) where pieces' edges
-///    coincide exactly with the face's edges or with each other's in 3-D but not in the rounded
-///    pictures. (Rings and spikes left exactly collinear by rounding are removed by
-///    `kepler::clip`.) Minimal: the two solids of each lattice scene; meshes 0 and 1 of random
-///    case 4, 5 and 20 (rotated boxes and octahedra, general views).
-/// 3. `ULPS`: a crossing of two edges about 4° apart, built from rounded pictures, 4.96 ulps of
-///    the scene's scale off (2.2e-15 in y): the crossing's error is the pictures' rounding
-///    times the condition of the crossing.
-const KNOWN: &[Known] = &[
-    // 1. Hidden exactly, reported MIXED with a sliver.
-    // Minimal: meshes 1, 2 and 3 (three unit cubes).
-    known(
-        "stack of unit cubes, from [-5.0, 6.0, 8.0] to [2.0, 2.0, 0.0]",
-        2,
-        5,
-        HIDDEN_AS_SLIVER,
-    ),
-    // Minimal: meshes 0 and 2 (two unit cubes side by side; the faces they share).
-    known(
-        "stack of unit cubes, from [9.0, -7.0, 6.0] to [2.0, 2.0, 1.0]",
-        0,
-        1,
-        HIDDEN_AS_SLIVER,
-    ),
-    // 2. Slivers and spikes in MIXED faces.
-    known("random case 17", 2, 5, SLIVERS),
-    known("random case 20", 2, 2, SLIVERS),
-    known("random case 20", 3, 3, SLIVERS),
-    known("random case 4", 0, 5, SLIVERS),
-    known("random case 5", 0, 5, SLIVERS),
-    known("random case 5", 1, 2, SLIVERS),
-    known(
-        "wall through a slab's edge, along [-1.0, -1.0, -1.0]",
-        0,
-        1,
-        SLIVERS,
-    ),
-    known(
-        "wall through a slab's edge, along [1.0, 1.0, 1.0]",
-        1,
-        0,
-        SLIVERS,
-    ),
-    known(
-        "wall through a slab's edge, along [1.0, 2.0, 3.0]",
-        1,
-        0,
-        SLIVERS,
-    ),
-    known(
-        "wall through a slab's edge, from [-5.0, 6.0, 8.0] to [2.0, 2.0, 0.0]",
-        0,
-        5,
-        SLIVERS,
-    ),
-    known(
-        "wall through a slab's edge, from [-5.0, 6.0, 8.0] to [2.0, 2.0, 0.0]",
-        1,
-        0,
-        SLIVERS,
-    ),
-    known(
-        "wall through a slab's edge, from [2.0, -8.0, 2.0] to [2.0, 2.0, 0.0]",
-        0,
-        5,
-        SLIVERS,
-    ),
-    known(
-        "wall through a slab's edge, from [9.0, -7.0, 6.0] to [2.0, 2.0, 1.0]",
-        0,
-        1,
-        SLIVERS,
-    ),
-    known("wall through slab, along [-1.0, -1.0, -1.0]", 1, 1, SLIVERS),
-    known("wall through slab, along [1.0, -1.0, -1.0]", 0, 5, SLIVERS),
-    known("wall through slab, along [1.0, 1.0, 1.0]", 0, 4, SLIVERS),
-    known(
-        "wall through slab, from [-5.0, 6.0, 8.0] to [2.0, 2.0, 0.0]",
-        0,
-        5,
-        SLIVERS,
-    ),
-    known(
-        "wall through slab, from [9.0, -7.0, 6.0] to [2.0, 2.0, 1.0]",
-        0,
-        5,
-        SLIVERS,
-    ),
-    // 3. A crossing of nearly parallel edges.
-    known("random case 20", 1, 0, ULPS),
-];
-
-/// The disagreements that are not known, and the known ones (of the cases run) that no longer
-/// occur.
-fn unexpected(cases: &[Case], found: &[Disagreement]) -> Vec<String> {
-    let is_known = |d: &Disagreement| {
-        KNOWN.iter().any(|k| {
-            k.case == d.case
-                && k.object == d.object
-                && k.face == d.face
-                && k.kinds.contains(&d.kind)
-        })
-    };
-    let mut out: Vec<String> = found
-        .iter()
-        .filter(|d| !is_known(d))
-        .map(ToString::to_string)
-        .collect();
-    for k in KNOWN {
-        if cases.iter().any(|(name, _, _)| name == k.case)
-            && !found
-                .iter()
-                .any(|d| d.case == k.case && d.object == k.object && d.face == k.face)
-        {
-            out.push(format!(
-                "{}: mesh {} face {}: a known disagreement no longer occurs: remove it from KNOWN",
-                k.case, k.object, k.face
-            ));
-        }
-    }
-    out
-}
-
-// ---------------------------------------------------------------------------------------------
 // Scenes.
 
 fn scene_of(meshes: &[Mesh]) -> (Scene, Vec<ObjectId>) {
@@ -1090,7 +929,7 @@ fn run(case: &str, meshes: &[Mesh], view: &View) -> Outcome {
     compare(case, &want, &got)
 }
 
-/// Runs every case, prints a summary and checks the disagreements against [`KNOWN`].
+/// Runs every case, prints a summary and checks that there is no disagreement.
 fn check_cases(title: &str, cases: &[Case]) -> Outcome {
     let mut total = Outcome::default();
     for (case, meshes, view) in cases {
@@ -1115,12 +954,16 @@ fn check_cases(title: &str, cases: &[Case]) -> Outcome {
     for d in &total.disagreements {
         println!("  {d}");
     }
-    let failures = unexpected(cases, &total.disagreements);
     assert!(
-        failures.is_empty(),
+        total.disagreements.is_empty(),
         "{} disagreements with the exact reference:\n{}",
-        failures.len(),
-        failures.join("\n")
+        total.disagreements.len(),
+        total
+            .disagreements
+            .iter()
+            .map(ToString::to_string)
+            .collect::<Vec<_>>()
+            .join("\n")
     );
     total
 }
@@ -1383,7 +1226,7 @@ fn random_scenes() {
 
 /// (f) A convex solid alone: its faces turned away from the eye are hidden exactly by the union
 /// of those turned towards it (no one of which hides a whole face). The first seven cases are
-/// the minimal forms of the known HIDDEN_AS_SLIVER disagreements of the scenes above.
+/// the minimal forms of faces of the scenes above that the union of other faces hides.
 fn single_solid_cases() -> Vec<Case> {
     let from = |e: [f64; 3], t: [f64; 3]| perspective(e, t);
     vec![
@@ -1524,10 +1367,10 @@ fn the_comparison_rejects_wrong_answers() {
     let steps = |n: usize| {
         move |x: f64| (0..n).fold(x, |x, _| if x > 0.0 { x.next_up() } else { x.next_down() })
     };
-    // A corner 3 ulps of the scale off is accepted, 5 is not.
-    assert_eq!(kinds(&moved(mixed, corner, &|x| x + 3.0 * ulp)), []);
+    // A corner 1 ulp of the scale off is accepted, 3 are not.
+    assert_eq!(kinds(&moved(mixed, corner, &|x| x + ulp)), []);
     assert_eq!(
-        kinds(&moved(mixed, corner, &|x| x + 5.0 * ulp)),
+        kinds(&moved(mixed, corner, &|x| x + 3.0 * ulp)),
         [Kind::Ulps]
     );
     // A crossing 1e-6 off is near no exact vertex.
@@ -1535,9 +1378,9 @@ fn the_comparison_rejects_wrong_answers() {
         kinds(&moved(mixed, crossing, &|x| x + 1e-6)),
         [Kind::Area, Kind::Stray]
     );
-    // A crossing 8 ulps of the scale off is too far.
+    // A crossing 3 ulps of the scale off is too far.
     assert_eq!(
-        kinds(&moved(mixed, crossing, &|x| x + 8.0 * ulp)),
+        kinds(&moved(mixed, crossing, &|x| x + 3.0 * ulp)),
         [Kind::Ulps]
     );
     // A VISIBLE face must be its picture bit for bit.
@@ -1580,27 +1423,4 @@ fn the_comparison_rejects_wrong_answers() {
     let mut w = good.clone();
     w[visible].visible.edge_on = true;
     assert_eq!(kinds(&w), [Kind::EdgeOn]);
-    // The known list: an unknown disagreement fails, and so does a known one that no
-    // longer occurs.
-    let probe = |case: &str, object: usize, face: usize, kind: Kind| Disagreement {
-        case: case.to_string(),
-        object,
-        face,
-        kind,
-        detail: String::new(),
-    };
-    let k = &KNOWN[0];
-    let case = [(k.case.to_string(), Vec::new(), view.clone())];
-    let all: Vec<Disagreement> = KNOWN
-        .iter()
-        .filter(|j| j.case == k.case)
-        .map(|j| probe(j.case, j.object, j.face, j.kinds[0]))
-        .collect();
-    assert_eq!(unexpected(&case, &all), Vec::<String>::new());
-    assert_eq!(unexpected(&case, &all[1..]).len(), 1);
-    let mut more = all.clone();
-    more.push(probe(k.case, k.object, k.face, Kind::Area));
-    assert_eq!(unexpected(&case, &more).len(), 1);
-    more.push(probe(k.case, k.object, k.face + 100, k.kinds[0]));
-    assert_eq!(unexpected(&case, &more).len(), 2);
 }
