@@ -1424,3 +1424,198 @@ fn the_comparison_rejects_wrong_answers() {
     w[visible].visible.edge_on = true;
     assert_eq!(kinds(&w), [Kind::EdgeOn]);
 }
+
+// ---------------------------------------------------------------------------------------------
+// The same bits under mirroring and power-of-two scaling.
+
+/// A view by its parameters, so that it can be mirrored and scaled with the scene.
+#[derive(Clone, Copy, Debug)]
+enum ViewSpec {
+    /// Orthographic along a direction, `z` up.
+    Along([f64; 3]),
+    /// Perspective from an eye towards a target, `z` up, with a field of view in degrees.
+    From([f64; 3], [f64; 3], f64),
+}
+
+impl ViewSpec {
+    fn random(rng: &mut Rng) -> ViewSpec {
+        let d = rng.vector(1.0) + Vector3::new(0.0, 0.0, 1e-3);
+        if rng.below(2) == 0 {
+            ViewSpec::Along([d.x, d.y, d.z])
+        } else {
+            let eye = d.normalize() * rng.range(12.0, 18.0);
+            let target = rng.vector(1.0);
+            ViewSpec::From(
+                [eye.x, eye.y, eye.z],
+                [target.x, target.y, target.z],
+                rng.range(30.0, 60.0),
+            )
+        }
+    }
+
+    /// The view of the scene mapped by `x ↦ (s_x x, s_y y, s_z z)` (`s` powers of two, or
+    /// their negatives).
+    fn view(&self, s: [f64; 3]) -> View {
+        let map = |p: [f64; 3]| Vector3::new(s[0] * p[0], s[1] * p[1], s[2] * p[2]);
+        let up = Vector3::new(0.0, 0.0, s[2].signum());
+        match *self {
+            // An orthographic view's direction is kept by scaling: only its signs change.
+            ViewSpec::Along(d) => View::orthographic(
+                Vector3::from(s.map(f64::signum)).component_mul(&Vector3::from(d)),
+                up,
+            )
+            .unwrap(),
+            ViewSpec::From(eye, target, fov) => {
+                View::perspective(Point3::from(map(eye)), Point3::from(map(target)), up, fov)
+                    .unwrap()
+            }
+        }
+    }
+}
+
+/// A ring's points, `-0` taken as `0`, from its least point, the way round that makes the
+/// second point least: the same for the same points whatever the start and the way round.
+fn canonical_ring(points: &[[f64; 2]]) -> Vec<[u64; 2]> {
+    let bits: Vec<[u64; 2]> = points
+        .iter()
+        .map(|p| p.map(|x| (x + 0.0).to_bits()))
+        .collect();
+    let n = bits.len();
+    let forward = |s: usize| -> Vec<[u64; 2]> { (0..n).map(|i| bits[(s + i) % n]).collect() };
+    let backward = |s: usize| -> Vec<[u64; 2]> { (0..n).map(|i| bits[(s + n - i) % n]).collect() };
+    (0..n)
+        .flat_map(|s| [forward(s), backward(s)])
+        .min()
+        .unwrap_or_default()
+}
+
+/// Every face's status and its polygons' rings (outer or hole, canonical), with every picture
+/// point mapped by `picture` and every texture point by `texture` first.
+type Faces = BTreeMap<
+    (usize, usize),
+    (
+        Status,
+        BTreeSet<(bool, Vec<[u64; 2]>)>,
+        Option<BTreeSet<(bool, Vec<[u64; 2]>)>>,
+    ),
+>;
+
+fn faces_of(
+    meshes: &[Mesh],
+    view: &View,
+    picture: impl Fn([f64; 2]) -> [f64; 2],
+    texture: Option<&dyn Fn([f64; 2]) -> [f64; 2]>,
+) -> Faces {
+    let (scene, ids) = scene_of(meshes);
+    let rings = |polygons: &MultiPolygon<f64>, f: &dyn Fn([f64; 2]) -> [f64; 2]| {
+        polygons
+            .iter()
+            .flat_map(|p| {
+                std::iter::once((true, p.exterior()))
+                    .chain(p.interiors().iter().map(|r| (false, r)))
+            })
+            .map(|(outer, r)| {
+                let mut points: Vec<[f64; 2]> = r.coords().map(|c| f([c.x, c.y])).collect();
+                points.pop();
+                (outer, canonical_ring(&points))
+            })
+            .collect::<BTreeSet<_>>()
+    };
+    visible_surfaces(&scene, view)
+        .unwrap()
+        .iter()
+        .map(|r| {
+            let object = ids.iter().position(|&i| i == r.object).unwrap();
+            (
+                (object, r.face),
+                (
+                    r.visible.status,
+                    rings(&r.visible.polygons, &picture),
+                    texture.map(|t| rings(&r.texture, t)),
+                ),
+            )
+        })
+        .collect()
+}
+
+/// A random prism, turned by a rotation rounded to sixteenths (so its faces stay exactly
+/// planar): over a convex polygon with dyadic vertices (caps of 3 to 8 corners whose triangles
+/// differ in area), or over an L-shape (caps that are not convex).
+fn random_prism(rng: &mut Rng) -> Mesh {
+    use geo::ConvexHull;
+    let outline = if rng.below(4) == 0 {
+        let (a, b) = (rng.int(2, 6) / 4.0, rng.int(1, 3) / 4.0);
+        geo::Polygon::new(
+            geo::LineString::from(vec![(0.0, 0.0), (a, 0.0), (a, b), (b, b), (b, a), (0.0, a)]),
+            vec![],
+        )
+    } else {
+        let points: Vec<geo::Point<f64>> = (0..3 + rng.below(6))
+            .map(|_| geo::Point::new(rng.int(-12, 12) / 8.0, rng.int(-12, 12) / 8.0))
+            .collect();
+        geo::MultiPoint::new(points).convex_hull()
+    };
+    let prism = solids::prism(&outline, rng.int(2, 12) / 8.0)
+        .unwrap_or_else(|_| lattice_box([0.0; 3], [1.0, 1.5, 0.75]));
+    let axis = nalgebra::Unit::new_normalize(rng.vector(1.0) + Vector3::new(1e-3, 0.0, 0.0));
+    let r = nalgebra::Rotation3::from_axis_angle(&axis, rng.range(0.0, 6.3));
+    let m = r.matrix().map(|x| (x * 16.0).round() / 16.0);
+    let t = [0, 1, 2].map(|_| rng.int(-16, 16) / 8.0);
+    let mut h = nalgebra::Matrix4::identity();
+    h.fixed_view_mut::<3, 3>(0, 0).copy_from(&m);
+    h[(0, 3)] = t[0];
+    h[(1, 3)] = t[1];
+    h[(2, 3)] = t[2];
+    prism.transformed(&h).unwrap_or(prism)
+}
+
+/// Random scenes of turned boxes, prisms and octahedra (and of lattice boxes), each from a random view,
+/// mirrored in each axis and scaled by powers of two from `2^-40` to `2^40`: the same statuses
+/// and the same polygons, bit for bit (the picture of a mirrored scene is mirrored in `x`; the
+/// texture coordinates of a scaled scene are scaled).
+#[test]
+fn the_polygons_are_the_same_bits_mirrored_and_scaled() {
+    let mut rng = Rng(0x0000_5eed_0b17);
+    let mut mixed = 0;
+    for case in 0..400 {
+        let count = 2 + rng.below(3);
+        let meshes: Vec<Mesh> = (0..count)
+            .map(|_| match (case % 2, rng.below(4)) {
+                (1, _) => random_lattice_box(&mut rng),
+                (_, 0) => random_octahedron(&mut rng),
+                (_, 1) => random_parallelepiped(&mut rng),
+                _ => random_prism(&mut rng),
+            })
+            .collect();
+        let spec = ViewSpec::random(&mut rng);
+        let transformed = |s: [f64; 3]| -> Vec<Mesh> {
+            let m = nalgebra::Matrix4::new_nonuniform_scaling(&Vector3::from(s));
+            meshes.iter().map(|x| x.transformed(&m).unwrap()).collect()
+        };
+        let base = faces_of(&meshes, &spec.view([1.0; 3]), |p| p, Some(&|p| p));
+        mixed += base.values().filter(|f| f.0 == Status::Mixed).count();
+        let perspective = matches!(spec, ViewSpec::From(..));
+        for k in [-40, -3, 1, 17, 40] {
+            let s = 2f64.powi(k);
+            let scene = transformed([s; 3]);
+            let picture = if perspective { 1.0 } else { s };
+            let scaled = faces_of(
+                &scene,
+                &spec.view([s; 3]),
+                |p| p.map(|x| x / picture),
+                Some(&|p| p.map(|x| x / s)),
+            );
+            assert_eq!(scaled, base, "case {case}, scaled by 2^{k}");
+        }
+        // Mirrored in each axis, with the view: the picture is mirrored in x (the texture frames
+        // of the reversed faces are other frames).
+        let base = faces_of(&meshes, &spec.view([1.0; 3]), |p| p, None);
+        for axis in 0..3 {
+            let mut s = [1.0; 3];
+            s[axis] = -1.0;
+            let mirrored = faces_of(&transformed(s), &spec.view(s), |[x, y]| [-x, y], None);
+            assert_eq!(mirrored, base, "case {case}, mirrored in axis {axis}");
+        }
+    }
+    assert!(mixed > 400, "{mixed} MIXED faces");
+}

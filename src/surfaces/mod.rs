@@ -398,7 +398,7 @@ fn visfac_among(
         let texture = target
             .vertices
             .iter()
-            .map(|v| lines::texture_of(&frame, v))
+            .map(|v| lines::texture_of(frame, v))
             .collect();
         (
             answer(Status::Visible, target.polygon(), exits, false),
@@ -410,14 +410,15 @@ fn visfac_among(
         return Ok(whole(exits));
     }
     let mut vtp = Vtp::new(
-        &target.vertices,
+        &target.canonical,
+        &target.plane,
         &target.triangles,
         target.eye,
         target.eye_side,
         &target.picture,
     );
     for occluder in &occluders {
-        vtp.subtract(&occluder.corners, &occluder.triangles);
+        vtp.subtract(&occluder.corners, &occluder.plane, &occluder.triangles);
         if vtp.is_empty() {
             break;
         }
@@ -430,7 +431,7 @@ fn visfac_among(
     } else if !vtp.changed() {
         whole(exits)
     } else {
-        let (polygons, texture) = vtp.polygons(&frame, target.eye_side);
+        let (polygons, texture) = vtp.polygons(frame, target.eye_side);
         (answer(Status::Mixed, polygons, exits, false), texture)
     })
 }
@@ -443,9 +444,11 @@ fn within(scene: &Scene, id: ObjectId, objects: &[ObjectId]) -> bool {
 /// The face being tested: its vertices, plane and picture.
 struct Target {
     vertices: Vec<Point3>,
+    /// Its vertex loop from a canonical start and way round (see [`canonical_loop`]).
+    canonical: Vec<Point3>,
     /// The face's triangles.
     triangles: Vec<[Point3; 3]>,
-    /// A triangle of the face (its plane).
+    /// A triangle of the face spanning its plane (see [`spanning_triangle`]).
     plane: [Point3; 3],
     eye: Eye,
     picture: Picture,
@@ -462,12 +465,13 @@ impl Target {
             .triangle_range()
             .map(|t| mesh.triangle(t))
             .collect();
-        let plane = triangles[0];
         let eye = *view.eye();
+        let plane = spanning_triangle(mesh, face, &eye);
         let picture = Picture::of(view);
         let extent = bounding_box(vertices.iter().map(|v| picture.point(v)));
         Target {
             eye_side: eye.orient3d(&plane[0], &plane[1], &plane[2]),
+            canonical: canonical_loop(mesh, face),
             vertices,
             triangles,
             plane,
@@ -592,10 +596,63 @@ impl FaceGrid {
 /// The relative margin of the face grid: 2⁻⁴⁰.
 const GRID_MARGIN: f64 = 1.0 / (1u64 << 40) as f64;
 
-/// A face of an occluder that hides some area of F: its vertex loop and its triangles.
+/// A face of an occluder that hides some area of F: its vertex loop, a triangle spanning its
+/// plane (see [`spanning_triangle`]) and its triangles.
 struct Occluder {
     corners: Vec<Point3>,
+    plane: [Point3; 3],
     triangles: Vec<[Point3; 3]>,
+}
+
+/// The vertex loop of face `face` from its vertex of least index, towards the neighbour of
+/// lesser index: the same whichever vertex the face starts at and whichever way round it is
+/// given (as mirroring reverses it), so VTP(F) is built in the same order, and each of its
+/// points from the same planes.
+fn canonical_loop(mesh: &Mesh, face: usize) -> Vec<Point3> {
+    let indices = mesh.faces()[face].vertices();
+    let n = indices.len();
+    let start = (0..n).min_by_key(|&i| indices[i]).unwrap_or(0);
+    let step = if indices[(start + 1) % n] <= indices[(start + n - 1) % n] {
+        1
+    } else {
+        n - 1
+    };
+    (0..n)
+        .map(|k| mesh.vertices()[indices[(start + k * step) % n] as usize])
+        .collect()
+}
+
+/// A triangle of vertices of face `face` spanning its plane, the same whatever the face's first
+/// vertex and way round, the scene's placement or scale: the first two vertices by index and
+/// the next by index not on their line, turned like the face's first triangle as seen from
+/// `eye`. Points of the face's plane are built from the gradient of this triangle's form, so
+/// this choice keeps them the same bits when the face is reversed (as mirroring does). The
+/// face's first triangle when the face is not exactly planar or is seen edge-on.
+fn spanning_triangle(mesh: &Mesh, face: usize, eye: &Eye) -> [Point3; 3] {
+    let first = mesh.triangle(mesh.faces()[face].triangle_range().start);
+    let turn = eye.orient3d(&first[0], &first[1], &first[2]);
+    let corners = || mesh.face_points(face);
+    if turn == Ordering::Equal
+        || corners().any(|c| orient3d(&first[0], &first[1], &first[2], &c) != Ordering::Equal)
+    {
+        return first;
+    }
+    let mut indices = mesh.faces()[face].vertices().to_vec();
+    indices.sort_unstable();
+    indices.dedup();
+    let point = |i: u32| mesh.vertices()[i as usize];
+    let [a, b] = [0, 1].map(|k| point(indices[k]));
+    indices[2..]
+        .iter()
+        .find_map(|&k| {
+            let c = point(k);
+            match eye.orient3d(&a, &b, &c) {
+                Ordering::Equal => None,
+                t if t == turn => Some([a, b, c]),
+                _ => Some([a, c, b]),
+            }
+        })
+        .unwrap_or(first)
 }
 
 /// A closed ring of points as a multipolygon.
@@ -642,8 +699,8 @@ fn visfac2(
                     continue;
                 }
                 exits.faces_tested += 1;
-                let corners: Vec<Point3> = mesh.face_points(g).collect();
-                let plane = mesh.triangle(mesh.faces()[g].triangle_range().start);
+                let corners = canonical_loop(mesh, g);
+                let plane = spanning_triangle(mesh, g, &target.eye);
                 if !target.may_be_hidden_by(&corners, &plane) {
                     continue;
                 }
@@ -674,7 +731,11 @@ fn visfac2(
                     .triangle_range()
                     .map(|t| mesh.triangle(t))
                     .collect();
-                occluders.push(Occluder { corners, triangles });
+                occluders.push(Occluder {
+                    corners,
+                    plane,
+                    triangles,
+                });
             }
         }
         Content::Subobjects(children) => {

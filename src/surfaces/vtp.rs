@@ -106,18 +106,19 @@ pub(super) struct Vtp<'a> {
 }
 
 impl<'a> Vtp<'a> {
-    /// VTP(F) = F: the face with vertex loop `corners` and triangles `triangles` (the first
-    /// spans the plane the arrangement lies in), seen from `eye` with turn `turn` (the eye's
-    /// side of F's plane, not `Equal`). A convex face is one cell, any other its triangles.
+    /// VTP(F) = F: the face with vertex loop `corners` (either way round) and triangles
+    /// `triangles`, `plane` spanning the plane the arrangement lies in, seen from `eye` with turn `turn` (the eye's
+    /// side of `plane`, not `Equal`). A convex face is one cell, any other its triangles.
     pub(super) fn new(
         corners: &[Point3],
+        plane: &[Point3; 3],
         triangles: &[[Point3; 3]],
         eye: Eye,
         turn: Ordering,
         picture: &'a Picture,
     ) -> Vtp<'a> {
         let mut vtp = Vtp {
-            frame: Frame::new(triangles[0], eye),
+            frame: Frame::new(*plane, eye),
             eye_side: turn,
             face: corners.to_vec(),
             picture,
@@ -131,9 +132,8 @@ impl<'a> Vtp<'a> {
             cells: Vec::new(),
             changed: false,
         };
-        let convex = vtp.convex(corners, turn);
-        match convex {
-            Some(loop_) => vtp.add_cell(&loop_, turn),
+        match vtp.convex(corners) {
+            Some((loop_, turn)) => vtp.add_cell(&loop_, turn),
             None => {
                 for t in triangles {
                     let turn = eye.orient3d(&t[0], &t[1], &t[2]);
@@ -147,11 +147,12 @@ impl<'a> Vtp<'a> {
     }
 
     /// The corners of a polygon without those between two collinear edges (in the picture),
-    /// when it turns only one way (`turn`), so is convex; `None` otherwise.
-    fn convex(&self, corners: &[Point3], turn: Ordering) -> Option<Vec<Point3>> {
+    /// and the way it turns, when it turns only one way, so is convex; `None` otherwise.
+    fn convex(&self, corners: &[Point3]) -> Option<(Vec<Point3>, Ordering)> {
         let eye = &self.frame.eye;
         let n = corners.len();
         let mut out = Vec::with_capacity(n);
+        let mut turn = Ordering::Equal;
         for i in 0..n {
             let (a, b, c) = (
                 &corners[(i + n - 1) % n],
@@ -160,11 +161,14 @@ impl<'a> Vtp<'a> {
             );
             match eye.orient3d(a, b, c) {
                 Ordering::Equal => {}
-                t if t == turn => out.push(*b),
+                t if t == turn || turn == Ordering::Equal => {
+                    turn = t;
+                    out.push(*b);
+                }
                 _ => return None,
             }
         }
-        (out.len() >= 3).then_some(out)
+        (out.len() >= 3).then_some((out, turn))
     }
 
     /// A cell with the input points `corners` (a convex loop turning `turn` in the picture).
@@ -445,46 +449,64 @@ impl<'a> Vtp<'a> {
         times(value.sign(), self.eye_side)
     }
 
-    /// Takes away what the occluder face with vertex loop `corners` and triangles `triangles`
-    /// hides: as one convex piece when it is exactly planar and convex in the picture, else
-    /// triangle by triangle (each exactly planar).
-    pub(super) fn subtract(&mut self, corners: &[Point3], triangles: &[[Point3; 3]]) {
+    /// Takes away what the occluder face with vertex loop `corners`, a triangle `plane` of its
+    /// vertices and triangles `triangles` hides: as one convex piece when it lies exactly in
+    /// `plane` and is convex in the picture, else triangle by triangle (each exactly planar).
+    pub(super) fn subtract(
+        &mut self,
+        corners: &[Point3],
+        plane: &[Point3; 3],
+        triangles: &[[Point3; 3]],
+    ) {
         let eye = self.frame.eye;
-        let [g0, g1, g2] = &triangles[0];
+        let [g0, g1, g2] = plane;
         let planar = corners
             .iter()
             .all(|c| orient3d(g0, g1, g2, c) == Ordering::Equal);
         let turn = eye.orient3d(g0, g1, g2);
-        if planar && turn != Ordering::Equal {
-            if let Some(loop_) = self.convex(corners, turn) {
-                self.subtract_piece(&loop_, &triangles[0], turn);
-                return;
-            }
+        if planar
+            && turn != Ordering::Equal
+            && let Some((loop_, loop_turn)) = self.convex(corners)
+        {
+            self.subtract_piece(&loop_, loop_turn, plane, turn);
+            return;
         }
+        // The triangles of a planar face turn like it: each is cut off by the face's plane as
+        // given, the same whatever the triangulation.
         for t in triangles {
             let turn = eye.orient3d(&t[0], &t[1], &t[2]);
             if turn != Ordering::Equal {
-                self.subtract_piece(t, t, turn);
+                if planar {
+                    self.subtract_piece(t, turn, plane, eye.orient3d(g0, g1, g2));
+                } else {
+                    self.subtract_piece(t, turn, t, turn);
+                }
             }
         }
     }
 
-    /// Takes away what the convex polygon `corners` (in the plane of the triangle `plane`,
-    /// turning `turn` in the picture) hides: the points inside the sight planes of its edges
+    /// Takes away what the convex polygon `corners` (turning `turn` in the picture, in the plane
+    /// of the triangle `plane`, which turns `plane_turn`) hides: the points inside the sight planes of its edges
     /// and strictly behind its plane (a line only when some vertex of F is strictly in front
     /// of the plane; nothing when none is strictly behind it).
-    fn subtract_piece(&mut self, corners: &[Point3], plane: &[Point3; 3], turn: Ordering) {
+    fn subtract_piece(
+        &mut self,
+        corners: &[Point3],
+        turn: Ordering,
+        plane: &[Point3; 3],
+        plane_turn: Ordering,
+    ) {
         let [g0, g1, g2] = plane;
         let sides: Vec<Ordering> = self.face.iter().map(|v| orient3d(g0, g1, g2, v)).collect();
-        if !sides.contains(&turn.reverse()) {
+        if !sides.contains(&plane_turn.reverse()) {
             return;
         }
         let n = corners.len();
         let mut kinds: Vec<(Kind, Ordering)> = (0..n)
             .map(|i| (Kind::Sight(corners[i], corners[(i + 1) % n]), turn))
             .collect();
-        if sides.contains(&turn) {
-            kinds.push((Kind::Plane(*plane), turn.reverse()));
+        if sides.contains(&plane_turn) {
+            kinds.push((Kind::Plane(*plane), plane_turn.reverse()));
         }
         let mut piece: Vec<(u32, Ordering)> = Vec::with_capacity(kinds.len());
         for (kind, side) in kinds {
@@ -624,8 +646,8 @@ impl<'a> Vtp<'a> {
         let mut points: HashMap<u32, ([f64; 2], [f64; 2])> = HashMap::new();
         for (outer, holes) in &merged.polygons {
             for &v in outer.iter().chain(holes.iter().flatten()) {
-                if !points.contains_key(&v) {
-                    points.insert(v, self.construct(&merged.classes[&v], texture));
+                if let std::collections::hash_map::Entry::Vacant(e) = points.entry(v) {
+                    e.insert(self.construct(&merged.classes[&v], texture));
                 }
             }
         }
@@ -786,7 +808,7 @@ impl<'a> Vtp<'a> {
         }
         let rings = self.link(&pieces);
         // Group by connected cells: each group's counter-clockwise ring is its outer ring.
-        let mut groups: HashMap<usize, (Vec<Vec<u32>>, Vec<Vec<u32>>)> = HashMap::new();
+        let mut groups: HashMap<usize, (Vec<VertexRing>, Vec<VertexRing>)> = HashMap::new();
         let mut order: Vec<usize> = Vec::new();
         for ring in rings {
             let group = components.find(pieces[ring[0]].cell);
@@ -1010,6 +1032,9 @@ struct Piece {
     forward: bool,
     cell: usize,
 }
+
+/// A ring of vertex ids.
+type VertexRing = Vec<u32>;
 
 /// What [`Vtp::merge`] finds: polygons of point classes and the classes' vertices.
 struct Merged {
