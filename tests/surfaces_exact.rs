@@ -425,12 +425,13 @@ struct Candidate {
     input: bool,
 }
 
-/// The exact answer for face `f` of `faces` (`inputs`: the exact pictures of all input
-/// vertices).
+/// The exact answer for face `f` of `faces` against the faces of the objects `among` (`inputs`:
+/// the exact pictures of all input vertices).
 fn expect_face(
     rv: &RefView,
     faces: &[RefFace],
     f: usize,
+    among: &[ObjectId],
     margin: f64,
     inputs: &BTreeSet<P2>,
 ) -> Expected {
@@ -456,6 +457,7 @@ fn expect_face(
         .filter(|&(g, other)| {
             let [glo, ghi] = other.bounds;
             g != f
+                && among.contains(&other.object)
                 && other.eye_side != Ordering::Equal
                 && (0..2).all(|k| glo[k] <= hi[k] + margin && ghi[k] >= lo[k] - margin)
                 && other.v.iter().any(|x| face.plane.side(x) == face.eye_side)
@@ -523,6 +525,38 @@ fn expect_face(
     out
 }
 
+/// VISOBJ(A, B) exactly: VISIBLE when the faces of `a` hide nothing of any face of `b` not seen
+/// edge-on, HIDDEN when they hide all of each, else MIXED.
+fn expect_visobj(scene: &Scene, ids: &[ObjectId], view: &View, a: ObjectId, b: ObjectId) -> Status {
+    let rv = RefView::new(view);
+    let picture = Picture::of(view);
+    let mut faces = Vec::new();
+    for &id in ids {
+        let mesh = scene[id].mesh().expect("a mesh object");
+        for f in 0..mesh.faces().len() {
+            faces.push(RefFace::new(&rv, &picture, id, mesh, f));
+        }
+    }
+    let margin = 1e-9
+        * faces
+            .iter()
+            .flat_map(|f| f.picture.iter())
+            .fold(0.0f64, |m, p| m.max(p[0].abs()).max(p[1].abs()));
+    let statuses: Vec<Status> = (0..faces.len())
+        .filter(|&f| faces[f].object == b)
+        .map(|f| expect_face(&rv, &faces, f, &[a], margin, &BTreeSet::new()))
+        .filter(|e| !e.edge_on)
+        .map(|e| e.status)
+        .collect();
+    if statuses.iter().all(|&s| s == Status::Visible) {
+        Status::Visible
+    } else if statuses.iter().all(|&s| s == Status::Hidden) {
+        Status::Hidden
+    } else {
+        Status::Mixed
+    }
+}
+
 /// The exact answers for a whole scene, with the scales the comparison needs.
 struct Reference {
     /// The mesh objects, in the order of the case's meshes.
@@ -562,7 +596,7 @@ fn reference(scene: &Scene, ids: &[ObjectId], view: &View) -> Reference {
         .map(|p| rv.picture(&qp(p)))
         .collect();
     let expected = (0..faces.len())
-        .map(|f| expect_face(&rv, &faces, f, margin, &inputs))
+        .map(|f| expect_face(&rv, &faces, f, ids, margin, &inputs))
         .collect();
     let pictures = faces
         .iter()
@@ -1297,6 +1331,42 @@ fn a_convex_solid_alone_hides_its_back_faces() {
     // Every face is VISIBLE or HIDDEN exactly: a face turned away is hidden, one turned
     // towards the eye is whole.
     assert_eq!(total.statuses.get("mixed"), None);
+}
+
+/// VISOBJ(A, B) for every ordered pair of meshes (A = B included) of every case above agrees
+/// with the exact answer.
+#[test]
+fn visobj_agrees_with_the_exact_answer() {
+    let mut statuses: BTreeMap<&'static str, usize> = BTreeMap::new();
+    let mut wrong = Vec::new();
+    for (case, meshes, view) in two_boxes_cases()
+        .into_iter()
+        .chain(crossing_cases())
+        .chain(perspective_cases())
+        .chain(lattice_cases())
+        .chain(random_cases())
+    {
+        let (scene, ids) = scene_of(&meshes);
+        for &a in &ids {
+            for &b in &ids {
+                let want = expect_visobj(&scene, &ids, &view, a, b);
+                let got = kepler::surfaces::visobj(&scene, a, b, &view).unwrap();
+                *statuses.entry(status_name(want)).or_insert(0) += 1;
+                if got != want {
+                    let index = |x| ids.iter().position(|&i| i == x).unwrap_or(usize::MAX);
+                    wrong.push(format!(
+                        "{case}: VISOBJ({}, {}) is {got:?}, exactly {want:?}",
+                        index(a),
+                        index(b)
+                    ));
+                }
+            }
+        }
+    }
+    println!("VISOBJ: {statuses:?}");
+    assert!(wrong.is_empty(), "{}", wrong.join("\n"));
+    // All three answers occur (HIDDEN rarely: B has faces turned away from the eye).
+    assert_eq!(statuses.len(), 3, "{statuses:?}");
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -409,16 +409,23 @@ fn visfac_among(
     if occluders.is_empty() {
         return Ok(whole(exits));
     }
+    let (plane, planar) = spanning_triangle(mesh, face, &target.eye);
     let mut vtp = Vtp::new(
         &target.canonical,
-        &target.plane,
+        &plane,
+        planar,
         &target.triangles,
         target.eye,
         target.eye_side,
         &target.picture,
     );
     for occluder in &occluders {
-        vtp.subtract(&occluder.corners, &occluder.plane, &occluder.triangles);
+        vtp.subtract(
+            &occluder.corners,
+            occluder.plane,
+            occluder.planar,
+            &occluder.triangles,
+        );
         if vtp.is_empty() {
             break;
         }
@@ -448,7 +455,7 @@ struct Target {
     canonical: Vec<Point3>,
     /// The face's triangles.
     triangles: Vec<[Point3; 3]>,
-    /// A triangle of the face spanning its plane (see [`spanning_triangle`]).
+    /// The face's first triangle (its plane).
     plane: [Point3; 3],
     eye: Eye,
     picture: Picture,
@@ -465,8 +472,8 @@ impl Target {
             .triangle_range()
             .map(|t| mesh.triangle(t))
             .collect();
+        let plane = triangles[0];
         let eye = *view.eye();
-        let plane = spanning_triangle(mesh, face, &eye);
         let picture = Picture::of(view);
         let extent = bounding_box(vertices.iter().map(|v| picture.point(v)));
         Target {
@@ -601,6 +608,8 @@ const GRID_MARGIN: f64 = 1.0 / (1u64 << 40) as f64;
 struct Occluder {
     corners: Vec<Point3>,
     plane: [Point3; 3],
+    /// Whether every corner lies exactly in `plane`.
+    planar: bool,
     triangles: Vec<[Point3; 3]>,
 }
 
@@ -625,24 +634,25 @@ fn canonical_loop(mesh: &Mesh, face: usize) -> Vec<Point3> {
 /// A triangle of vertices of face `face` spanning its plane, the same whatever the face's first
 /// vertex and way round, the scene's placement or scale: the first two vertices by index and
 /// the next by index not on their line, turned like the face's first triangle as seen from
-/// `eye`. Points of the face's plane are built from the gradient of this triangle's form, so
-/// this choice keeps them the same bits when the face is reversed (as mirroring does). The
-/// face's first triangle when the face is not exactly planar or is seen edge-on.
-fn spanning_triangle(mesh: &Mesh, face: usize, eye: &Eye) -> [Point3; 3] {
+/// `eye`; and whether the face is exactly planar. Points of the face's plane are built from the
+/// gradient of this triangle's form, so this choice keeps them the same bits when the face is
+/// reversed (as mirroring does). The face's first triangle when the face is not exactly planar
+/// or is seen edge-on.
+fn spanning_triangle(mesh: &Mesh, face: usize, eye: &Eye) -> ([Point3; 3], bool) {
     let first = mesh.triangle(mesh.faces()[face].triangle_range().start);
     let turn = eye.orient3d(&first[0], &first[1], &first[2]);
-    let corners = || mesh.face_points(face);
-    if turn == Ordering::Equal
-        || corners().any(|c| orient3d(&first[0], &first[1], &first[2], &c) != Ordering::Equal)
-    {
-        return first;
+    let planar = mesh.face_points(face).all(|c| {
+        first.contains(&c) || orient3d(&first[0], &first[1], &first[2], &c) == Ordering::Equal
+    });
+    if turn == Ordering::Equal || !planar {
+        return (first, planar);
     }
     let mut indices = mesh.faces()[face].vertices().to_vec();
     indices.sort_unstable();
     indices.dedup();
     let point = |i: u32| mesh.vertices()[i as usize];
     let [a, b] = [0, 1].map(|k| point(indices[k]));
-    indices[2..]
+    let span = indices[2..]
         .iter()
         .find_map(|&k| {
             let c = point(k);
@@ -652,7 +662,8 @@ fn spanning_triangle(mesh: &Mesh, face: usize, eye: &Eye) -> [Point3; 3] {
                 _ => Some([a, c, b]),
             }
         })
-        .unwrap_or(first)
+        .unwrap_or(first);
+    (span, true)
 }
 
 /// A closed ring of points as a multipolygon.
@@ -699,8 +710,8 @@ fn visfac2(
                     continue;
                 }
                 exits.faces_tested += 1;
-                let corners = canonical_loop(mesh, g);
-                let plane = spanning_triangle(mesh, g, &target.eye);
+                let corners: Vec<Point3> = mesh.face_points(g).collect();
+                let plane = mesh.triangle(mesh.faces()[g].triangle_range().start);
                 if !target.may_be_hidden_by(&corners, &plane) {
                     continue;
                 }
@@ -731,9 +742,11 @@ fn visfac2(
                     .triangle_range()
                     .map(|t| mesh.triangle(t))
                     .collect();
+                let (plane, planar) = spanning_triangle(mesh, g, &target.eye);
                 occluders.push(Occluder {
-                    corners,
+                    corners: canonical_loop(mesh, g),
                     plane,
+                    planar,
                     triangles,
                 });
             }

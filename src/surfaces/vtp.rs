@@ -38,6 +38,7 @@ use crate::mesh::TextureFrame;
 use crate::queries::along::{Form, cut_point, cut_point_on_plane};
 use crate::views::{Eye, Picture};
 use geo::{Coord, LineString, MultiPolygon, Polygon};
+use std::cell::RefCell;
 use std::cmp::Ordering;
 use std::collections::HashMap;
 
@@ -98,6 +99,9 @@ pub(super) struct Vtp<'a> {
     vertices: Vec<Vertex>,
     /// The vertex where two lines cross, by the pair.
     crossings: HashMap<(u32, u32), u32>,
+    /// Whether an input point lies on F's plane, by the bits of its coordinates (F's corners
+    /// known at once: the exact test is slow for points on the plane).
+    on_plane: RefCell<HashMap<[u64; 3], bool>>,
     /// Signs that needed exact arithmetic, by (vertex, line).
     exact: HashMap<(u32, u32), Ordering>,
     cells: Vec<Cell>,
@@ -107,11 +111,13 @@ pub(super) struct Vtp<'a> {
 
 impl<'a> Vtp<'a> {
     /// VTP(F) = F: the face with vertex loop `corners` (either way round) and triangles
-    /// `triangles`, `plane` spanning the plane the arrangement lies in, seen from `eye` with turn `turn` (the eye's
+    /// `triangles`, `plane` spanning the plane the arrangement lies in (holding every corner
+    /// when `planar`), seen from `eye` with turn `turn` (the eye's
     /// side of `plane`, not `Equal`). A convex face is one cell, any other its triangles.
     pub(super) fn new(
         corners: &[Point3],
         plane: &[Point3; 3],
+        planar: bool,
         triangles: &[[Point3; 3]],
         eye: Eye,
         turn: Ordering,
@@ -128,6 +134,13 @@ impl<'a> Vtp<'a> {
             bounding: Vec::new(),
             vertices: Vec::new(),
             crossings: HashMap::new(),
+            on_plane: RefCell::new(
+                plane
+                    .iter()
+                    .chain(corners.iter().filter(|_| planar))
+                    .map(|c| (c.coords.map(f64::to_bits).into(), true))
+                    .collect(),
+            ),
             exact: HashMap::new(),
             cells: Vec::new(),
             changed: false,
@@ -310,8 +323,14 @@ impl<'a> Vtp<'a> {
 
     /// Whether the input point `p` lies on F's plane.
     fn on_f(&self, p: &Point3) -> bool {
+        let key = p.coords.map(f64::to_bits).into();
+        if let Some(&known) = self.on_plane.borrow().get(&key) {
+            return known;
+        }
         let [f0, f1, f2] = &self.frame.plane;
-        orient3d(f0, f1, f2, p) == Ordering::Equal
+        let on = orient3d(f0, f1, f2, p) == Ordering::Equal;
+        self.on_plane.borrow_mut().insert(key, on);
+        on
     }
 
     /// The crossing of lines `a` and `b` as the cut of an edge, when one is: an edge lying in
@@ -349,8 +368,7 @@ impl<'a> Vtp<'a> {
     /// plane, or a point of both planes on F's plane.
     fn input_at(&self, a: u32, b: u32) -> Option<Point3> {
         let eye = &self.frame.eye;
-        let [f0, f1, f2] = &self.frame.plane;
-        let on_f = |p: &Point3| orient3d(f0, f1, f2, p) == Ordering::Equal;
+        let on_f = |p: &Point3| self.on_f(p);
         let (ka, kb) = (self.lines[a as usize].kind, self.lines[b as usize].kind);
         let ends = |k: &Kind| -> Vec<Point3> {
             match k {
@@ -451,18 +469,17 @@ impl<'a> Vtp<'a> {
 
     /// Takes away what the occluder face with vertex loop `corners`, a triangle `plane` of its
     /// vertices and triangles `triangles` hides: as one convex piece when it lies exactly in
-    /// `plane` and is convex in the picture, else triangle by triangle (each exactly planar).
+    /// `plane` (`planar`) and is convex in the picture, else triangle by triangle (each exactly planar).
     pub(super) fn subtract(
         &mut self,
         corners: &[Point3],
-        plane: &[Point3; 3],
+        plane: [Point3; 3],
+        planar: bool,
         triangles: &[[Point3; 3]],
     ) {
         let eye = self.frame.eye;
+        let plane = &plane;
         let [g0, g1, g2] = plane;
-        let planar = corners
-            .iter()
-            .all(|c| orient3d(g0, g1, g2, c) == Ordering::Equal);
         let turn = eye.orient3d(g0, g1, g2);
         if planar
             && turn != Ordering::Equal
