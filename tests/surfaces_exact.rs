@@ -529,19 +529,8 @@ fn expect_face(
 /// edge-on, HIDDEN when they hide all of each, else MIXED.
 fn expect_visobj(scene: &Scene, ids: &[ObjectId], view: &View, a: ObjectId, b: ObjectId) -> Status {
     let rv = RefView::new(view);
-    let picture = Picture::of(view);
-    let mut faces = Vec::new();
-    for &id in ids {
-        let mesh = scene[id].mesh().expect("a mesh object");
-        for f in 0..mesh.faces().len() {
-            faces.push(RefFace::new(&rv, &picture, id, mesh, f));
-        }
-    }
-    let margin = 1e-9
-        * faces
-            .iter()
-            .flat_map(|f| f.picture.iter())
-            .fold(0.0f64, |m, p| m.max(p[0].abs()).max(p[1].abs()));
+    let faces = ref_faces(scene, ids, view, &rv);
+    let margin = 1e-9 * scale_of(&faces);
     let statuses: Vec<Status> = (0..faces.len())
         .filter(|&f| faces[f].object == b)
         .map(|f| expect_face(&rv, &faces, f, &[a], margin, &BTreeSet::new()))
@@ -571,20 +560,30 @@ struct Reference {
     pictures: BTreeMap<(ObjectId, usize), Vec<[f64; 2]>>,
 }
 
-fn reference(scene: &Scene, ids: &[ObjectId], view: &View) -> Reference {
-    let rv = RefView::new(view);
+/// Every face of the meshes `ids`, exactly.
+fn ref_faces(scene: &Scene, ids: &[ObjectId], view: &View, rv: &RefView) -> Vec<RefFace> {
     let picture = Picture::of(view);
-    let mut faces = Vec::new();
-    for &id in ids {
-        let mesh = scene[id].mesh().expect("a mesh object");
-        for f in 0..mesh.faces().len() {
-            faces.push(RefFace::new(&rv, &picture, id, mesh, f));
-        }
-    }
-    let scale = faces
+    ids.iter()
+        .flat_map(|&id| {
+            let mesh = scene[id].mesh().expect("a mesh object");
+            (0..mesh.faces().len()).map(move |f| (id, mesh, f))
+        })
+        .map(|(id, mesh, f)| RefFace::new(rv, &picture, id, mesh, f))
+        .collect()
+}
+
+/// The largest picture coordinate magnitude of the faces' vertices.
+fn scale_of(faces: &[RefFace]) -> f64 {
+    faces
         .iter()
         .flat_map(|f| f.picture.iter())
-        .fold(0.0f64, |m, p| m.max(p[0].abs()).max(p[1].abs()));
+        .fold(0.0f64, |m, p| m.max(p[0].abs()).max(p[1].abs()))
+}
+
+fn reference(scene: &Scene, ids: &[ObjectId], view: &View) -> Reference {
+    let rv = RefView::new(view);
+    let faces = ref_faces(scene, ids, view, &rv);
+    let scale = scale_of(&faces);
     let largest_area = faces
         .iter()
         .map(|f| f.area.to_f64().unwrap())

@@ -195,10 +195,8 @@ impl Polynomial for Turn<'_> {
     }
 
     fn evaluate<R: Ring>(&self) -> R {
-        let eye = &self.frame.eye;
-        let g = self.frame.kind.gradient::<R>(eye);
-        let qa = cross(&g, &self.a.kind.gradient::<R>(eye));
-        dot(&self.b.kind.gradient::<R>(eye), &qa)
+        let gb = self.b.kind.gradient::<R>(&self.frame.eye);
+        dot(&gb, &trace_direction(self.frame, &self.a.kind))
     }
 
     fn degree(&self) -> u32 {
@@ -317,10 +315,7 @@ impl Polynomial for Alignment<'_> {
     }
 
     fn evaluate<R: Ring>(&self) -> R {
-        let eye = &self.frame.eye;
-        let g = self.frame.kind.gradient::<R>(eye);
-        let qa = cross(&g, &self.a.kind.gradient::<R>(eye));
-        let qb = cross(&g, &self.b.kind.gradient::<R>(eye));
+        let [qa, qb] = [&self.a.kind, &self.b.kind].map(|k| trace_direction(self.frame, k));
         dot(&qa, &qb)
     }
 
@@ -343,6 +338,12 @@ pub(super) fn coincide(frame: &Frame, a: &Line, b: &Line) -> bool {
         return false;
     }
     turn.sign() == Ordering::Equal && numerators.iter().all(|n| n.sign() == Ordering::Equal)
+}
+
+/// `q_L = g_F × g_L`, the direction of the trace of `kind` in F's plane, in the ring `R`.
+fn trace_direction<R: Ring>(frame: &Frame, kind: &Kind) -> [R; 3] {
+    let eye = &frame.eye;
+    cross(&frame.kind.gradient::<R>(eye), &kind.gradient::<R>(eye))
 }
 
 /// `[N, (W, 0, 0)]`: the point `O + N / W` on the traces of `a` and `b`, in the ring `R`.
