@@ -20,19 +20,19 @@
 //! The status is decided exactly: a face G counts only when it hides a region of positive
 //! area of F, decided from signs of `orient3d` of input points (and of exact degree-two
 //! combinations for the points where G crosses F's plane), never from the rounded pictures.
-//! So F is VISIBLE exactly when nothing hides any area of it, however the pictures touch. It
-//! is HIDDEN when its own solid, an INBOX or one face hides it (exact), or when the clipped
-//! polygons leave nothing. A face covered only jointly by faces of other objects whose pictures'
-//! edges run exactly along its own edges (or each other's) through different points can keep
-//! a sliver of a few ulps and come out MIXED; a visible region narrower than rounding can be
-//! lost.
+//! So F is VISIBLE exactly when nothing hides any area of it, however the pictures touch.
+//! VTP(F) itself is built exactly as well (see `vtp`): F as convex cells of its plane, from
+//! which every face that hides some of it takes the convex piece it hides, each decision the
+//! exact sign of a plane of the input at a point where two others meet F's plane. So F is
+//! HIDDEN exactly when no cell is left, whether one face, several faces together, its own
+//! solid or an INBOX hide it; and MIXED polygons have neither slivers nor spikes.
 //!
-//! The polygons are kept in picture coordinates (see [`Picture`]). When F lies wholly behind
-//! G's plane (weakly), G's whole picture is taken away (input vertices only); when the two
-//! planes cross within F, G is cut by F's plane first, which adds the points where G's edges
-//! cross it, each built once from the input coordinates (exact expansions, rounded once). The
-//! differences are taken by [`crate::clip`], whose new vertices are within half an ulp of the
-//! largest picture coordinate of the exact crossings of those rounded pictures.
+//! The polygons are in picture coordinates (see [`Picture`]), and again in the face's texture
+//! coordinates. Each vertex is built once, in f64, from the input coordinates: the picture of an
+//! input vertex ([`Picture::point`]), the point where an edge crosses a plane of the input, or
+//! the point of F's plane where two other planes of the input meet it (each coordinate a ratio
+//! of exact polynomials of the input, each rounded once). So the polygons are the same bits
+//! under mirroring and power-of-two scaling of the scene, whatever the order of the work.
 //!
 //! ```
 //! use kepler::{geometry::Vector3, scene::Scene, views::View};
@@ -48,13 +48,11 @@
 //! assert_eq!(statuses.iter().filter(|&&s| s == Status::Hidden).count(), 3);
 //! ```
 
-use crate::clip;
 use crate::geometry::polygon::bounding_box;
 use crate::geometry::predicates::orient3d;
 use crate::geometry::{Aabb, Point3};
 use crate::grid::{CellLists, Cells};
 use crate::mesh::Mesh;
-use crate::queries::along::cut_point_on_plane;
 use crate::queries::own_solid::hidden_by_own_solid;
 use crate::queries::sight::Sight;
 use crate::scene::{Content, ObjectId, Scene};
@@ -64,7 +62,11 @@ use rayon::prelude::*;
 use slotmap::SecondaryMap;
 use std::cmp::Ordering;
 
+mod lines;
 mod overlap;
+mod vtp;
+
+use vtp::Vtp;
 
 /// Why visible surfaces could not be computed: the surfaces layer's error.
 ///
@@ -96,9 +98,6 @@ pub enum SurfacesError {
         /// How many faces the mesh has.
         faces: usize,
     },
-    /// A picture too large or not finite to clip.
-    #[error("object 'picture': {0}")]
-    Clip(#[from] clip::ClipError),
 }
 
 /// `Result` with the surfaces layer's [`SurfacesError`].
@@ -193,7 +192,7 @@ pub fn visfac(
     owner: ObjectId,
     face: usize,
 ) -> Result<VisibleFace> {
-    visfac_among(scene, &[a], view, owner, face, None)
+    Ok(visfac_among(scene, &[a], view, owner, face, None)?.0)
 }
 
 /// VISFAC against the whole scene (every root object, the face's own included): the visible
@@ -213,7 +212,7 @@ pub fn visfac_scene(
     owner: ObjectId,
     face: usize,
 ) -> Result<VisibleFace> {
-    visfac_among(scene, scene.roots(), view, owner, face, None)
+    Ok(visfac_among(scene, scene.roots(), view, owner, face, None)?.0)
 }
 
 /// VISOBJ(A, B) (Franklin 1981, algorithm C): VISIBLE if `a` hides nothing of `b`, HIDDEN if it
@@ -277,8 +276,8 @@ pub struct FaceReport {
     pub face: usize,
     /// Status and visible polygons in picture coordinates.
     pub visible: VisibleFace,
-    /// The visible polygons in the face's texture coordinates (mapped back from the picture in
-    /// floating point).
+    /// The visible polygons in the face's texture coordinates (each vertex built once from the
+    /// input, like its picture).
     pub texture: MultiPolygon<f64>,
 }
 
@@ -311,16 +310,8 @@ pub fn visible_surfaces(scene: &Scene, view: &View) -> Result<Vec<FaceReport>> {
         .collect();
     faces
         .par_iter()
-        .map(|&(id, mesh, f)| {
-            let visible = visfac_among(scene, scene.roots(), view, id, f, Some(&grids))?;
-            let plane = mesh.faces()[f].plane();
-            let frame = mesh.faces()[f].texture();
-            let texture = map_points(&visible.polygons, |p| {
-                picture
-                    .unproject(p, &plane.normal, plane.d)
-                    .map(|x| frame.to_texture(&x))
-                    .map_or(p, |t| [t.x, t.y])
-            });
+        .map(|&(id, _, f)| {
+            let (visible, texture) = visfac_among(scene, scene.roots(), view, id, f, Some(&grids))?;
             Ok(FaceReport {
                 object: id,
                 face: f,
@@ -331,24 +322,9 @@ pub fn visible_surfaces(scene: &Scene, view: &View) -> Result<Vec<FaceReport>> {
         .collect()
 }
 
-/// The polygons with every point mapped by `f`.
-fn map_points(polygons: &MultiPolygon<f64>, f: impl Fn([f64; 2]) -> [f64; 2]) -> MultiPolygon<f64> {
-    let ring = |r: &LineString<f64>| -> LineString<f64> {
-        r.coords()
-            .map(|c| {
-                let [x, y] = f([c.x, c.y]);
-                Coord { x, y }
-            })
-            .collect()
-    };
-    polygons
-        .iter()
-        .map(|p| Polygon::new(ring(p.exterior()), p.interiors().iter().map(ring).collect()))
-        .collect()
-}
-
-/// VISFAC of one face against the union of `objects`: one difference of the face's picture
-/// and all the pieces in front of it, so that pieces sharing edges leave nothing between them.
+/// VISFAC of one face against the union of `objects`, with its visible polygons in the face's
+/// texture coordinates: VTP(F) is F minus the pieces hidden by every occluder that hides some
+/// area of it, decided and built exactly (see [`vtp`]).
 fn visfac_among(
     scene: &Scene,
     objects: &[ObjectId],
@@ -356,7 +332,7 @@ fn visfac_among(
     owner: ObjectId,
     face: usize,
     grids: Option<&SecondaryMap<ObjectId, FaceGrid>>,
-) -> Result<VisibleFace> {
+) -> Result<(VisibleFace, MultiPolygon<f64>)> {
     let mesh = scene[owner].mesh().ok_or_else(|| SurfacesError::NotMesh {
         object: scene.path(owner),
     })?;
@@ -367,15 +343,18 @@ fn visfac_among(
             faces: mesh.faces().len(),
         });
     }
+    let nothing = MultiPolygon::new(Vec::new());
+    let answer = |status, polygons, exits, edge_on| VisibleFace {
+        status,
+        polygons,
+        exits,
+        edge_on,
+    };
     let target = Target::new(mesh, face, view);
     if target.eye_side == Ordering::Equal {
         // Seen edge-on: no area to hide, so VTP(F) stays F (of zero area, no polygons).
-        return Ok(VisibleFace {
-            status: Status::Visible,
-            polygons: MultiPolygon::new(Vec::new()),
-            exits: Exits::default(),
-            edge_on: true,
-        });
+        let seen = answer(Status::Visible, nothing.clone(), Exits::default(), true);
+        return Ok((seen, nothing));
     }
     let mut exits = Exits::default();
     let back_side = match grids.and_then(|g| g.get(owner)) {
@@ -387,15 +366,12 @@ fn visfac_among(
     };
     if back_side == Some(target.eye_side) {
         exits.solid_hid = 1;
-        return Ok(VisibleFace {
-            status: Status::Hidden,
-            polygons: MultiPolygon::new(Vec::new()),
-            exits,
-            edge_on: false,
-        });
+        return Ok((
+            answer(Status::Hidden, nothing.clone(), exits, false),
+            nothing,
+        ));
     }
-    let whole = target.polygon();
-    let mut pieces = Vec::new();
+    let mut occluders = Vec::new();
     let mut all_hidden = false;
     for &a in objects {
         if visfac2(
@@ -404,32 +380,66 @@ fn visfac_among(
             &target,
             (owner, face),
             grids,
-            &mut pieces,
+            &mut occluders,
             &mut exits,
         )? {
             all_hidden = true;
             break;
         }
     }
-    // Every piece hides some area of F (decided exactly), so none means VISIBLE.
-    let (status, polygons) = if all_hidden {
-        (Status::Hidden, MultiPolygon::new(Vec::new()))
-    } else if pieces.is_empty() {
-        (Status::Visible, whole)
-    } else {
-        let vtp = clip::difference_of_union(&whole, &pieces)?;
-        let status = if vtp.0.is_empty() {
-            Status::Hidden
-        } else {
-            Status::Mixed
-        };
-        (status, vtp)
+    let frame = mesh.faces()[face].texture();
+    if all_hidden {
+        return Ok((
+            answer(Status::Hidden, nothing.clone(), exits, false),
+            nothing,
+        ));
+    }
+    let whole = |exits| {
+        let texture = target
+            .vertices
+            .iter()
+            .map(|v| lines::texture_of(frame, v))
+            .collect();
+        (
+            answer(Status::Visible, target.polygon(), exits, false),
+            ring(texture),
+        )
     };
-    Ok(VisibleFace {
-        status,
-        polygons,
-        exits,
-        edge_on: false,
+    // Every occluder hides some area of F (decided exactly), so none means VISIBLE.
+    if occluders.is_empty() {
+        return Ok(whole(exits));
+    }
+    let (plane, planar) = spanning_triangle(mesh, face, &target.eye);
+    let mut vtp = Vtp::new(
+        &target.canonical,
+        &plane,
+        planar,
+        &target.triangles,
+        target.eye,
+        target.eye_side,
+        &target.picture,
+    );
+    for occluder in &occluders {
+        vtp.subtract(
+            &occluder.corners,
+            occluder.plane,
+            occluder.planar,
+            &occluder.triangles,
+        );
+        if vtp.is_empty() {
+            break;
+        }
+    }
+    Ok(if vtp.is_empty() {
+        (
+            answer(Status::Hidden, nothing.clone(), exits, false),
+            nothing,
+        )
+    } else if !vtp.changed() {
+        whole(exits)
+    } else {
+        let (polygons, texture) = vtp.polygons(frame, target.eye_side);
+        (answer(Status::Mixed, polygons, exits, false), texture)
     })
 }
 
@@ -441,9 +451,11 @@ fn within(scene: &Scene, id: ObjectId, objects: &[ObjectId]) -> bool {
 /// The face being tested: its vertices, plane and picture.
 struct Target {
     vertices: Vec<Point3>,
+    /// Its vertex loop from a canonical start and way round (see [`canonical_loop`]).
+    canonical: Vec<Point3>,
     /// The face's triangles.
     triangles: Vec<[Point3; 3]>,
-    /// A triangle of the face (its plane).
+    /// The face's first triangle (its plane).
     plane: [Point3; 3],
     eye: Eye,
     picture: Picture,
@@ -466,6 +478,7 @@ impl Target {
         let extent = bounding_box(vertices.iter().map(|v| picture.point(v)));
         Target {
             eye_side: eye.orient3d(&plane[0], &plane[1], &plane[2]),
+            canonical: canonical_loop(mesh, face),
             vertices,
             triangles,
             plane,
@@ -510,64 +523,24 @@ impl Target {
         (0..2).any(|k| low[k] > f_high[k] + margin || high[k] < f_low[k] - margin)
     }
 
-    /// The picture of the part of the polygon `corners` (with their `pictures`; a face of an
-    /// occluder, with a triangle `g` spanning its plane) that may hide points of this face:
-    /// within this face's picture, the points it hides are those seen through that picture.
-    /// `None` when it hides nothing: no vertex of this face lies strictly behind `g`'s plane
-    /// (or `g` is seen edge-on), or no part of the polygon is strictly on the eye's side of
-    /// this face's plane.
-    ///
-    /// When no vertex of this face lies strictly in front of `g`'s plane either, every point
-    /// of this face seen through the polygon is behind it, so the whole polygon serves, with
-    /// input vertices only. Otherwise the planes cross within the face and the polygon is cut
-    /// by this face's plane: its vertices are the pictures of its corners on the eye's side or
-    /// on the plane, and of the points where its edges cross the plane, each built once from
-    /// the input coordinates.
-    fn in_front(
-        &self,
-        corners: &[Point3],
-        pictures: &[[f64; 2]],
-        g: &[Point3; 3],
-    ) -> Option<MultiPolygon<f64>> {
+    /// Whether the polygon `corners` (a face of an occluder, with a triangle `g` spanning its
+    /// plane) may hide points of this face: some part of it lies strictly on the eye's side of
+    /// this face's plane, it is not seen edge-on, and some vertex of this face lies strictly
+    /// behind its plane. Exact.
+    fn may_be_hidden_by(&self, corners: &[Point3], g: &[Point3; 3]) -> bool {
         let [p, q, r] = &self.plane;
-        let sides: Vec<Ordering> = corners.iter().map(|c| orient3d(p, q, r, c)).collect();
-        if !sides.contains(&self.eye_side) {
-            return None;
+        if !corners
+            .iter()
+            .any(|c| orient3d(p, q, r, c) == self.eye_side)
+        {
+            return false;
         }
         let g_side = self.eye.orient3d(&g[0], &g[1], &g[2]);
-        if g_side == Ordering::Equal {
-            return None;
-        }
-        let f_sides: Vec<Ordering> = self
-            .vertices
-            .iter()
-            .map(|v| orient3d(&g[0], &g[1], &g[2], v))
-            .collect();
-        if !f_sides.contains(&g_side.reverse()) {
-            return None;
-        }
-        if !f_sides.contains(&g_side) {
-            return Some(ring(pictures.to_vec()));
-        }
-        let n = corners.len();
-        let mut out = Vec::with_capacity(n + 2);
-        for i in 0..n {
-            let j = (i + 1) % n;
-            // The closed half-space on the eye's side: corners on the plane stay.
-            if sides[i] != self.eye_side.reverse() {
-                out.push(pictures[i]);
-            }
-            if sides[i] != Ordering::Equal && sides[j] != Ordering::Equal && sides[i] != sides[j] {
-                out.push(cut_point_on_plane(
-                    &self.picture,
-                    &self.eye,
-                    &self.plane,
-                    &corners[i],
-                    &corners[j],
-                ));
-            }
-        }
-        (out.len() >= 3).then(|| ring(out))
+        g_side != Ordering::Equal
+            && self
+                .vertices
+                .iter()
+                .any(|v| orient3d(&g[0], &g[1], &g[2], v) == g_side.reverse())
     }
 }
 
@@ -579,8 +552,6 @@ struct FaceGrid {
     cells: Cells,
     margin: f64,
     lists: CellLists,
-    /// The picture of every vertex of the mesh.
-    pictures: Vec<[f64; 2]>,
     /// The side of its faces that its own solid hides (see [`hidden_by_own_solid`]).
     back_side: Option<Ordering>,
 }
@@ -612,7 +583,6 @@ impl FaceGrid {
             lists: CellLists::new(cells.count(), pairs),
             cells,
             margin,
-            pictures,
             back_side: hidden_by_own_solid(scene, id, mesh, view.eye()),
         }
     }
@@ -633,22 +603,85 @@ impl FaceGrid {
 /// The relative margin of the face grid: 2⁻⁴⁰.
 const GRID_MARGIN: f64 = 1.0 / (1u64 << 40) as f64;
 
-/// A closed ring of picture points as a multipolygon.
+/// A face of an occluder that hides some area of F: its vertex loop, a triangle spanning its
+/// plane (see [`spanning_triangle`]) and its triangles.
+struct Occluder {
+    corners: Vec<Point3>,
+    plane: [Point3; 3],
+    /// Whether every corner lies exactly in `plane`.
+    planar: bool,
+    triangles: Vec<[Point3; 3]>,
+}
+
+/// The vertex loop of face `face` from its vertex of least index, towards the neighbour of
+/// lesser index: the same whichever vertex the face starts at and whichever way round it is
+/// given (as mirroring reverses it), so VTP(F) is built in the same order, and each of its
+/// points from the same planes.
+fn canonical_loop(mesh: &Mesh, face: usize) -> Vec<Point3> {
+    let indices = mesh.faces()[face].vertices();
+    let n = indices.len();
+    let start = (0..n).min_by_key(|&i| indices[i]).unwrap_or(0);
+    let step = if indices[(start + 1) % n] <= indices[(start + n - 1) % n] {
+        1
+    } else {
+        n - 1
+    };
+    (0..n)
+        .map(|k| mesh.vertices()[indices[(start + k * step) % n] as usize])
+        .collect()
+}
+
+/// A triangle of vertices of face `face` spanning its plane, the same whatever the face's first
+/// vertex and way round, the scene's placement or scale: the first two vertices by index and
+/// the next by index not on their line, turned like the face's first triangle as seen from
+/// `eye`; and whether the face is exactly planar. Points of the face's plane are built from the
+/// gradient of this triangle's form, so this choice keeps them the same bits when the face is
+/// reversed (as mirroring does). The face's first triangle when the face is not exactly planar
+/// or is seen edge-on.
+fn spanning_triangle(mesh: &Mesh, face: usize, eye: &Eye) -> ([Point3; 3], bool) {
+    let first = mesh.triangle(mesh.faces()[face].triangle_range().start);
+    let turn = eye.orient3d(&first[0], &first[1], &first[2]);
+    let planar = mesh.face_points(face).all(|c| {
+        first.contains(&c) || orient3d(&first[0], &first[1], &first[2], &c) == Ordering::Equal
+    });
+    if turn == Ordering::Equal || !planar {
+        return (first, planar);
+    }
+    let mut indices = mesh.faces()[face].vertices().to_vec();
+    indices.sort_unstable();
+    indices.dedup();
+    let point = |i: u32| mesh.vertices()[i as usize];
+    let [a, b] = [0, 1].map(|k| point(indices[k]));
+    let span = indices[2..]
+        .iter()
+        .find_map(|&k| {
+            let c = point(k);
+            match eye.orient3d(&a, &b, &c) {
+                Ordering::Equal => None,
+                t if t == turn => Some([a, b, c]),
+                _ => Some([a, c, b]),
+            }
+        })
+        .unwrap_or(first);
+    (span, true)
+}
+
+/// A closed ring of points as a multipolygon.
 fn ring(points: Vec<[f64; 2]>) -> MultiPolygon<f64> {
     let coords: Vec<Coord<f64>> = points.into_iter().map(|[x, y]| Coord { x, y }).collect();
     MultiPolygon::new(vec![Polygon::new(LineString::new(coords), Vec::new())])
 }
 
-/// VISFAC2(A, F): gathers in `pieces` the pictures of the parts of `a`'s faces in front of
-/// F's plane (their union is what `a` hides of F), with the hierarchy's early exits; `true`
-/// when an INBOX hides all of F.
+/// VISFAC2(A, F): gathers in `occluders` the faces of `a` that hide some area of F (what they
+/// hide of F, together, is what `a` hides of it), with the hierarchy's early exits; `true`
+/// when an INBOX or a single face hides all of F.
 fn visfac2(
     scene: &Scene,
     a: ObjectId,
     target: &Target,
     own: (ObjectId, usize),
     grids: Option<&SecondaryMap<ObjectId, FaceGrid>>,
-    pieces: &mut Vec<MultiPolygon<f64>>,
+    occluders: &mut Vec<Occluder>,
     exits: &mut Exits,
 ) -> Result<bool> {
     let cbox = scene.cbox(a);
@@ -678,19 +711,10 @@ fn visfac2(
                 }
                 exits.faces_tested += 1;
                 let corners: Vec<Point3> = mesh.face_points(g).collect();
-                // The corners' pictures, from the pass's per-mesh table when there is one.
-                let pictures: Vec<[f64; 2]> = match grids.and_then(|g| g.get(a)) {
-                    Some(grid) => mesh.faces()[g]
-                        .vertices()
-                        .iter()
-                        .map(|&v| grid.pictures[v as usize])
-                        .collect(),
-                    None => corners.iter().map(|c| target.picture.point(c)).collect(),
-                };
                 let plane = mesh.triangle(mesh.faces()[g].triangle_range().start);
-                let Some(piece) = target.in_front(&corners, &pictures, &plane) else {
+                if !target.may_be_hidden_by(&corners, &plane) {
                     continue;
-                };
+                }
                 // Only a face that hides some area of F counts (exactly): one touching F
                 // along a line would add nothing but rounding.
                 let hides_area = mesh.faces()[g].triangle_range().any(|s| {
@@ -714,12 +738,22 @@ fn visfac2(
                     exits.face_hid += 1;
                     return Ok(true);
                 }
-                pieces.push(piece);
+                let triangles = mesh.faces()[g]
+                    .triangle_range()
+                    .map(|t| mesh.triangle(t))
+                    .collect();
+                let (plane, planar) = spanning_triangle(mesh, g, &target.eye);
+                occluders.push(Occluder {
+                    corners: canonical_loop(mesh, g),
+                    plane,
+                    planar,
+                    triangles,
+                });
             }
         }
         Content::Subobjects(children) => {
             for &c in children {
-                if visfac2(scene, c, target, own, grids, pieces, exits)? {
+                if visfac2(scene, c, target, own, grids, occluders, exits)? {
                     return Ok(true);
                 }
             }
