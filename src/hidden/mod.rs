@@ -55,13 +55,15 @@ pub mod ideographs;
 
 pub use drawing::{Drawing, EdgeClass, Polyline, StageReport};
 
-use crate::geometry::Point3;
+use crate::geometry::kernel::Polynomial;
 use crate::geometry::predicates::orient3d;
+use crate::geometry::{Aabb, Point3};
 use crate::grid::SegmentGrid;
 use crate::mesh::Mesh;
 use crate::queries::Counters;
-use crate::queries::along::{Form, cut_point, hides_along};
+use crate::queries::along::{Form, cut_point, hides_along, hides_at};
 use crate::queries::intersections;
+use crate::queries::meet::{Meet, OnLine, balance, reversed};
 use crate::queries::own_solid::turned_away;
 use crate::queries::visp::Visibility;
 use crate::scene::{ObjectId, Scene, SceneError};
@@ -159,13 +161,25 @@ struct Line {
     /// The pictures of `a` and `b`.
     ends: [[f64; 2]; 2],
     class: EdgeClass,
-    /// For an intersection segment: the two faces it lies on, which do not hide it.
-    on_faces: Option<[(ObjectId, usize); 2]>,
+    /// For an intersection segment: its index in [`Pass::meets`].
+    meet: Option<usize>,
     /// Whether the line is an edge between two faces turned away from the eye on a solid that
     /// the eye is outside of: then the solid itself hides all of it.
     back: bool,
     /// For an edge: the triangles on its sides (in its mesh).
     triangles: Option<[u32; 2]>,
+    /// For an edge: the index of its leaf and its ends' vertex indices (which name a cut that
+    /// it makes on an intersection line the same way in a transformed scene).
+    leaf: u32,
+    vertices: [u32; 2],
+}
+
+/// An intersection segment in the pass: where it lies and the faces that do not hide it.
+#[derive(Debug, Clone, Copy)]
+struct MeetLine {
+    meet: Meet,
+    ends: [OnLine; 2],
+    on_faces: [(ObjectId, usize); 2],
 }
 
 impl Line {
@@ -175,18 +189,42 @@ impl Line {
     }
 }
 
-/// Where a line is cut: at parameter `t` (approximate, for ordering), the point given by the
-/// zero of a form along the line or, for collinear pictures, by an input vertex's picture.
+/// Where a line is cut: at parameter `t` (approximate; on an edge for ordering, on an
+/// intersection line for a first sort), the point given by the zero of a form along the line
+/// or, for collinear pictures, by an input vertex's picture. `key` names a cut of an
+/// intersection line from the indices of what makes it (of two cuts at one point, the one with
+/// the smaller key is drawn).
 #[derive(Debug, Clone, Copy)]
 struct Cut {
     t: f64,
     at: CutAt,
+    key: [u32; 4],
 }
 
 #[derive(Debug, Clone, Copy)]
 enum CutAt {
+    /// Where the form vanishes; on an intersection line, the form increases along it.
     Form(Form),
+    /// On an edge: an input vertex's picture (collinear pictures).
     Point([f64; 2]),
+    /// On an intersection line: where the form (increasing along it) vanishes, on the line of
+    /// sight through an input vertex, whose picture this is.
+    Sighted(Form, [f64; 2]),
+}
+
+impl Cut {
+    /// A cut of an edge (no key).
+    fn on_edge(t: f64, at: CutAt) -> Cut {
+        Cut { t, at, key: [0; 4] }
+    }
+
+    /// A cut of an intersection line, as a point of it.
+    fn on_line(&self) -> Option<OnLine> {
+        match self.at {
+            CutAt::Form(form) | CutAt::Sighted(form, _) => Some(OnLine::Cut(form)),
+            CutAt::Point(_) => None,
+        }
+    }
 }
 
 /// Draws the scene from the view: see the module documentation.
@@ -263,6 +301,8 @@ struct Pass<'a> {
     leaves: Vec<Leaf<'a>>,
     /// The lines to draw: edges, then intersection segments.
     lines: Vec<Line>,
+    /// The intersection segments, indexed by [`Line::meet`].
+    meets: Vec<MeetLine>,
     /// Cuts, by line index.
     cuts: Vec<(usize, Cut)>,
     stages: Vec<StageReport>,
@@ -289,6 +329,7 @@ impl<'a> Pass<'a> {
             picture,
             leaves,
             lines: Vec::new(),
+            meets: Vec::new(),
             cuts: Vec::new(),
             stages: Vec::new(),
         })
@@ -324,7 +365,9 @@ impl<'a> Pass<'a> {
             .collect();
         let (mut flat, mut end_on, mut smooth_left_out) = (0, 0, 0);
         let mut by_class = [0usize; 5];
-        for (leaf, ((edges, counts), pictures)) in self.leaves.iter_mut().zip(classified) {
+        for (n, (leaf, ((edges, counts), pictures))) in
+            self.leaves.iter_mut().zip(classified).enumerate()
+        {
             let mesh = leaf.mesh;
             let away = turned_away(self.scene, leaf.id, mesh, eye);
             let first = self.lines.len();
@@ -349,9 +392,11 @@ impl<'a> Pass<'a> {
                     b: mesh.vertices()[b],
                     ends: [pictures[a], pictures[b]],
                     class: e.class,
-                    on_faces: None,
+                    meet: None,
                     back,
                     triangles: Some(e.triangles),
+                    leaf: n as u32,
+                    vertices: [e.a, e.b],
                 });
             }
             leaf.pictures = pictures;
@@ -383,6 +428,11 @@ impl<'a> Pass<'a> {
         let clock = Instant::now();
         let eye = self.eye;
         let ids: Vec<ObjectId> = self.leaves.iter().map(|l| l.id).collect();
+        let leaf_of: HashMap<ObjectId, u32> = ids
+            .iter()
+            .enumerate()
+            .map(|(n, &id)| (id, n as u32))
+            .collect();
         let pairs = overlapping_cboxes(self.scene, &ids);
         let apart = ids.len() * (ids.len() + 1) / 2 - pairs.len();
         let leaves = &self.leaves;
@@ -392,26 +442,36 @@ impl<'a> Pass<'a> {
             .collect();
         let mut segments = 0usize;
         let mut self_intersecting = Vec::new();
-        // Each triangle's partners in intersections, and each intersection line's triangles.
+        // Each triangle's partners in intersections, and each line's triangles.
         let mut partners: HashMap<(ObjectId, usize), Vec<(ObjectId, usize)>> = HashMap::new();
-        let mut crossings = Vec::new();
+        let mut crossings: Vec<(usize, Vec<(ObjectId, usize)>)> = Vec::new();
         for (&(i, j), found) in pairs.iter().zip(found) {
             let (id0, id1) = (ids[i], ids[j]);
             for s in found {
                 segments += 1;
-                let triangles = [(id0, s.triangles[0]), (id1, s.triangles[1])];
-                for (x, y) in [(triangles[0], triangles[1]), (triangles[1], triangles[0])] {
+                let mut own = Vec::with_capacity(2 * s.triangles.len());
+                for &[t0, t1] in &s.triangles {
+                    let (x, y) = ((id0, t0), (id1, t1));
                     partners.entry(x).or_default().push(y);
+                    partners.entry(y).or_default().push(x);
+                    own.extend([x, y]);
                 }
-                crossings.push((self.lines.len(), triangles));
+                crossings.push((self.lines.len(), own));
                 self.lines.push(Line {
                     a: s.points[0],
                     b: s.points[1],
-                    ends: s.ends.map(|e| e.picture(&self.picture, &eye)),
+                    ends: s.ends.map(|e| s.meet.picture(&self.picture, &eye, &e)),
                     class: EdgeClass::Intersection,
-                    on_faces: Some([(id0, s.faces[0]), (id1, s.faces[1])]),
+                    meet: Some(self.meets.len()),
                     back: false,
                     triangles: None,
+                    leaf: 0,
+                    vertices: [0; 2],
+                });
+                self.meets.push(MeetLine {
+                    meet: s.meet,
+                    ends: s.ends,
+                    on_faces: [(id0, s.faces[0]), (id1, s.faces[1])],
                 });
                 if i == j {
                     self_intersecting.push(i);
@@ -420,22 +480,40 @@ impl<'a> Pass<'a> {
         }
         // An edge may pass through a face, and an intersection line through a third face (a
         // triple point), where it may go behind it; that face pierces a face the line lies on,
-        // so it is among that face's partners. Cut there (for an intersection line, built from
-        // its rounded ends).
+        // so it is among that face's partners. Each cut is where the face's plane (the one
+        // that stands for all its triangles) vanishes on the line.
         for leaf in self.leaves.iter().filter(|_| !partners.is_empty()) {
             for l in leaf.lines.clone() {
                 if let Some(triangles) = self.lines[l].triangles {
-                    crossings.push((l, triangles.map(|t| (leaf.id, t as usize))));
+                    crossings.push((l, triangles.map(|t| (leaf.id, t as usize)).to_vec()));
                 }
             }
         }
         let (mut triple, mut pierced) = (0usize, 0usize);
-        for (l, triangles) in crossings {
-            let (a, b) = (self.lines[l].a, self.lines[l].b);
-            let mut third: Vec<(ObjectId, usize)> = triangles
+        let scene = self.scene;
+        let triangle = |(object, t): (ObjectId, usize)| scene[object].mesh().map(|m| m.triangle(t));
+        for (l, own) in crossings {
+            let line = self.lines[l];
+            // An intersection line's box, grown by far more than the error of its approximate
+            // ends (a few units in 2⁻⁴⁴ of its triangles' coordinates): a face whose box misses
+            // it cannot meet the line.
+            let reach = line.meet.map(|_| {
+                let size = own
+                    .iter()
+                    .filter_map(|&t| triangle(t))
+                    .flatten()
+                    .fold(0.0f64, |m, p| m.max(p.coords.amax()));
+                let margin = size / (1u64 << 40) as f64;
+                let b = Aabb::from_points(&[line.a, line.b]);
+                Aabb::new(
+                    Point3::from(b.min.map(|v| v - margin)),
+                    Point3::from(b.max.map(|v| v + margin)),
+                )
+            });
+            let mut third: Vec<(ObjectId, usize)> = own
                 .iter()
                 .flat_map(|t| partners.get(t).into_iter().flatten().copied())
-                .filter(|t| !triangles.contains(t))
+                .filter(|t| !own.contains(t))
                 .collect();
             third.sort_unstable();
             third.dedup();
@@ -444,14 +522,38 @@ impl<'a> Pass<'a> {
                     continue;
                 };
                 let tri = mesh.triangle(t);
-                if let Some(t) = intersections::pierces(&eye, &a, &b, &tri) {
-                    if self.lines[l].class == EdgeClass::Intersection {
-                        triple += 1;
-                    } else {
-                        pierced += 1;
+                let (_, plane) = intersections::plane_of(mesh, t);
+                match line.meet {
+                    Some(m) => {
+                        let MeetLine { meet, ends, .. } = &self.meets[m];
+                        let apart = reach.is_some_and(|r| !r.intersects(&Aabb::from_points(&tri)));
+                        if apart || on_faces(&self.meets[m], self.scene, object, t) {
+                            continue;
+                        }
+                        if let Some(form) =
+                            intersections::pierces_line(meet, &eye, ends, &tri, &plane)
+                        {
+                            triple += 1;
+                            let face = mesh.face_of(t) as u32;
+                            self.cuts.push((
+                                l,
+                                Cut {
+                                    t: rough_parameter(&eye, &form, &line.a, &line.b),
+                                    at: CutAt::Form(form),
+                                    key: [1, leaf_of[&object], face, 0],
+                                },
+                            ));
+                        }
                     }
-                    let at = CutAt::Form(Form::Plane(tri));
-                    self.cuts.push((l, Cut { t, at }));
+                    None => {
+                        if let Some(t) =
+                            intersections::pierces(&eye, &line.a, &line.b, &tri, &plane)
+                        {
+                            pierced += 1;
+                            let at = CutAt::Form(Form::Plane(plane));
+                            self.cuts.push((l, Cut::on_edge(t, at)));
+                        }
+                    }
                 }
             }
         }
@@ -474,16 +576,20 @@ impl<'a> Pass<'a> {
     /// it, from the uniform grid over the lines' pictures (or every pair, for few lines).
     fn contour_cuts(&mut self) {
         let clock = Instant::now();
-        let (lines, eye) = (&self.lines, &self.eye);
+        let (lines, meets, eye) = (&self.lines, &self.meets, &self.eye);
         let cuts_needed = |i: usize, j: usize| {
             (lines[j].is_contour() && !lines[i].back) || (lines[i].is_contour() && !lines[j].back)
         };
         let crossing_cuts = |i: usize, j: usize| -> Vec<(usize, Cut)> {
             let mut out = Vec::new();
             for (x, y) in [(i, j), (j, i)] {
+                let found = || match lines[x].meet {
+                    Some(m) => crossing_line(eye, &meets[m], &lines[x], &lines[y]),
+                    None => crossing(eye, &lines[x], &lines[y]),
+                };
                 if lines[y].is_contour()
                     && !lines[x].back
-                    && let Some(c) = crossing(eye, &lines[x], &lines[y])
+                    && let Some(c) = found()
                 {
                     out.extend(c.into_iter().map(|c| (x, c)));
                 }
@@ -576,7 +682,7 @@ impl<'a> Pass<'a> {
         }
         let done = AtomicU64::new(0);
         let total = lines.len() as u64;
-        let (scene, eye, picture) = (self.scene, &self.eye, &self.picture);
+        let (scene, eye, picture, meets) = (self.scene, &self.eye, &self.picture, &self.meets);
         let decided: Vec<(Vec<Piece>, Counters)> = (0..lines.len())
             .into_par_iter()
             .map(|l| {
@@ -588,7 +694,12 @@ impl<'a> Pass<'a> {
                     .iter()
                     .map(|c| c.1)
                     .collect();
-                pieces(&occluders, scene, eye, picture, &lines[l], &line_cuts)
+                match lines[l].meet {
+                    Some(m) => line_pieces(
+                        &occluders, scene, eye, picture, &lines[l], &meets[m], &line_cuts,
+                    ),
+                    None => pieces(&occluders, scene, eye, picture, &lines[l], &line_cuts),
+                }
             })
             .collect();
         let mut counters = Counters::default();
@@ -636,10 +747,7 @@ fn crossing(eye: &Eye, l: &Line, c: &Line) -> Option<Vec<Cut>> {
             .iter()
             .filter_map(|e| {
                 let t = ((e[0] - p[0]) * d[0] + (e[1] - p[1]) * d[1]) / norm;
-                (t > 0.0 && t < 1.0).then_some(Cut {
-                    t,
-                    at: CutAt::Point(*e),
-                })
+                (t > 0.0 && t < 1.0).then_some(Cut::on_edge(t, CutAt::Point(*e)))
             })
             .collect();
         return Some(cuts);
@@ -661,12 +769,105 @@ fn crossing(eye: &Eye, l: &Line, c: &Line) -> Option<Vec<Cut>> {
     }
     let form = Form::Sight(c.a, c.b);
     let t = form.zero_along(eye, &l.a, &l.b)?;
-    (t > 0.0 && t < 1.0).then(|| {
-        vec![Cut {
-            t,
-            at: CutAt::Form(form),
-        }]
-    })
+    (t > 0.0 && t < 1.0).then(|| vec![Cut::on_edge(t, CutAt::Form(form))])
+}
+
+/// The cuts on the intersection line `l` (lying on `m`) where its picture meets the picture of
+/// the contour `c` in front of it, decided exactly as [`crossing`] decides for an edge: the
+/// sides of `c`'s ends against the plane through the line and the eye, the sides of the line's
+/// ends against `c`'s sight plane, and which passes in front where they cross
+/// ([`Meet::twist`]). For collinear pictures, at the lines of sight through `c`'s ends.
+fn crossing_line(eye: &Eye, m: &MeetLine, l: &Line, c: &Line) -> Option<Vec<Cut>> {
+    let (meet, [x, y]) = (&m.meet, &m.ends);
+    let is_end = |p: &Point3| {
+        [x, y]
+            .iter()
+            .any(|e| matches!(e, OnLine::Vertex { point, .. } if point == p))
+    };
+    if is_end(&c.a) || is_end(&c.b) {
+        return None;
+    }
+    let (sc, sd) = (meet.sight_side(eye, &c.a), meet.sight_side(eye, &c.b));
+    let sight = Form::Sight(c.a, c.b);
+    let (sa, sb) = (meet.sign_at(eye, x, &sight), meet.sign_at(eye, y, &sight));
+    let zero = Ordering::Equal;
+    let rough = |form: &Form| rough_parameter(eye, form, &l.a, &l.b);
+    if [sc, sd, sa, sb].iter().all(|&s| s == zero) {
+        // Collinear pictures: cut where the lines of sight through the contour's ends meet the
+        // line inside it, each point given by a sight plane through the end that crosses it.
+        let off = *meet
+            .planes
+            .iter()
+            .flatten()
+            .find(|q| meet.sight_side(eye, q) != zero)?;
+        let cuts = [0, 1]
+            .into_iter()
+            .filter_map(|k| {
+                let (p, picture) = ([c.a, c.b][k], c.ends[k]);
+                let form = meet.increasing(eye, Form::Sight(p, off));
+                let inside = meet.sign_at(eye, x, &form) == Ordering::Less
+                    && meet.sign_at(eye, y, &form) == Ordering::Greater;
+                inside.then(|| Cut {
+                    t: rough(&form),
+                    at: CutAt::Sighted(form, picture),
+                    key: [0, c.leaf, c.vertices[k], 0],
+                })
+            })
+            .collect();
+        return Some(cuts);
+    }
+    if sa == sb || sa == zero || sb == zero || (sc == sd && sc != zero) {
+        return None;
+    }
+    // Where the contour passes behind the line it changes nothing on it: the contour is in
+    // front when its end `d` lies on the eye's side of the plane through the line and `c`.
+    let volume = meet.twist(&c.a, &c.b);
+    let in_front = if sc != zero {
+        volume == zero || volume == sc
+    } else {
+        volume == zero || volume.reverse() == sd
+    };
+    if !in_front {
+        return None;
+    }
+    let form = if sa == Ordering::Less {
+        sight
+    } else {
+        reversed(&sight)
+    };
+    let (at, key) = if sc == zero {
+        (
+            CutAt::Sighted(form, c.ends[0]),
+            [0, c.leaf, c.vertices[0], 0],
+        )
+    } else if sd == zero {
+        (
+            CutAt::Sighted(form, c.ends[1]),
+            [0, c.leaf, c.vertices[1], 0],
+        )
+    } else {
+        let [u, v] = c.vertices;
+        (CutAt::Form(form), [2, c.leaf, u.min(v), u.max(v)])
+    };
+    Some(vec![Cut {
+        t: rough(&form),
+        at,
+        key,
+    }])
+}
+
+/// The parameter along `ab` where `form` vanishes, roughly (for a first sort of cuts only).
+fn rough_parameter(eye: &Eye, form: &Form, a: &Point3, b: &Point3) -> f64 {
+    let (fa, fb) = (
+        form.at(eye, a).estimate().value,
+        form.at(eye, b).estimate().value,
+    );
+    let t = fa / (fa - fb);
+    if t.is_finite() {
+        t.clamp(0.0, 1.0)
+    } else {
+        0.5
+    }
 }
 
 /// The visible and hidden runs of line `l` cut at `cuts` (sorted by `t`), and the stages that
@@ -704,10 +905,9 @@ fn pieces(
         let visible = if t > lo && t < hi {
             let approximate = l.a + (l.b - l.a) * t;
             let hides = |object: ObjectId, tri: usize| {
-                !on_faces(l, scene, object, tri)
-                    && scene[object]
-                        .mesh()
-                        .is_some_and(|m| hides_along(eye, &m.triangle(tri), &l.a, &l.b, t))
+                scene[object]
+                    .mesh()
+                    .is_some_and(|m| hides_along(eye, &m.triangle(tri), &l.a, &l.b, t))
             };
             let answer = occluders.visp(
                 &approximate,
@@ -744,20 +944,105 @@ fn pieces(
     (out, counters)
 }
 
+/// The visible and hidden runs of the intersection line `l` (lying on `m`) cut at `cuts`
+/// (strictly inside it), and the stages that decided its pieces. The cuts are ordered along
+/// the line exactly, those at one point taken once (the smallest key); each piece between two
+/// consecutive points is decided at a point strictly inside it defined from the input
+/// ([`Meet::sign_between`]).
+fn line_pieces(
+    occluders: &Occluders,
+    scene: &Scene,
+    eye: &Eye,
+    picture: &Picture,
+    l: &Line,
+    m: &MeetLine,
+    cuts: &[Cut],
+) -> (Vec<Piece>, Counters) {
+    let meet = &m.meet;
+    let mut inner: Vec<(OnLine, &Cut)> = cuts
+        .iter()
+        .filter_map(|c| c.on_line().map(|p| (p, c)))
+        .collect();
+    // Stable: the cuts come roughly sorted already.
+    inner.sort_by(|x, y| meet.compare(eye, &x.0, &y.0).then(x.1.key.cmp(&y.1.key)));
+    inner.dedup_by(|b, a| meet.compare(eye, &a.0, &b.0) == Ordering::Equal);
+    let points: Vec<OnLine> = std::iter::once(m.ends[0])
+        .chain(inner.iter().map(|x| x.0))
+        .chain(std::iter::once(m.ends[1]))
+        .collect();
+    let drawn = |k: usize| -> [f64; 2] {
+        if k == 0 {
+            return l.ends[0];
+        }
+        if k == points.len() - 1 {
+            return l.ends[1];
+        }
+        match inner[k - 1].1.at {
+            CutAt::Sighted(_, p) | CutAt::Point(p) => p,
+            CutAt::Form(_) => meet.picture(picture, eye, &points[k]),
+        }
+    };
+    let weights: Vec<f64> = points.iter().map(|p| meet.weight(eye, p)).collect();
+    let places: Vec<Point3> = points.iter().map(|p| meet.approximate(eye, p)).collect();
+    let mut counters = Counters::default();
+    let mut out: Vec<Piece> = Vec::new();
+    let mut run_start = l.ends[0];
+    let mut run_visible: Option<bool> = None;
+    for k in 0..points.len() - 1 {
+        let scales = [balance(weights[k]), balance(weights[k + 1])];
+        let (u, v) = (weights[k] * scales[0], weights[k + 1] * scales[1]);
+        let approximate = Point3::from((places[k].coords * u + places[k + 1].coords * v) / (u + v));
+        let hides = |object: ObjectId, tri: usize| {
+            !on_faces(m, scene, object, tri)
+                && scene[object].mesh().is_some_and(|mesh| {
+                    hides_at(eye, &mesh.triangle(tri), |form| {
+                        meet.sign_between(eye, [&points[k], &points[k + 1]], scales, form)
+                    })
+                })
+        };
+        let answer = occluders.visp(
+            &approximate,
+            picture.point(&approximate),
+            hides,
+            &mut counters,
+        );
+        let visible = answer == Visibility::Visible;
+        match run_visible {
+            Some(v) if v != visible => {
+                let at = drawn(k);
+                out.push(Piece {
+                    class: l.class,
+                    visible: v,
+                    ends: [run_start, at],
+                });
+                run_start = at;
+            }
+            _ => {}
+        }
+        run_visible = Some(visible);
+    }
+    if let Some(v) = run_visible {
+        out.push(Piece {
+            class: l.class,
+            visible: v,
+            ends: [run_start, l.ends[1]],
+        });
+    }
+    (out, counters)
+}
+
 /// Whether triangle `tri` of `object` lies on one of the faces an intersection line runs on.
-fn on_faces(l: &Line, scene: &Scene, object: ObjectId, tri: usize) -> bool {
-    l.on_faces.is_some_and(|faces| {
-        faces
-            .iter()
-            .any(|&(o, f)| o == object && scene[object].mesh().is_some_and(|m| m.face_of(tri) == f))
-    })
+fn on_faces(m: &MeetLine, scene: &Scene, object: ObjectId, tri: usize) -> bool {
+    m.on_faces
+        .iter()
+        .any(|&(o, f)| o == object && scene[object].mesh().is_some_and(|m| m.face_of(tri) == f))
 }
 
 /// The picture of a cut of line `l`.
 fn cut_picture(picture: &Picture, eye: &Eye, l: &Line, at: Option<CutAt>) -> [f64; 2] {
     match at {
         Some(CutAt::Form(form)) => cut_point(picture, eye, &form, &l.a, &l.b),
-        Some(CutAt::Point(p)) => p,
+        Some(CutAt::Point(p) | CutAt::Sighted(_, p)) => p,
         None => l.ends[0],
     }
 }
