@@ -369,6 +369,8 @@ fn intersections(d: &Drawing) -> usize {
 /// What a family of checks covered.
 #[derive(Default, Debug)]
 struct Tally {
+    /// The scene's seed.
+    seed: u64,
     compared: usize,
     skipped: usize,
     with_intersections: usize,
@@ -425,7 +427,8 @@ fn check(
     let b = segments(&d2, |p| p);
     assert!(
         a == b,
-        "{name}: {t:?}, view {spec:?}: {}",
+        "{name}, seed {}: {t:?}, view {spec:?}: {}",
+        tally.seed,
         difference(&a, &b)
     );
     tally.compared += 1;
@@ -442,6 +445,7 @@ fn over_scenes(name: &str, family: impl Fn(&mut Tally, &mut Rng, &[Solid], &View
     let mut tally = Tally::default();
     for seed in 0..SEEDS {
         let mut rng = Rng(0x1e14_0000 + seed);
+        tally.seed = seed;
         let scene = random_scene(&mut rng);
         for perspective in [false, true] {
             let spec = random_view(&mut rng, perspective);

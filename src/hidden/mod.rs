@@ -61,7 +61,7 @@ use crate::geometry::{Aabb, Point3};
 use crate::grid::SegmentGrid;
 use crate::mesh::Mesh;
 use crate::queries::Counters;
-use crate::queries::along::{Form, cut_point, hides_along, hides_at};
+use crate::queries::along::{Form, cut_point, hides_along, hides_at, same_zero};
 use crate::queries::intersections;
 use crate::queries::meet::{Meet, OnLine, balance, reversed};
 use crate::queries::own_solid::turned_away;
@@ -191,9 +191,9 @@ impl Line {
 
 /// Where a line is cut: at parameter `t` (approximate; on an edge for ordering, on an
 /// intersection line for a first sort), the point given by the zero of a form along the line
-/// or, for collinear pictures, by an input vertex's picture. `key` names a cut of an
-/// intersection line from the indices of what makes it (of two cuts at one point, the one with
-/// the smaller key is drawn).
+/// or, for collinear pictures, by an input vertex's picture. `key` names the cut from the
+/// indices of what makes it, the same in a transformed scene (of two cuts at one point, the one
+/// with the smaller key is drawn).
 #[derive(Debug, Clone, Copy)]
 struct Cut {
     t: f64,
@@ -213,9 +213,9 @@ enum CutAt {
 }
 
 impl Cut {
-    /// A cut of an edge (no key).
-    fn on_edge(t: f64, at: CutAt) -> Cut {
-        Cut { t, at, key: [0; 4] }
+    /// A cut of an edge.
+    fn on_edge(t: f64, at: CutAt, key: [u32; 4]) -> Cut {
+        Cut { t, at, key }
     }
 
     /// A cut of an intersection line, as a point of it.
@@ -546,12 +546,13 @@ impl<'a> Pass<'a> {
                         }
                     }
                     None => {
+                        let key = [1, leaf_of[&object], mesh.face_of(t) as u32, 0];
                         if let Some(t) =
                             intersections::pierces(&eye, &line.a, &line.b, &tri, &plane)
                         {
                             pierced += 1;
                             let at = CutAt::Form(Form::Plane(plane));
-                            self.cuts.push((l, Cut::on_edge(t, at)));
+                            self.cuts.push((l, Cut::on_edge(t, at, key)));
                         }
                     }
                 }
@@ -742,12 +743,12 @@ fn crossing(eye: &Eye, l: &Line, c: &Line) -> Option<Vec<Cut>> {
         let [p, q] = l.ends;
         let d = [q[0] - p[0], q[1] - p[1]];
         let norm = d[0] * d[0] + d[1] * d[1];
-        let cuts = c
-            .ends
-            .iter()
-            .filter_map(|e| {
+        let cuts = (0..2)
+            .filter_map(|k| {
+                let e = c.ends[k];
                 let t = ((e[0] - p[0]) * d[0] + (e[1] - p[1]) * d[1]) / norm;
-                (t > 0.0 && t < 1.0).then_some(Cut::on_edge(t, CutAt::Point(*e)))
+                let key = [0, c.leaf, c.vertices[k], 0];
+                (t > 0.0 && t < 1.0).then_some(Cut::on_edge(t, CutAt::Point(e), key))
             })
             .collect();
         return Some(cuts);
@@ -769,7 +770,9 @@ fn crossing(eye: &Eye, l: &Line, c: &Line) -> Option<Vec<Cut>> {
     }
     let form = Form::Sight(c.a, c.b);
     let t = form.zero_along(eye, &l.a, &l.b)?;
-    (t > 0.0 && t < 1.0).then(|| vec![Cut::on_edge(t, CutAt::Form(form))])
+    let [u, v] = c.vertices;
+    let key = [2, c.leaf, u.min(v), u.max(v)];
+    (t > 0.0 && t < 1.0).then(|| vec![Cut::on_edge(t, CutAt::Form(form), key)])
 }
 
 /// The cuts on the intersection line `l` (lying on `m`) where its picture meets the picture of
@@ -889,10 +892,17 @@ fn pieces(
         };
         return (vec![piece], counters);
     }
-    let mut bounds: Vec<(f64, Option<CutAt>)> = vec![(0.0, None)];
+    // Cuts at one point (equal parameters, or forms whose zeros on the line coincide exactly)
+    // make one bound, drawn from the cut with the smallest key.
+    let mut bounds: Vec<(f64, Option<Cut>)> = vec![(0.0, None)];
     for c in cuts.iter().filter(|c| c.t > 0.0 && c.t < 1.0) {
-        if bounds.last().is_some_and(|&(t, _)| t < c.t) {
-            bounds.push((c.t, Some(c.at)));
+        match bounds.last_mut() {
+            Some((t, Some(last))) if *t == c.t || same_point(eye, l, last, c) => {
+                if c.key < last.key {
+                    *last = *c;
+                }
+            }
+            _ => bounds.push((c.t, Some(*c))),
         }
     }
     bounds.push((1.0, None));
@@ -922,7 +932,7 @@ fn pieces(
         };
         match run_visible {
             Some(v) if v != visible => {
-                let at = cut_picture(picture, eye, l, bounds[k].1);
+                let at = cut_picture(picture, eye, l, bounds[k].1.map(|c| c.at));
                 out.push(Piece {
                     class: l.class,
                     visible: v,
@@ -1030,6 +1040,21 @@ fn line_pieces(
     }
     (out, counters)
 }
+
+/// Whether two cuts of the edge `l` with nearly equal parameters are at one point: the zeros
+/// of their forms on the edge coincide, decided exactly ([`same_zero`]).
+fn same_point(eye: &Eye, l: &Line, x: &Cut, y: &Cut) -> bool {
+    match (x.at, y.at) {
+        (CutAt::Form(f), CutAt::Form(g)) => {
+            (y.t - x.t).abs() <= NEAR && same_zero(eye, &f, &g, &l.a, &l.b)
+        }
+        _ => false,
+    }
+}
+
+/// How close the parameters of two cuts of an edge are for an exact test of whether they are
+/// one point (the parameters' error is far smaller).
+const NEAR: f64 = 1.0 / (1u64 << 30) as f64;
 
 /// Whether triangle `tri` of `object` lies on one of the faces an intersection line runs on.
 fn on_faces(m: &MeetLine, scene: &Scene, object: ObjectId, tri: usize) -> bool {

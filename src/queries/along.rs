@@ -181,6 +181,14 @@ pub(crate) fn cut_point(
     cut_point_of(picture, [at(a), at(b)], a, b)
 }
 
+/// Whether the forms `f` and `g`, each crossing the segment `ab` (with values of opposite
+/// signs at its ends), vanish at one point of it: exactly when `f(a)·g(b) − f(b)·g(a) = 0`
+/// (`g` at the zero of `f`, times `f(a) − f(b)`).
+pub(crate) fn same_zero(eye: &Eye, f: &Form, g: &Form, a: &Point3, b: &Point3) -> bool {
+    let at = |form, x| FormAt { form, eye, x };
+    Difference(Product(at(f, a), at(g, b)), Product(at(f, b), at(g, a))).sign() == Ordering::Equal
+}
+
 /// The picture of the point of the edge `ab` where an affine function with the exact values
 /// `values` at `a` and `b` (of opposite signs) vanishes: every picture form `L` gives
 /// `L(X) = (O(a)·L(b) − O(b)·L(a)) / (O(a) − O(b))`, and each coordinate is the ratio of two

@@ -4,9 +4,10 @@
 //! region where the two meshes' boxes overlap; objects whose CBOXes do not overlap are not
 //! compared at all. Which vertices lie on which side of the other triangle's plane is
 //! decided exactly, and two triangles pierce each other only when each has vertices strictly
-//! on both sides of the other's plane: touching faces (a box resting on another, neighbours
-//! sharing an edge or a vertex) make no intersection line, and coplanar faces none
-//! either.
+//! on both sides of the other's plane, or lies on it along a diagonal of its flat face (the
+//! face is then cut along the diagonal, whichever way it is triangulated): touching faces (a
+//! box resting on another, neighbours sharing an edge or a vertex) make no intersection line,
+//! and coplanar faces none either.
 //!
 //! The part of the line inside both triangles runs between two of the points where a
 //! triangle's edge crosses the other's plane (or a vertex lies on it): each such end is an
@@ -72,7 +73,7 @@ pub(crate) fn between(m0: &Mesh, m1: &Mesh, same: bool, eye: &Eye) -> Vec<Segmen
         .par_iter()
         .filter_map(|&(i, j)| {
             let (i, j) = (i as usize, j as usize);
-            pierce(&m0.triangle(i), &m1.triangle(j)).map(|sides| (i, j, sides))
+            pierce(m0, i, m1, j).map(|sides| (i, j, sides))
         })
         .collect();
     // The plane of each face met, once.
@@ -342,15 +343,34 @@ fn face_sides(mesh: &Mesh, t: usize) -> [bool; 3] {
 /// The sides of each triangle's vertices against the other's plane.
 type Sides = [[Ordering; 3]; 2];
 
-/// The sides of each triangle's vertices against the other's plane, when each has vertices
-/// strictly on both sides (see [`straddles`]): only then may they pierce each other.
-fn pierce(t0: &[Point3; 3], t1: &[Point3; 3]) -> Option<Sides> {
+/// The sides of each triangle's vertices against the other's plane, when each crosses the
+/// other's plane (see [`crosses`]): only then may they pierce each other.
+fn pierce(m0: &Mesh, i: usize, m1: &Mesh, j: usize) -> Option<Sides> {
+    let (t0, t1) = (m0.triangle(i), m1.triangle(j));
     let s0 = t0.map(|p| orient3d(&t1[0], &t1[1], &t1[2], &p));
-    if !straddles(&s0) {
+    if !crosses(&s0, m0, i) {
         return None;
     }
     let s1 = t1.map(|p| orient3d(&t0[0], &t0[1], &t0[2], &p));
-    straddles(&s1).then_some([s0, s1])
+    crosses(&s1, m1, j).then_some([s0, s1])
+}
+
+/// Whether triangle `t` of `mesh`, with the sides `s` of its vertices, crosses the other's
+/// plane: it has vertices strictly on both sides ([`straddles`]), or it lies along it on a
+/// diagonal of its face (two vertices on the plane, joined by a side of the triangle that is
+/// not a side of the face). A flat face is then cut by the plane along that diagonal, its
+/// triangles on either side of it: whichever way the face is triangulated, its segment is
+/// found.
+fn crosses(s: &[Ordering; 3], mesh: &Mesh, t: usize) -> bool {
+    if straddles(s) {
+        return true;
+    }
+    let on = s.iter().filter(|&&x| x == Ordering::Equal).count();
+    let off = s.iter().position(|&x| x != Ordering::Equal);
+    match off {
+        Some(k) if on == 2 => !face_sides(mesh, t)[(k + 1) % 3],
+        _ => false,
+    }
 }
 
 /// The piece where triangle `i` of `m0` and triangle `j` of `m1` (which [`pierce`] each
@@ -366,6 +386,11 @@ fn piece(
     eye: &Eye,
 ) -> Option<Piece> {
     let (t0, t1) = (m0.triangle(i), m1.triangle(j));
+    // A triangle along the other's plane on a diagonal: only a flat face is cut there.
+    let along = |s: &[Ordering; 3], key| !straddles(s) && matches!(key, PlaneKey::Triangle(_));
+    if along(&s0, k0) || along(&s1, k1) {
+        return None;
+    }
     // The sides against the planes that stand for the faces (the triangles', or reversed).
     let s0 = against(s0, &p1, &t0);
     let s1 = against(s1, &p0, &t1);
