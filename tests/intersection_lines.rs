@@ -334,7 +334,7 @@ fn segments(d: &Drawing, map: impl Fn([f64; 2]) -> [f64; 2]) -> Vec<Segment> {
             })
         })
         .collect();
-    out.sort_unstable_by(|x, y| (x.0 as u8, x.1, x.2).cmp(&(y.0 as u8, y.1, y.2)));
+    out.sort_unstable_by_key(|x| (x.0 as u8, x.1, x.2));
     out
 }
 
@@ -582,17 +582,10 @@ fn translating_along_an_orthographic_view_changes_nothing() {
         let spec = ViewSpec::Orthographic { direction, up };
         for (k, offset) in [(16, 2f64.powi(40)), (0, -1e8 - 0.25), (0, 123_456_789.5)] {
             let (scene, spec) = enlarged(scene, &spec, k);
-            let (scene, spec) = (&scene[..], &spec);
             let mut t = [0.0; 3];
             t[axis] = offset;
-            check(
-                tally,
-                "translate along",
-                scene,
-                &spec,
-                Some(Transform::Translate(t)),
-                Solid::clone,
-            );
+            let t = Some(Transform::Translate(t));
+            check(tally, "translate along", &scene, &spec, t, Solid::clone);
         }
     });
 }
