@@ -6,7 +6,9 @@
 //!    [`EdgeClass`]): silhouette, boundary, crease, smooth; edges between coplanar faces and
 //!    edges seen end-on are not part of the drawing.
 //! 2. **Intersection lines.** Where faces pierce each other, between objects whose CBOXes
-//!    overlap and within each object; each end built once from the input coordinates.
+//!    overlap and within each object: each a segment of the line where two faces' planes meet,
+//!    from face boundary to face boundary, its ends input vertices or crossings of input edges
+//!    with input planes, ordered along the line exactly (see `queries::meet`).
 //! 3. **Cuts.** Visibility along an edge can change only where its picture crosses the picture
 //!    of a contour edge (silhouette or boundary, including the edges of faces seen edge-on) or
 //!    where the edge pierces a face. Franklin's uniform grid ([`crate::grid`]) finds the
@@ -17,18 +19,22 @@
 //! 4. **Visibility.** Each piece between cuts is decided by one VISP query at a point inside
 //!    it, through the object hierarchy (CBOX rejects, INBOX accepts, then the faces near the
 //!    line of sight, from an R-tree). The point is never rounded: every face test is evaluated
-//!    exactly at it (see `along.rs`), so an edge lying on another object's face is on it.
+//!    exactly at it (see `along.rs`), so an edge lying on another object's face is on it. On an
+//!    intersection line, the cuts are ordered exactly and each piece is decided at a point
+//!    strictly inside it defined from the input (`Meet::sign_between`).
 //!    A face hides the point when the point is strictly behind its plane and the line of sight
 //!    meets the closed face.
 //! 5. **Chains.** Consecutive pieces of one edge with the same visibility merge; pieces of one
 //!    class and visibility that share an end are chained into maximal polylines.
 //!
 //! Every vertex of the drawing is the picture of an input vertex, of a cut (where an edge's
-//! picture crosses a contour's, or where it pierces a face), or of an intersection line's end,
+//! picture crosses a contour's, or where it pierces a face; on an intersection line, where a
+//! third face or a contour's plane of sight crosses it), or of an intersection line's end,
 //! each built once from input coordinates and exact expansions and rounded once (see
 //! [`Picture`]): within 1.5 units in the last place of the exact point (2 for a perspective
-//! view's vertices). The one exception is a cut of an intersection line by a contour, which is
-//! built from the line's own (rounded) ends.
+//! view's vertices). Of several cuts at one point, the one named by the smallest indices is
+//! drawn, so the drawing is the same, bit for bit, under mirroring, face reversal, axis
+//! permutation, scaling by powers of two and exact translations of scene and eye.
 //!
 //! Picture coordinates: `x` to the right, `y` up; scene units for an orthographic view; for a
 //! perspective view, the field of view spans `y` in `[-1, 1]`. A perspective view needs every
@@ -444,19 +450,21 @@ impl<'a> Pass<'a> {
         let mut self_intersecting = Vec::new();
         // Each triangle's partners in intersections, and each line's triangles.
         let mut partners: HashMap<(ObjectId, usize), Vec<(ObjectId, usize)>> = HashMap::new();
-        let mut crossings: Vec<(usize, Vec<(ObjectId, usize)>)> = Vec::new();
+        // Each line's triangles are `owned[range]`.
+        let mut crossings: Vec<(usize, std::ops::Range<usize>)> = Vec::new();
+        let mut owned: Vec<(ObjectId, usize)> = Vec::new();
         for (&(i, j), found) in pairs.iter().zip(found) {
             let (id0, id1) = (ids[i], ids[j]);
             for s in found {
                 segments += 1;
-                let mut own = Vec::with_capacity(2 * s.triangles.len());
+                let start = owned.len();
                 for &[t0, t1] in &s.triangles {
                     let (x, y) = ((id0, t0), (id1, t1));
                     partners.entry(x).or_default().push(y);
                     partners.entry(y).or_default().push(x);
-                    own.extend([x, y]);
+                    owned.extend([x, y]);
                 }
-                crossings.push((self.lines.len(), own));
+                crossings.push((self.lines.len(), start..owned.len()));
                 self.lines.push(Line {
                     a: s.points[0],
                     b: s.points[1],
@@ -485,14 +493,17 @@ impl<'a> Pass<'a> {
         for leaf in self.leaves.iter().filter(|_| !partners.is_empty()) {
             for l in leaf.lines.clone() {
                 if let Some(triangles) = self.lines[l].triangles {
-                    crossings.push((l, triangles.map(|t| (leaf.id, t as usize)).to_vec()));
+                    let start = owned.len();
+                    owned.extend(triangles.map(|t| (leaf.id, t as usize)));
+                    crossings.push((l, start..owned.len()));
                 }
             }
         }
         let (mut triple, mut pierced) = (0usize, 0usize);
         let scene = self.scene;
         let triangle = |(object, t): (ObjectId, usize)| scene[object].mesh().map(|m| m.triangle(t));
-        for (l, own) in crossings {
+        for (l, range) in crossings {
+            let own = &owned[range];
             let line = self.lines[l];
             // An intersection line's box, grown by far more than the error of its approximate
             // ends (a few units in 2⁻⁴⁴ of its triangles' coordinates): a face whose box misses
@@ -522,7 +533,6 @@ impl<'a> Pass<'a> {
                     continue;
                 };
                 let tri = mesh.triangle(t);
-                let (_, plane) = intersections::plane_of(mesh, t);
                 match line.meet {
                     Some(m) => {
                         let MeetLine { meet, ends, .. } = &self.meets[m];
@@ -530,6 +540,7 @@ impl<'a> Pass<'a> {
                         if apart || on_faces(&self.meets[m], self.scene, object, t) {
                             continue;
                         }
+                        let (_, plane) = intersections::plane_of(mesh, t);
                         if let Some(form) =
                             intersections::pierces_line(meet, &eye, ends, &tri, &plane)
                         {
@@ -547,12 +558,10 @@ impl<'a> Pass<'a> {
                     }
                     None => {
                         let key = [1, leaf_of[&object], mesh.face_of(t) as u32, 0];
-                        if let Some(t) =
-                            intersections::pierces(&eye, &line.a, &line.b, &tri, &plane)
-                        {
+                        if let Some(u) = intersections::pierces(&eye, &line.a, &line.b, mesh, t) {
                             pierced += 1;
-                            let at = CutAt::Form(Form::Plane(plane));
-                            self.cuts.push((l, Cut::on_edge(t, at, key)));
+                            let at = CutAt::Form(Form::Plane(intersections::plane_of(mesh, t).1));
+                            self.cuts.push((l, Cut::on_edge(u, at, key)));
                         }
                     }
                 }

@@ -76,6 +76,9 @@ pub(crate) fn between(m0: &Mesh, m1: &Mesh, same: bool, eye: &Eye) -> Vec<Segmen
             pierce(m0, i, m1, j).map(|sides| (i, j, sides))
         })
         .collect();
+    if crossing.is_empty() {
+        return Vec::new();
+    }
     // The plane of each face met, once.
     let planes = |m: &Mesh, side: usize| -> HashMap<usize, (PlaneKey, [Point3; 3])> {
         let mut faces: Vec<(usize, usize)> = crossing
@@ -494,16 +497,11 @@ fn section(
     }
 }
 
-/// Where the segment `ab` passes through the closed triangle `tri` crossing its plane (its
-/// ends strictly on either side of it), the parameter of the crossing along `ab`, where the
-/// face's plane `plane` (see [`plane_of`]) vanishes.
-pub(crate) fn pierces(
-    eye: &Eye,
-    a: &Point3,
-    b: &Point3,
-    tri: &[Point3; 3],
-    plane: &[Point3; 3],
-) -> Option<f64> {
+/// Where the segment `ab` passes through the closed triangle `t` of `mesh` crossing its plane
+/// (its ends strictly on either side of it), the parameter of the crossing along `ab`, where
+/// the plane of its face (see [`plane_of`]) vanishes.
+pub(crate) fn pierces(eye: &Eye, a: &Point3, b: &Point3, mesh: &Mesh, t: usize) -> Option<f64> {
+    let tri = mesh.triangle(t);
     let (sa, sb) = (
         orient3d(&tri[0], &tri[1], &tri[2], a),
         orient3d(&tri[0], &tri[1], &tri[2], b),
@@ -522,7 +520,7 @@ pub(crate) fn pierces(
     if above && below {
         return None;
     }
-    Form::Plane(*plane).zero_along(eye, a, b)
+    Form::Plane(plane_of(mesh, t).1).zero_along(eye, a, b)
 }
 
 /// Where the segment `ends` of the line `meet` passes through the closed triangle `tri`
