@@ -197,23 +197,10 @@ fn dyadic(rng: &mut Rng, lo: i32, hi: i32) -> f64 {
 }
 
 fn box_solid(min: [f64; 3], max: [f64; 3]) -> Solid {
-    let v = |i: usize| {
-        Point3::new(
-            if i & 1 == 0 { min[0] } else { max[0] },
-            if i & 2 == 0 { min[1] } else { max[1] },
-            if i & 4 == 0 { min[2] } else { max[2] },
-        )
-    };
+    let m = kepler::solids::box_between(min, max).unwrap();
     Solid {
-        vertices: (0..8).map(v).collect(),
-        faces: vec![
-            vec![0, 2, 3, 1],
-            vec![4, 5, 7, 6],
-            vec![0, 1, 5, 4],
-            vec![2, 6, 7, 3],
-            vec![0, 4, 6, 2],
-            vec![1, 3, 7, 5],
-        ],
+        vertices: m.vertices().to_vec(),
+        faces: m.faces().iter().map(|f| f.vertices().to_vec()).collect(),
     }
 }
 

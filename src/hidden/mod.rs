@@ -34,7 +34,8 @@
 //! [`Picture`]): within 1.5 units in the last place of the exact point (2 for a perspective
 //! view's vertices). Of several cuts at one point, the one named by the smallest indices is
 //! drawn, so the drawing is the same, bit for bit, under mirroring, face reversal, axis
-//! permutation, scaling by powers of two and exact translations of scene and eye.
+//! permutation, scaling by powers of two and exact translations of scene and eye (those that
+//! leave the exact picture unchanged: any in perspective, along the view in orthographic).
 //!
 //! Picture coordinates: `x` to the right, `y` up; scene units for an orthographic view; for a
 //! perspective view, the field of view spans `y` in `[-1, 1]`. A perspective view needs every
@@ -915,9 +916,7 @@ fn pieces(
         }
     }
     bounds.push((1.0, None));
-    let mut out: Vec<Piece> = Vec::new();
-    let mut run_start = l.ends[0];
-    let mut run_visible: Option<bool> = None;
+    let mut runs = Runs::new(l);
     for k in 0..bounds.len() - 1 {
         let (lo, hi) = (bounds[k].0, bounds[k + 1].0);
         let t = lo + (hi - lo) / 2.0;
@@ -937,30 +936,13 @@ fn pieces(
             answer == Visibility::Visible
         } else {
             // A piece too short to hold a double strictly inside: it takes its neighbour's.
-            run_visible.unwrap_or(true)
+            runs.visible.unwrap_or(true)
         };
-        match run_visible {
-            Some(v) if v != visible => {
-                let at = cut_picture(picture, eye, l, bounds[k].1.map(|c| c.at));
-                out.push(Piece {
-                    class: l.class,
-                    visible: v,
-                    ends: [run_start, at],
-                });
-                run_start = at;
-            }
-            _ => {}
-        }
-        run_visible = Some(visible);
-    }
-    if let Some(v) = run_visible {
-        out.push(Piece {
-            class: l.class,
-            visible: v,
-            ends: [run_start, l.ends[1]],
+        runs.step(visible, || {
+            cut_picture(picture, eye, l, bounds[k].1.map(|c| c.at))
         });
     }
-    (out, counters)
+    (runs.finish(l.ends[1]), counters)
 }
 
 /// The visible and hidden runs of the intersection line `l` (lying on `m`) cut at `cuts`
@@ -1004,9 +986,7 @@ fn line_pieces(
     let weights: Vec<f64> = points.iter().map(|p| meet.weight(eye, p)).collect();
     let places: Vec<Point3> = points.iter().map(|p| meet.approximate(eye, p)).collect();
     let mut counters = Counters::default();
-    let mut out: Vec<Piece> = Vec::new();
-    let mut run_start = l.ends[0];
-    let mut run_visible: Option<bool> = None;
+    let mut runs = Runs::new(l);
     for k in 0..points.len() - 1 {
         let scales = [balance(weights[k]), balance(weights[k + 1])];
         let (u, v) = (weights[k] * scales[0], weights[k + 1] * scales[1]);
@@ -1025,29 +1005,58 @@ fn line_pieces(
             hides,
             &mut counters,
         );
-        let visible = answer == Visibility::Visible;
-        match run_visible {
-            Some(v) if v != visible => {
-                let at = drawn(k);
-                out.push(Piece {
-                    class: l.class,
-                    visible: v,
-                    ends: [run_start, at],
-                });
-                run_start = at;
-            }
-            _ => {}
-        }
-        run_visible = Some(visible);
+        runs.step(answer == Visibility::Visible, || drawn(k));
     }
-    if let Some(v) = run_visible {
-        out.push(Piece {
+    (runs.finish(l.ends[1]), counters)
+}
+
+/// The visible and hidden runs of a line, piece by piece.
+struct Runs {
+    class: EdgeClass,
+    out: Vec<Piece>,
+    start: [f64; 2],
+    visible: Option<bool>,
+}
+
+impl Runs {
+    /// Runs of line `l`, from its first end.
+    fn new(l: &Line) -> Runs {
+        Runs {
             class: l.class,
-            visible: v,
-            ends: [run_start, l.ends[1]],
-        });
+            out: Vec::new(),
+            start: l.ends[0],
+            visible: None,
+        }
     }
-    (out, counters)
+
+    /// The next piece's visibility; where it changes, the run ends at the picture `at` of the
+    /// piece's start.
+    fn step(&mut self, visible: bool, at: impl FnOnce() -> [f64; 2]) {
+        if let Some(v) = self.visible
+            && v != visible
+        {
+            let at = at();
+            self.out.push(Piece {
+                class: self.class,
+                visible: v,
+                ends: [self.start, at],
+            });
+            self.start = at;
+        }
+        self.visible = Some(visible);
+    }
+
+    /// The runs, the last ending at `end`.
+    fn finish(mut self, end: [f64; 2]) -> Vec<Piece> {
+        if let Some(v) = self.visible {
+            self.out.push(Piece {
+                class: self.class,
+                visible: v,
+                ends: [self.start, end],
+            });
+        }
+        self.out
+    }
 }
 
 /// Whether two cuts of the edge `l` with nearly equal parameters are at one point: the zeros
