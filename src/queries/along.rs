@@ -201,6 +201,23 @@ pub(crate) fn cut_point_of<P: Polynomial + Copy>(
 ) -> [f64; 2] {
     let form = |k, x| PictureAt { picture, k, x };
     let combine = |k| Difference(Product(oa, form(k, b)), Product(ob, form(k, a)));
+    let exact = |k| {
+        let c = combine(k);
+        c.exponents().exact_for(c.degree())
+    };
+    if exact(0) && exact(1) && exact(2) {
+        // The values at the ends expanded once for the three picture forms (the hot path of
+        // every edge cut).
+        let (ea, eb) = (oa.expansion(), ob.expansion());
+        let value = |k| {
+            estimate(&expansion_sum(
+                &expansion_product(&ea, &picture.form(k, b)),
+                &negated(&expansion_product(&eb, &picture.form(k, a))),
+            ))
+        };
+        let depth = value(2);
+        return [0, 1].map(|k| value(k) / depth);
+    }
     let depth = combine(2);
     [0, 1].map(|k| rounded_ratio(&combine(k), &depth))
 }
