@@ -451,21 +451,22 @@ impl<'a> Pass<'a> {
         let mut self_intersecting = Vec::new();
         // Each triangle's partners in intersections, and each line's triangles.
         let mut partners: HashMap<(ObjectId, usize), Vec<(ObjectId, usize)>> = HashMap::new();
-        // Each line's triangles are `owned[range]`.
-        let mut crossings: Vec<(usize, std::ops::Range<usize>)> = Vec::new();
-        let mut owned: Vec<(ObjectId, usize)> = Vec::new();
+        // The lines to cut, and each intersection line's triangles (by its index in `meets`).
+        let mut crossings: Vec<usize> = Vec::new();
+        let mut owned: Vec<Vec<(ObjectId, usize)>> = Vec::new();
         for (&(i, j), found) in pairs.iter().zip(found) {
             let (id0, id1) = (ids[i], ids[j]);
             for s in found {
                 segments += 1;
-                let start = owned.len();
+                let mut own = Vec::with_capacity(2 * s.triangles.len());
                 for &[t0, t1] in &s.triangles {
                     let (x, y) = ((id0, t0), (id1, t1));
                     partners.entry(x).or_default().push(y);
                     partners.entry(y).or_default().push(x);
-                    owned.extend([x, y]);
+                    own.extend([x, y]);
                 }
-                crossings.push((self.lines.len(), start..owned.len()));
+                owned.push(own);
+                crossings.push(self.lines.len());
                 self.lines.push(Line {
                     a: s.points[0],
                     b: s.points[1],
@@ -493,19 +494,25 @@ impl<'a> Pass<'a> {
         // that stands for all its triangles) vanishes on the line.
         for leaf in self.leaves.iter().filter(|_| !partners.is_empty()) {
             for l in leaf.lines.clone() {
-                if let Some(triangles) = self.lines[l].triangles {
-                    let start = owned.len();
-                    owned.extend(triangles.map(|t| (leaf.id, t as usize)));
-                    crossings.push((l, start..owned.len()));
+                if self.lines[l].triangles.is_some() {
+                    crossings.push(l);
                 }
             }
         }
         let (mut triple, mut pierced) = (0usize, 0usize);
         let scene = self.scene;
         let triangle = |(object, t): (ObjectId, usize)| scene[object].mesh().map(|m| m.triangle(t));
-        for (l, range) in crossings {
-            let own = &owned[range];
+        for l in crossings {
             let line = self.lines[l];
+            let edge_triangles;
+            let own: &[(ObjectId, usize)] = match (line.meet, line.triangles) {
+                (Some(m), _) => &owned[m],
+                (None, Some(triangles)) => {
+                    edge_triangles = triangles.map(|t| (ids[line.leaf as usize], t as usize));
+                    &edge_triangles
+                }
+                (None, None) => &[],
+            };
             // An intersection line's box, grown by far more than the error of its approximate
             // ends (a few units in 2⁻⁴⁴ of its triangles' coordinates): a face whose box misses
             // it cannot meet the line.
