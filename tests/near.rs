@@ -9,7 +9,7 @@ mod common;
 use common::Rng;
 use kepler::geometry::{Point3, Vector3};
 use kepler::hidden::verify::{draw_traced, verify};
-use kepler::hidden::{Drawing, EdgeSelection, Options, draw};
+use kepler::hidden::{Drawing, EdgeClass, EdgeSelection, Options, draw};
 use kepler::scene::{Scene, file};
 use kepler::solids::box_between;
 use kepler::views::View;
@@ -97,12 +97,13 @@ fn an_object_behind_the_eye_changes_nothing() {
     }
 }
 
-/// A closed room with boxes standing in it, seen from random points inside it: walls, floor
-/// and ceiling cross the plane of the eye.
+/// A closed room with boxes standing in it and a beam through a wall and the ceiling, seen from
+/// random points inside it: walls, floor, ceiling and intersection lines cross the plane of the
+/// eye and the sides of the frustum.
 #[test]
 fn eyes_inside_a_room_pass_verify() {
     let mut rng = Rng(0x500f);
-    let (mut samples, mut drawn) = (0, 0);
+    let (mut samples, mut drawn, mut meeting) = (0, 0, 0);
     for case in 0..30 {
         let mut scene = Scene::new();
         boxed(&mut scene, "room", [-10.0, -10.0, 0.0], [10.0, 10.0, 6.0]);
@@ -113,6 +114,10 @@ fn eyes_inside_a_room_pass_verify() {
             boxed(&mut scene, &format!("crate{i}"), lo, hi);
             inside.push((lo, hi));
         }
+        // A beam through a wall and the ceiling: intersection lines to clip.
+        let y = rng.int(-8, 7);
+        boxed(&mut scene, "beam", [7.0, y, 4.0], [12.0, y + 1.0, 7.0]);
+        inside.push(([7.0, y, 4.0], [12.0, y + 1.0, 7.0]));
         let eye = Point3::new(
             rng.range(-9.5, 9.5),
             rng.range(-9.5, 9.5),
@@ -124,7 +129,12 @@ fn eyes_inside_a_room_pass_verify() {
         {
             continue;
         }
-        let target = eye + rng.vector(1.0);
+        // Every third view looks at the beam where it leaves the room.
+        let target = if case % 3 == 0 {
+            Point3::new(10.0, y + 0.5, 5.0)
+        } else {
+            eye + rng.vector(1.0)
+        };
         let Ok(view) = View::perspective(eye, target, Vector3::z(), rng.range(30.0, 100.0)) else {
             continue;
         };
@@ -137,6 +147,11 @@ fn eyes_inside_a_room_pass_verify() {
             assert!(finite(&d), "room case {case}: a point is not finite");
             samples += n;
             drawn += usize::from(!d.polylines.is_empty());
+            meeting += d
+                .polylines
+                .iter()
+                .filter(|p| p.class == EdgeClass::Intersection)
+                .count();
         }
     }
     // Some views see only a blank wall or floor; most see corners and crates.
@@ -144,6 +159,7 @@ fn eyes_inside_a_room_pass_verify() {
         drawn >= 30 && samples >= 1000,
         "{drawn} drawings, {samples} samples"
     );
+    assert!(meeting >= 10, "{meeting} intersection polylines");
 }
 
 /// The city scene from a street: the ground slab runs under and behind the eye.

@@ -102,6 +102,14 @@ impl Clip {
             .all(|(form, inside)| form.sign_at(eye, x) == *inside)
     }
 
+    /// Whether a point lies strictly inside the frustum, given the exact sign of each plane's
+    /// form at it.
+    pub(crate) fn contains_by(&self, sign: impl Fn(&Form) -> Ordering) -> bool {
+        self.planes
+            .iter()
+            .all(|(form, inside)| sign(form) == *inside)
+    }
+
     /// Whether the point `X(t) = a + t·(b − a)` lies strictly inside the frustum, exactly.
     pub(crate) fn contains_along(&self, eye: &Eye, a: &Point3, b: &Point3, t: f64) -> bool {
         self.planes

@@ -6,7 +6,9 @@
 //!    [`EdgeClass`]): silhouette, boundary, crease, smooth; edges between coplanar faces and
 //!    edges seen end-on are not part of the drawing.
 //! 2. **Intersection lines.** Where faces pierce each other, between objects whose CBOXes
-//!    overlap and within each object; each end built once from the input coordinates.
+//!    overlap and within each object: each a segment of the line where two faces' planes meet,
+//!    from face boundary to face boundary, its ends input vertices or crossings of input edges
+//!    with input planes, ordered along the line exactly (see `queries::meet`).
 //! 3. **Cuts.** Visibility along an edge can change only where its picture crosses the picture
 //!    of a contour edge (silhouette or boundary, including the edges of faces seen edge-on) or
 //!    where the edge pierces a face. Franklin's uniform grid ([`crate::grid`]) finds the
@@ -19,7 +21,9 @@
 //! 4. **Visibility.** Each piece between cuts is decided by one VISP query at a point inside
 //!    it, through the object hierarchy (CBOX rejects, INBOX accepts, then the faces near the
 //!    line of sight, from an R-tree). The point is never rounded: every face test is evaluated
-//!    exactly at it (see `along.rs`), so an edge lying on another object's face is on it.
+//!    exactly at it (see `along.rs`), so an edge lying on another object's face is on it. On an
+//!    intersection line, the cuts are ordered exactly and each piece is decided at a point
+//!    strictly inside it defined from the input (`Meet::sign_between`).
 //!    A face hides the point when the point is strictly behind its plane and the line of sight
 //!    meets the closed face.
 //! 5. **Chains.** Consecutive pieces of one edge with the same visibility merge; pieces of one
@@ -28,11 +32,14 @@
 //! [`verify`] checks a drawing against answers found independently (`kepler render --verify`).
 //!
 //! Every vertex of the drawing is the picture of an input vertex, of a cut (where an edge's
-//! picture crosses a contour's, or where it pierces a face), or of an intersection line's end,
+//! picture crosses a contour's, or where it pierces a face; on an intersection line, where a
+//! third face or a contour's plane of sight crosses it), or of an intersection line's end,
 //! each built once from input coordinates and exact expansions and rounded once (see
 //! [`Picture`]): within 1.5 units in the last place of the exact point (2 for a perspective
-//! view's vertices). The one exception is a cut of an intersection line by a contour, which is
-//! built from the line's own (rounded) ends.
+//! view's vertices). Of several cuts at one point, the one named by the smallest indices is
+//! drawn, so the drawing is the same, bit for bit, under mirroring, face reversal, axis
+//! permutation, scaling by powers of two and exact translations of scene and eye (those that
+//! leave the exact picture unchanged: any in perspective, along the view in orthographic).
 //!
 //! Picture coordinates: `x` to the right, `y` up; scene units for an orthographic view; for a
 //! perspective view, the field of view spans `y` in `[-1, 1]`. A perspective view with part of
@@ -62,13 +69,15 @@ pub mod verify;
 
 pub use drawing::{Drawing, EdgeClass, Polyline, StageReport};
 
-use crate::geometry::Point3;
+use crate::geometry::kernel::Polynomial;
 use crate::geometry::predicates::{collinear, orient3d};
+use crate::geometry::{Aabb, Point3};
 use crate::grid::SegmentGrid;
 use crate::mesh::Mesh;
 use crate::queries::Counters;
-use crate::queries::along::{Form, cut_point, hides_along};
+use crate::queries::along::{Form, cut_point, hides_along, hides_at, same_zero};
 use crate::queries::intersections;
+use crate::queries::meet::{Meet, OnLine, balance, reversed};
 use crate::queries::own_solid::turned_away;
 use crate::queries::visp::Visibility;
 use crate::scene::{ObjectId, Scene, SceneError};
@@ -178,8 +187,8 @@ struct Line {
     /// The pictures of `a` and `b`.
     ends: [[f64; 2]; 2],
     class: EdgeClass,
-    /// For an intersection segment: the two faces it lies on, which do not hide it.
-    on_faces: Option<[(ObjectId, usize); 2]>,
+    /// For an intersection segment: its index in [`Pass::meets`].
+    meet: Option<usize>,
     /// Whether the line is an edge between two faces turned away from the eye on a solid that
     /// the eye is outside of: then the solid itself hides all of it.
     back: bool,
@@ -191,6 +200,18 @@ struct Line {
     /// Whether the line is not wholly inside the frustum of a view that clips: its pieces
     /// outside it are not drawn.
     clipped: bool,
+    /// For an edge: the index of its leaf and its ends' vertex indices (which name a cut that
+    /// it makes on an intersection line the same way in a transformed scene).
+    leaf: u32,
+    vertices: [u32; 2],
+}
+
+/// An intersection segment in the pass: where it lies and the faces that do not hide it.
+#[derive(Debug, Clone, Copy)]
+struct MeetLine {
+    meet: Meet,
+    ends: [OnLine; 2],
+    on_faces: [(ObjectId, usize); 2],
 }
 
 impl Line {
@@ -200,18 +221,42 @@ impl Line {
     }
 }
 
-/// Where a line is cut: at parameter `t` (approximate, for ordering), the point given by the
-/// zero of a form along the line or, for collinear pictures, by an input vertex's picture.
+/// Where a line is cut: at parameter `t` (approximate; on an edge for ordering, on an
+/// intersection line for a first sort), the point given by the zero of a form along the line
+/// or, for collinear pictures, by an input vertex's picture. `key` names the cut from the
+/// indices of what makes it, the same in a transformed scene (of two cuts at one point, the one
+/// with the smaller key is drawn).
 #[derive(Debug, Clone, Copy)]
 struct Cut {
     t: f64,
     at: CutAt,
+    key: [u32; 4],
 }
 
 #[derive(Debug, Clone, Copy)]
 enum CutAt {
+    /// Where the form vanishes; on an intersection line, the form increases along it.
     Form(Form),
+    /// On an edge: an input vertex's picture (collinear pictures).
     Point([f64; 2]),
+    /// On an intersection line: where the form (increasing along it) vanishes, on the line of
+    /// sight through an input vertex, whose picture this is.
+    Sighted(Form, [f64; 2]),
+}
+
+impl Cut {
+    /// A cut of an edge.
+    fn on_edge(t: f64, at: CutAt, key: [u32; 4]) -> Cut {
+        Cut { t, at, key }
+    }
+
+    /// A cut of an intersection line, as a point of it.
+    fn on_line(&self) -> Option<OnLine> {
+        match self.at {
+            CutAt::Form(form) | CutAt::Sighted(form, _) => Some(OnLine::Cut(form)),
+            CutAt::Point(_) => None,
+        }
+    }
 }
 
 /// Draws the scene from the view: see the module documentation.
@@ -335,6 +380,8 @@ struct Pass<'a> {
     leaves: Vec<Leaf<'a>>,
     /// The lines to draw: edges, then intersection segments.
     lines: Vec<Line>,
+    /// The intersection segments, indexed by [`Line::meet`].
+    meets: Vec<MeetLine>,
     /// Cuts, by line index.
     cuts: Vec<(usize, Cut)>,
     stages: Vec<StageReport>,
@@ -373,6 +420,7 @@ impl<'a> Pass<'a> {
             picture,
             leaves,
             lines: Vec::new(),
+            meets: Vec::new(),
             cuts: Vec::new(),
             stages: Vec::new(),
         })
@@ -420,8 +468,8 @@ impl<'a> Pass<'a> {
         let (mut flat, mut end_on, mut left_out) = (0, 0, 0);
         let mut by_class = [0usize; 5];
         let mut behind = 0;
-        for (leaf, ((edges, counts), pictures, (front, inside))) in
-            self.leaves.iter_mut().zip(classified)
+        for (n, (leaf, ((edges, counts), pictures, (front, inside)))) in
+            self.leaves.iter_mut().zip(classified).enumerate()
         {
             let mesh = leaf.mesh;
             let away = turned_away(self.scene, leaf.id, mesh, eye);
@@ -453,15 +501,18 @@ impl<'a> Pass<'a> {
                     b: mesh.vertices()[b],
                     ends: [pictures[a], pictures[b]],
                     class: e.class,
-                    on_faces: None,
+                    meet: None,
                     back,
                     triangles: Some(e.triangles),
                     wide: !(in_front(a) && in_front(b)),
                     clipped,
+                    leaf: n as u32,
+                    vertices: [e.a, e.b],
                 });
                 if clipped {
                     let i = self.lines.len() - 1;
-                    self.cuts.extend(frustum_cuts(clip, eye, i, &self.lines[i]));
+                    self.cuts
+                        .extend(frustum_cuts(clip, eye, (i, &self.lines[i], None)));
                 }
             }
             leaf.pictures = pictures;
@@ -510,6 +561,11 @@ impl<'a> Pass<'a> {
         let clock = Instant::now();
         let (eye, clip) = (self.eye, self.clip);
         let ids: Vec<ObjectId> = self.leaves.iter().map(|l| l.id).collect();
+        let leaf_of: HashMap<ObjectId, u32> = ids
+            .iter()
+            .enumerate()
+            .map(|(n, &id)| (id, n as u32))
+            .collect();
         let pairs = overlapping_cboxes(self.scene, &ids);
         let apart = ids.len() * (ids.len() + 1) / 2 - pairs.len();
         let leaves = &self.leaves;
@@ -519,40 +575,55 @@ impl<'a> Pass<'a> {
             .collect();
         let mut segments = 0usize;
         let mut self_intersecting = Vec::new();
-        // Each triangle's partners in intersections, and each intersection line's triangles.
+        // Each triangle's partners in intersections, and each line's triangles.
         let mut partners: HashMap<(ObjectId, usize), Vec<(ObjectId, usize)>> = HashMap::new();
-        let mut crossings = Vec::new();
+        // The lines to cut, and each intersection line's triangles (by its index in `meets`).
+        let mut crossings: Vec<usize> = Vec::new();
+        let mut owned: Vec<Vec<(ObjectId, usize)>> = Vec::new();
         for (&(i, j), found) in pairs.iter().zip(found) {
             let (id0, id1) = (ids[i], ids[j]);
             for s in found {
                 segments += 1;
                 let front = s.points.map(|p| clip.is_none_or(|n| n.in_front(&p)));
                 if front == [false, false] {
+                    // Wholly behind the eye: nothing of it is drawn or bounds what is seen.
                     continue;
                 }
-                let triangles = [(id0, s.triangles[0]), (id1, s.triangles[1])];
-                for (x, y) in [(triangles[0], triangles[1]), (triangles[1], triangles[0])] {
+                let mut own = Vec::with_capacity(2 * s.triangles.len());
+                for &[t0, t1] in &s.triangles {
+                    let (x, y) = ((id0, t0), (id1, t1));
                     partners.entry(x).or_default().push(y);
+                    partners.entry(y).or_default().push(x);
+                    own.extend([x, y]);
                 }
-                crossings.push((self.lines.len(), triangles));
+                owned.push(own);
+                crossings.push(self.lines.len());
                 self.lines.push(Line {
                     a: s.points[0],
                     b: s.points[1],
                     ends: [0, 1].map(|k| match front[k] {
-                        true => s.ends[k].picture(&self.picture, &eye),
+                        true => s.meet.picture(&self.picture, &eye, &s.ends[k]),
                         false => [0.0, 0.0],
                     }),
                     class: EdgeClass::Intersection,
-                    on_faces: Some([(id0, s.faces[0]), (id1, s.faces[1])]),
+                    meet: Some(self.meets.len()),
                     back: false,
                     triangles: None,
                     wide: front != [true, true],
                     clipped: clip.is_some_and(|n| !s.points.iter().all(|p| n.contains(&eye, p))),
+                    leaf: 0,
+                    vertices: [0; 2],
                 });
-                let i = self.lines.len() - 1;
-                if self.lines[i].clipped {
-                    self.cuts
-                        .extend(frustum_cuts(clip, &eye, i, &self.lines[i]));
+                self.meets.push(MeetLine {
+                    meet: s.meet,
+                    ends: s.ends,
+                    on_faces: [(id0, s.faces[0]), (id1, s.faces[1])],
+                });
+                let line = self.lines.len() - 1;
+                if self.lines[line].clipped {
+                    let meet = self.meets.last();
+                    let cuts = frustum_cuts(clip, &eye, (line, &self.lines[line], meet));
+                    self.cuts.extend(cuts);
                 }
                 if i == j {
                     self_intersecting.push(i);
@@ -561,22 +632,49 @@ impl<'a> Pass<'a> {
         }
         // An edge may pass through a face, and an intersection line through a third face (a
         // triple point), where it may go behind it; that face pierces a face the line lies on,
-        // so it is among that face's partners. Cut there (for an intersection line, built from
-        // its rounded ends).
+        // so it is among that face's partners. Each cut is where the face's plane (the one
+        // that stands for all its triangles) vanishes on the line.
         for leaf in self.leaves.iter().filter(|_| !partners.is_empty()) {
             for l in leaf.lines.clone() {
-                if let Some(triangles) = self.lines[l].triangles {
-                    crossings.push((l, triangles.map(|t| (leaf.id, t as usize))));
+                if self.lines[l].triangles.is_some() {
+                    crossings.push(l);
                 }
             }
         }
         let (mut triple, mut pierced) = (0usize, 0usize);
-        for (l, triangles) in crossings {
-            let (a, b) = (self.lines[l].a, self.lines[l].b);
-            let mut third: Vec<(ObjectId, usize)> = triangles
+        let scene = self.scene;
+        let triangle = |(object, t): (ObjectId, usize)| scene[object].mesh().map(|m| m.triangle(t));
+        for l in crossings {
+            let line = self.lines[l];
+            let edge_triangles;
+            let own: &[(ObjectId, usize)] = match (line.meet, line.triangles) {
+                (Some(m), _) => &owned[m],
+                (None, Some(triangles)) => {
+                    edge_triangles = triangles.map(|t| (ids[line.leaf as usize], t as usize));
+                    &edge_triangles
+                }
+                (None, None) => &[],
+            };
+            // An intersection line's box, grown by far more than the error of its approximate
+            // ends (a few units in 2⁻⁴⁴ of its triangles' coordinates): a face whose box misses
+            // it cannot meet the line.
+            let reach = line.meet.map(|_| {
+                let size = own
+                    .iter()
+                    .filter_map(|&t| triangle(t))
+                    .flatten()
+                    .fold(0.0f64, |m, p| m.max(p.coords.amax()));
+                let margin = size / (1u64 << 40) as f64;
+                let b = Aabb::from_points(&[line.a, line.b]);
+                Aabb::new(
+                    Point3::from(b.min.map(|v| v - margin)),
+                    Point3::from(b.max.map(|v| v + margin)),
+                )
+            });
+            let mut third: Vec<(ObjectId, usize)> = own
                 .iter()
                 .flat_map(|t| partners.get(t).into_iter().flatten().copied())
-                .filter(|t| !triangles.contains(t))
+                .filter(|t| !own.contains(t))
                 .collect();
             third.sort_unstable();
             third.dedup();
@@ -585,14 +683,37 @@ impl<'a> Pass<'a> {
                     continue;
                 };
                 let tri = mesh.triangle(t);
-                if let Some(t) = intersections::pierces(&eye, &a, &b, &tri) {
-                    if self.lines[l].class == EdgeClass::Intersection {
-                        triple += 1;
-                    } else {
-                        pierced += 1;
+                match line.meet {
+                    Some(m) => {
+                        let MeetLine { meet, ends, .. } = &self.meets[m];
+                        let apart = reach.is_some_and(|r| !r.intersects(&Aabb::from_points(&tri)));
+                        if apart || on_faces(&self.meets[m], self.scene, object, t) {
+                            continue;
+                        }
+                        let (_, plane) = intersections::plane_of(mesh, t);
+                        if let Some(form) =
+                            intersections::pierces_line(meet, &eye, ends, &tri, &plane)
+                        {
+                            triple += 1;
+                            let face = mesh.face_of(t) as u32;
+                            self.cuts.push((
+                                l,
+                                Cut {
+                                    t: rough_parameter(&eye, &form, &line.a, &line.b),
+                                    at: CutAt::Form(form),
+                                    key: [1, leaf_of[&object], face, 0],
+                                },
+                            ));
+                        }
                     }
-                    let at = CutAt::Form(Form::Plane(tri));
-                    self.cuts.push((l, Cut { t, at }));
+                    None => {
+                        let key = [1, leaf_of[&object], mesh.face_of(t) as u32, 0];
+                        if let Some(u) = intersections::pierces(&eye, &line.a, &line.b, mesh, t) {
+                            pierced += 1;
+                            let at = CutAt::Form(Form::Plane(intersections::plane_of(mesh, t).1));
+                            self.cuts.push((l, Cut::on_edge(u, at, key)));
+                        }
+                    }
                 }
             }
         }
@@ -615,7 +736,8 @@ impl<'a> Pass<'a> {
     /// it, from the uniform grid over the lines' pictures (or every pair, for few lines).
     fn contour_cuts(&mut self) {
         let clock = Instant::now();
-        let (lines, eye, leaves, clip) = (&self.lines, &self.eye, &self.leaves, self.clip);
+        let (lines, meets, eye, leaves, clip) =
+            (&self.lines, &self.meets, &self.eye, &self.leaves, self.clip);
         // The triangles on the sides of edge `j` (none for an intersection line).
         let sides = |j: usize| -> Vec<[Point3; 3]> {
             let leaf = leaves.get(leaves.partition_point(|leaf| leaf.lines.end <= j));
@@ -630,9 +752,13 @@ impl<'a> Pass<'a> {
         let crossing_cuts = |i: usize, j: usize| -> Vec<(usize, Cut)> {
             let mut out = Vec::new();
             for (x, y) in [(i, j), (j, i)] {
+                let found = || match lines[x].meet {
+                    Some(m) => crossing_line(eye, &meets[m], &lines[x], &lines[y]),
+                    None => crossing(eye, clip, &lines[x], &lines[y], || sides(y)),
+                };
                 if lines[y].is_contour()
                     && !lines[x].back
-                    && let Some(c) = crossing(eye, clip, &lines[x], &lines[y], || sides(y))
+                    && let Some(c) = found()
                 {
                     out.extend(c.into_iter().map(|c| (x, c)));
                 }
@@ -742,7 +868,8 @@ impl<'a> Pass<'a> {
         }
         let done = AtomicU64::new(0);
         let total = lines.len() as u64;
-        let (scene, eye, picture, clip) = (self.scene, &self.eye, &self.picture, self.clip);
+        let (scene, eye, picture, meets, clip) =
+            (self.scene, &self.eye, &self.picture, &self.meets, self.clip);
         let decided: Vec<(Vec<Piece>, Counters)> = (0..lines.len())
             .into_par_iter()
             .map(|l| {
@@ -754,15 +881,26 @@ impl<'a> Pass<'a> {
                     .iter()
                     .map(|c| c.1)
                     .collect();
-                pieces(
-                    &occluders,
-                    scene,
-                    eye,
-                    picture,
-                    clip,
-                    (l, &lines[l]),
-                    &line_cuts,
-                )
+                match lines[l].meet {
+                    Some(m) => line_pieces(
+                        &occluders,
+                        scene,
+                        eye,
+                        picture,
+                        clip,
+                        (l, &lines[l], &meets[m]),
+                        &line_cuts,
+                    ),
+                    None => pieces(
+                        &occluders,
+                        scene,
+                        eye,
+                        picture,
+                        clip,
+                        (l, &lines[l]),
+                        &line_cuts,
+                    ),
+                }
             })
             .collect();
         let mut counters = Counters::default();
@@ -816,17 +954,13 @@ fn crossing(
         let d = [q[0] - p[0], q[1] - p[1]];
         let norm = d[0] * d[0] + d[1] * d[1];
         let ends_in_front = [c.a, c.b].map(|x| clip.is_none_or(|n| n.in_front(&x)));
-        let mut cuts: Vec<Cut> = c
-            .ends
-            .iter()
-            .zip(ends_in_front)
-            .filter(|&(_, front)| front && !l.wide)
-            .filter_map(|(e, _)| {
+        let mut cuts: Vec<Cut> = (0..2)
+            .filter(|&k| ends_in_front[k] && !l.wide)
+            .filter_map(|k| {
+                let e = c.ends[k];
                 let t = ((e[0] - p[0]) * d[0] + (e[1] - p[1]) * d[1]) / norm;
-                (t > 0.0 && t < 1.0).then_some(Cut {
-                    t,
-                    at: CutAt::Point(*e),
-                })
+                let key = [0, c.leaf, c.vertices[k], 0];
+                (t > 0.0 && t < 1.0).then_some(Cut::on_edge(t, CutAt::Point(e), key))
             })
             .collect();
         // Both lines lie in one plane through the eye, which meets a face of `c` not seen
@@ -841,10 +975,12 @@ fn crossing(
                 && t > 0.0
                 && t < 1.0
             {
-                cuts.push(Cut {
+                let [u, v] = c.vertices;
+                cuts.push(Cut::on_edge(
                     t,
-                    at: CutAt::Form(form),
-                });
+                    CutAt::Form(form),
+                    [1, c.leaf, u.min(v), u.max(v)],
+                ));
             }
         }
         return Some(cuts);
@@ -872,12 +1008,107 @@ fn crossing(
     }
     let form = Form::Sight(c.a, c.b);
     let t = form.zero_along(eye, &l.a, &l.b)?;
-    (t > 0.0 && t < 1.0).then(|| {
-        vec![Cut {
-            t,
-            at: CutAt::Form(form),
-        }]
-    })
+    let [u, v] = c.vertices;
+    let key = [2, c.leaf, u.min(v), u.max(v)];
+    (t > 0.0 && t < 1.0).then(|| vec![Cut::on_edge(t, CutAt::Form(form), key)])
+}
+
+/// The cuts on the intersection line `l` (lying on `m`) where its picture meets the picture of
+/// the contour `c` in front of it, decided exactly as [`crossing`] decides for an edge: the
+/// sides of `c`'s ends against the plane through the line and the eye, the sides of the line's
+/// ends against `c`'s sight plane, and which passes in front where they cross
+/// ([`Meet::twist`]). For collinear pictures, at the lines of sight through `c`'s ends.
+fn crossing_line(eye: &Eye, m: &MeetLine, l: &Line, c: &Line) -> Option<Vec<Cut>> {
+    let (meet, [x, y]) = (&m.meet, &m.ends);
+    let is_end = |p: &Point3| {
+        [x, y]
+            .iter()
+            .any(|e| matches!(e, OnLine::Vertex { point, .. } if point == p))
+    };
+    if is_end(&c.a) || is_end(&c.b) {
+        return None;
+    }
+    let (sc, sd) = (meet.sight_side(eye, &c.a), meet.sight_side(eye, &c.b));
+    let sight = Form::Sight(c.a, c.b);
+    let (sa, sb) = (meet.sign_at(eye, x, &sight), meet.sign_at(eye, y, &sight));
+    let zero = Ordering::Equal;
+    let rough = |form: &Form| rough_parameter(eye, form, &l.a, &l.b);
+    if [sc, sd, sa, sb].iter().all(|&s| s == zero) {
+        // Collinear pictures: cut where the lines of sight through the contour's ends meet the
+        // line inside it, each point given by a sight plane through the end that crosses it.
+        let off = *meet
+            .planes
+            .iter()
+            .flatten()
+            .find(|q| meet.sight_side(eye, q) != zero)?;
+        let cuts = [0, 1]
+            .into_iter()
+            .filter_map(|k| {
+                let (p, picture) = ([c.a, c.b][k], c.ends[k]);
+                let form = meet.increasing(eye, Form::Sight(p, off));
+                let inside = meet.sign_at(eye, x, &form) == Ordering::Less
+                    && meet.sign_at(eye, y, &form) == Ordering::Greater;
+                inside.then(|| Cut {
+                    t: rough(&form),
+                    at: CutAt::Sighted(form, picture),
+                    key: [0, c.leaf, c.vertices[k], 0],
+                })
+            })
+            .collect();
+        return Some(cuts);
+    }
+    if sa == sb || sa == zero || sb == zero || (sc == sd && sc != zero) {
+        return None;
+    }
+    // Where the contour passes behind the line it changes nothing on it: the contour is in
+    // front when its end `d` lies on the eye's side of the plane through the line and `c`.
+    let volume = meet.twist(&c.a, &c.b);
+    let in_front = if sc != zero {
+        volume == zero || volume == sc
+    } else {
+        volume == zero || volume.reverse() == sd
+    };
+    if !in_front {
+        return None;
+    }
+    let form = if sa == Ordering::Less {
+        sight
+    } else {
+        reversed(&sight)
+    };
+    let (at, key) = if sc == zero {
+        (
+            CutAt::Sighted(form, c.ends[0]),
+            [0, c.leaf, c.vertices[0], 0],
+        )
+    } else if sd == zero {
+        (
+            CutAt::Sighted(form, c.ends[1]),
+            [0, c.leaf, c.vertices[1], 0],
+        )
+    } else {
+        let [u, v] = c.vertices;
+        (CutAt::Form(form), [2, c.leaf, u.min(v), u.max(v)])
+    };
+    Some(vec![Cut {
+        t: rough(&form),
+        at,
+        key,
+    }])
+}
+
+/// The parameter along `ab` where `form` vanishes, roughly (for a first sort of cuts only).
+fn rough_parameter(eye: &Eye, form: &Form, a: &Point3, b: &Point3) -> f64 {
+    let (fa, fb) = (
+        form.at(eye, a).estimate().value,
+        form.at(eye, b).estimate().value,
+    );
+    let t = fa / (fa - fb);
+    if t.is_finite() {
+        t.clamp(0.0, 1.0)
+    } else {
+        0.5
+    }
 }
 
 /// The visible and hidden runs of line `l` (index `line`) cut at `cuts` (sorted by `t`), and the
@@ -902,23 +1133,27 @@ fn pieces(
         };
         return (vec![piece], counters);
     }
-    let mut bounds: Vec<(f64, Option<CutAt>)> = vec![(0.0, None)];
+    // Cuts at one point (equal parameters, or forms whose zeros on the line coincide exactly)
+    // make one bound, drawn from the cut with the smallest key.
+    let mut bounds: Vec<(f64, Option<Cut>)> = vec![(0.0, None)];
     for c in cuts.iter().filter(|c| c.t > 0.0 && c.t < 1.0) {
-        if bounds.last().is_some_and(|&(t, _)| t < c.t) {
-            bounds.push((c.t, Some(c.at)));
+        match bounds.last_mut() {
+            Some((t, Some(last))) if *t == c.t || same_point(eye, l, last, c) => {
+                if c.key < last.key {
+                    *last = *c;
+                }
+            }
+            _ => bounds.push((c.t, Some(*c))),
         }
     }
     bounds.push((1.0, None));
-    let mut out: Vec<Piece> = Vec::new();
-    // The current run: its state (`None` where the view clips it away, else its
-    // visibility), the picture of its start and its start's parameter.
-    let mut run: Option<(Option<bool>, [f64; 2], f64)> = None;
+    let mut runs = Runs::new(l, line);
     for k in 0..bounds.len() - 1 {
         let (lo, hi) = (bounds[k].0, bounds[k + 1].0);
         let t = lo + (hi - lo) / 2.0;
         let state = if !(t > lo && t < hi) {
             // A piece too short to hold a double strictly inside: it takes its neighbour's.
-            run.map_or((!l.clipped).then_some(true), |r| r.0)
+            runs.state().unwrap_or((!l.clipped).then_some(true))
         } else if l.clipped && !clip.is_some_and(|n| n.contains_along(eye, &l.a, &l.b, t)) {
             None
         } else if l.back {
@@ -926,10 +1161,9 @@ fn pieces(
         } else {
             let approximate = l.a + (l.b - l.a) * t;
             let hides = |object: ObjectId, tri: usize| {
-                !on_faces(l, scene, object, tri)
-                    && scene[object]
-                        .mesh()
-                        .is_some_and(|m| hides_along(eye, &m.triangle(tri), &l.a, &l.b, t))
+                scene[object]
+                    .mesh()
+                    .is_some_and(|m| hides_along(eye, &m.triangle(tri), &l.a, &l.b, t))
             };
             let answer = occluders.visp(
                 &approximate,
@@ -939,33 +1173,11 @@ fn pieces(
             );
             Some(answer == Visibility::Visible)
         };
-        match run {
-            Some((s, start, from)) if s != state => {
-                let at = cut_picture(picture, eye, l, bounds[k].1);
-                if let Some(visible) = s {
-                    out.push(Piece {
-                        class: l.class,
-                        visible,
-                        ends: [start, at],
-                        line,
-                        t: [from, lo],
-                    });
-                }
-                run = Some((state, at, lo));
-            }
-            None => run = Some((state, l.ends[0], 0.0)),
-            _ => {}
-        }
-    }
-    if let Some((Some(visible), start, from)) = run {
-        out.push(Piece {
-            class: l.class,
-            visible,
-            ends: [start, l.ends[1]],
-            line,
-            t: [from, 1.0],
+        runs.step(state, lo, || {
+            cut_picture(picture, eye, l, bounds[k].1.map(|c| c.at))
         });
     }
+    let mut out = runs.finish(l.ends[1]);
     if l.clipped {
         // A drawn end is inside the frustum, in front of the eye, so its picture is finite but
         // for a cut rounded onto an end: such a piece has no length to draw.
@@ -974,13 +1186,170 @@ fn pieces(
     (out, counters)
 }
 
+/// The visible and hidden runs of the intersection line `l` (lying on `m`) cut at `cuts`
+/// (strictly inside it), and the stages that decided its pieces. The cuts are ordered along
+/// the line exactly, those at one point taken once (the smallest key); each piece between two
+/// consecutive points is decided at a point strictly inside it defined from the input
+/// ([`Meet::sign_between`]).
+fn line_pieces(
+    occluders: &Occluders,
+    scene: &Scene,
+    eye: &Eye,
+    picture: &Picture,
+    clip: Option<Clip>,
+    (line, l, m): (usize, &Line, &MeetLine),
+    cuts: &[Cut],
+) -> (Vec<Piece>, Counters) {
+    let meet = &m.meet;
+    let mut inner: Vec<(OnLine, &Cut)> = cuts
+        .iter()
+        .filter_map(|c| c.on_line().map(|p| (p, c)))
+        .collect();
+    // Stable: the cuts come roughly sorted already.
+    inner.sort_by(|x, y| meet.compare(eye, &x.0, &y.0).then(x.1.key.cmp(&y.1.key)));
+    inner.dedup_by(|b, a| meet.compare(eye, &a.0, &b.0) == Ordering::Equal);
+    let points: Vec<OnLine> = std::iter::once(m.ends[0])
+        .chain(inner.iter().map(|x| x.0))
+        .chain(std::iter::once(m.ends[1]))
+        .collect();
+    let drawn = |k: usize| -> [f64; 2] {
+        if k == 0 {
+            return l.ends[0];
+        }
+        if k == points.len() - 1 {
+            return l.ends[1];
+        }
+        match inner[k - 1].1.at {
+            CutAt::Sighted(_, p) | CutAt::Point(p) => p,
+            CutAt::Form(_) => meet.picture(picture, eye, &points[k]),
+        }
+    };
+    let weights: Vec<f64> = points.iter().map(|p| meet.weight(eye, p)).collect();
+    let places: Vec<Point3> = points.iter().map(|p| meet.approximate(eye, p)).collect();
+    // Each point's rough parameter along the line, for the pieces' provenance.
+    let along = |k: usize| if k == 0 { 0.0 } else { inner[k - 1].1.t };
+    let mut counters = Counters::default();
+    let mut runs = Runs::new(l, line);
+    for k in 0..points.len() - 1 {
+        let scales = [balance(weights[k]), balance(weights[k + 1])];
+        let sign = |form: &Form| meet.sign_between(eye, [&points[k], &points[k + 1]], scales, form);
+        let state = if l.clipped && !clip.is_some_and(|n| n.contains_by(sign)) {
+            None
+        } else {
+            let (u, v) = (weights[k] * scales[0], weights[k + 1] * scales[1]);
+            let approximate =
+                Point3::from((places[k].coords * u + places[k + 1].coords * v) / (u + v));
+            let hides = |object: ObjectId, tri: usize| {
+                !on_faces(m, scene, object, tri)
+                    && scene[object]
+                        .mesh()
+                        .is_some_and(|mesh| hides_at(eye, &mesh.triangle(tri), sign))
+            };
+            let answer = occluders.visp(
+                &approximate,
+                picture.point(&approximate),
+                hides,
+                &mut counters,
+            );
+            Some(answer == Visibility::Visible)
+        };
+        runs.step(state, along(k), || drawn(k));
+    }
+    let mut out = runs.finish(l.ends[1]);
+    if l.clipped {
+        out.retain(|p| p.ends.iter().flatten().all(|c| c.is_finite()));
+    }
+    (out, counters)
+}
+
+/// The visible and hidden runs of a line, piece by piece; the pieces a view that clips leaves
+/// out are not runs.
+struct Runs {
+    class: EdgeClass,
+    /// The line's index in the pass.
+    line: usize,
+    /// The picture of the line's first end.
+    first: [f64; 2],
+    out: Vec<Piece>,
+    /// The current run: its state (`None` where the view clips it away, else its
+    /// visibility), the picture of its start and its start's parameter.
+    run: Option<(Option<bool>, [f64; 2], f64)>,
+}
+
+impl Runs {
+    /// Runs of line `l` (index `line`), from its first end.
+    fn new(l: &Line, line: usize) -> Runs {
+        Runs {
+            class: l.class,
+            line,
+            first: l.ends[0],
+            out: Vec::new(),
+            run: None,
+        }
+    }
+
+    /// The state of the last piece, if any.
+    fn state(&self) -> Option<Option<bool>> {
+        self.run.map(|r| r.0)
+    }
+
+    /// The next piece's state, from parameter `t`; where it changes, the run ends at the
+    /// picture `at` of the piece's start.
+    fn step(&mut self, state: Option<bool>, t: f64, at: impl FnOnce() -> [f64; 2]) {
+        match self.run {
+            Some((s, start, from)) if s != state => {
+                let at = at();
+                if let Some(visible) = s {
+                    self.out.push(Piece {
+                        class: self.class,
+                        visible,
+                        ends: [start, at],
+                        line: self.line,
+                        t: [from, t],
+                    });
+                }
+                self.run = Some((state, at, t));
+            }
+            None => self.run = Some((state, self.first, 0.0)),
+            _ => {}
+        }
+    }
+
+    /// The runs, the last ending at `end`.
+    fn finish(mut self, end: [f64; 2]) -> Vec<Piece> {
+        if let Some((Some(visible), start, from)) = self.run {
+            self.out.push(Piece {
+                class: self.class,
+                visible,
+                ends: [start, end],
+                line: self.line,
+                t: [from, 1.0],
+            });
+        }
+        self.out
+    }
+}
+
+/// Whether two cuts of the edge `l` with nearly equal parameters are at one point: the zeros
+/// of their forms on the edge coincide, decided exactly ([`same_zero`]).
+fn same_point(eye: &Eye, l: &Line, x: &Cut, y: &Cut) -> bool {
+    match (x.at, y.at) {
+        (CutAt::Form(f), CutAt::Form(g)) => {
+            (y.t - x.t).abs() <= NEAR && same_zero(eye, &f, &g, &l.a, &l.b)
+        }
+        _ => false,
+    }
+}
+
+/// How close the parameters of two cuts of an edge are for an exact test of whether they are
+/// one point (the parameters' error is far smaller).
+const NEAR: f64 = 1.0 / (1u64 << 30) as f64;
+
 /// Whether triangle `tri` of `object` lies on one of the faces an intersection line runs on.
-fn on_faces(l: &Line, scene: &Scene, object: ObjectId, tri: usize) -> bool {
-    l.on_faces.is_some_and(|faces| {
-        faces
-            .iter()
-            .any(|&(o, f)| o == object && scene[object].mesh().is_some_and(|m| m.face_of(tri) == f))
-    })
+fn on_faces(m: &MeetLine, scene: &Scene, object: ObjectId, tri: usize) -> bool {
+    m.on_faces
+        .iter()
+        .any(|&(o, f)| o == object && scene[object].mesh().is_some_and(|m| m.face_of(tri) == f))
 }
 
 /// The cuts of line `l` (index `i`) where it crosses the planes of the frustum of a view
@@ -988,31 +1357,46 @@ fn on_faces(l: &Line, scene: &Scene, object: ObjectId, tri: usize) -> bool {
 fn frustum_cuts(
     clip: Option<Clip>,
     eye: &Eye,
-    i: usize,
-    l: &Line,
-) -> impl Iterator<Item = (usize, Cut)> {
-    clip.into_iter().flat_map(move |n| {
-        n.forms()
-            .collect::<Vec<_>>()
-            .into_iter()
-            .filter_map(move |form| {
-                let t = form.zero_along(eye, &l.a, &l.b)?;
-                (t > 0.0 && t < 1.0).then_some((
-                    i,
+    (i, l, m): (usize, &Line, Option<&MeetLine>),
+) -> Vec<(usize, Cut)> {
+    let Some(clip) = clip else {
+        return Vec::new();
+    };
+    clip.forms()
+        .enumerate()
+        .filter_map(|(k, form)| {
+            let key = [3, k as u32, 0, 0];
+            let cut = match m {
+                None => {
+                    let t = form.zero_along(eye, &l.a, &l.b)?;
+                    (t > 0.0 && t < 1.0).then_some(Cut::on_edge(t, CutAt::Form(form), key))?
+                }
+                Some(m) => {
+                    // On an intersection line, strictly between its ends, as a form increasing
+                    // along it.
+                    let [x, y] = &m.ends;
+                    let signs = [x, y].map(|e| m.meet.sign_at(eye, e, &form));
+                    if signs.contains(&Ordering::Equal) || signs[0] == signs[1] {
+                        return None;
+                    }
+                    let form = m.meet.increasing(eye, form);
                     Cut {
-                        t,
+                        t: rough_parameter(eye, &form, &l.a, &l.b),
                         at: CutAt::Form(form),
-                    },
-                ))
-            })
-    })
+                        key,
+                    }
+                }
+            };
+            Some((i, cut))
+        })
+        .collect()
 }
 
 /// The picture of a cut of line `l`.
 fn cut_picture(picture: &Picture, eye: &Eye, l: &Line, at: Option<CutAt>) -> [f64; 2] {
     match at {
         Some(CutAt::Form(form)) => cut_point(picture, eye, &form, &l.a, &l.b),
-        Some(CutAt::Point(p)) => p,
+        Some(CutAt::Point(p) | CutAt::Sighted(_, p)) => p,
         None => l.ends[0],
     }
 }

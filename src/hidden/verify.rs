@@ -192,7 +192,11 @@ fn traced(pass: Pass, pieces: Vec<Piece>, options: &Options) -> Traced {
     let mut sources: Vec<Option<Source>> = pass
         .lines
         .iter()
-        .map(|l| l.on_faces.map(|faces| Source::Intersection { faces }))
+        .map(|l| {
+            l.meet.map(|m| Source::Intersection {
+                faces: pass.meets[m].on_faces,
+            })
+        })
         .collect();
     for leaf in &pass.leaves {
         for l in leaf.lines.clone() {

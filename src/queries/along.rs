@@ -13,14 +13,26 @@
 //! picture is built once from the input coordinates and the exact values `O(a)`, `O(b)`:
 //! every picture form `L` is affine, so `L(X) = (O(a)·L(b) - O(b)·L(a)) / (O(a) - O(b))`, and
 //! the numerator and the denominator (for a perspective view the depth form takes the place of
-//! `O(a) - O(b)`) are exact expansions rounded once: within 1.5 units in the last place.
+//! `O(a) - O(b)`) are exact expansions rounded once: within 1.5 units in the last place. Where
+//! the inputs' exponents are too far apart for exact expansions (a scene scaled by `2^±280`,
+//! say), the same two values are computed as rationals and each rounded once at its own scale
+//! ([`rounded_ratio`]): the same bits as the expansions would give, scaled.
+//!
+//! The arithmetic for polynomials written once over any [`Ring`] lives here too: [`Filtered`]
+//! (estimates with the kernel's certified bounds) and [`Expanded`] (exact expansions).
 
 use crate::geometry::Point3;
 use crate::geometry::exact::{estimate, expansion_product, expansion_sum, negated};
-use crate::geometry::kernel::{Between, Estimate, Exponents, Polynomial, Ring, value};
+use crate::geometry::kernel::{
+    Between, Difference, Estimate, Exponents, Polynomial, Product, Ring, value,
+};
 use crate::geometry::predicates::{Orient3d, Orientation};
 use crate::views::{Eye, Picture};
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::{One, Signed, ToPrimitive, Zero};
 use std::cmp::Ordering;
+use std::ops::{Add, Mul, Neg, Sub};
 
 /// An affine function of a point whose zero set is a plane, evaluated exactly.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -35,7 +47,7 @@ pub(crate) enum Form {
 impl Form {
     /// The form at `x`, as a polynomial of the input coordinates.
     #[inline]
-    fn at(&self, eye: &Eye, x: &Point3) -> Orientation {
+    pub(crate) fn at(&self, eye: &Eye, x: &Point3) -> Orientation {
         match self {
             Form::Plane([p, q, r]) => Orientation::Point(Orient3d([*p, *q, *r, *x])),
             Form::Sight(p, q) => eye.determinant(p, q, x),
@@ -95,10 +107,11 @@ impl Form {
 
 /// A [`Form`] at a point: a polynomial whose sign is answered at once when the form passes
 /// through the point (the exact determinant would take its slowest path to say zero).
-struct FormAt<'a> {
-    form: &'a Form,
-    eye: &'a Eye,
-    x: &'a Point3,
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct FormAt<'a> {
+    pub form: &'a Form,
+    pub eye: &'a Eye,
+    pub x: &'a Point3,
 }
 
 impl Polynomial for FormAt<'_> {
@@ -132,19 +145,23 @@ impl Polynomial for FormAt<'_> {
     }
 }
 
-/// Whether the triangle `tri` hides `X(t)` on the edge `ab` from the eye: `X(t)` lies strictly
-/// behind the triangle's plane and the line of sight through it meets the closed triangle.
-/// An edge-on triangle hides nothing; a point on the plane is not hidden by it.
+/// Whether the triangle `tri` hides `X(t)` on the edge `ab` from the eye (see [`hides_at`]).
 pub(crate) fn hides_along(eye: &Eye, tri: &[Point3; 3], a: &Point3, b: &Point3, t: f64) -> bool {
+    hides_at(eye, tri, |form| form.sign_along(eye, a, b, t))
+}
+
+/// Whether the triangle `tri` hides a point from the eye, given the exact sign of any form at
+/// the point (`sign`): the point lies strictly behind the triangle's plane and the line of
+/// sight through it meets the closed triangle. An edge-on triangle hides nothing; a point on
+/// the plane is not hidden by it.
+pub(crate) fn hides_at(eye: &Eye, tri: &[Point3; 3], sign: impl Fn(&Form) -> Ordering) -> bool {
     let eye_side = eye.orient3d(&tri[0], &tri[1], &tri[2]);
-    if eye_side == Ordering::Equal
-        || Form::Plane(*tri).sign_along(eye, a, b, t) != eye_side.reverse()
-    {
+    if eye_side == Ordering::Equal || sign(&Form::Plane(*tri)) != eye_side.reverse() {
         return false;
     }
     let (mut above, mut below) = (false, false);
     for i in 0..3 {
-        match Form::Sight(tri[i], tri[(i + 1) % 3]).sign_along(eye, a, b, t) {
+        match sign(&Form::Sight(tri[i], tri[(i + 1) % 3])) {
             Ordering::Greater => above = true,
             Ordering::Less => below = true,
             Ordering::Equal => {}
@@ -165,15 +182,100 @@ pub(crate) fn cut_point(
     a: &Point3,
     b: &Point3,
 ) -> [f64; 2] {
-    let (oa, ob) = (form.at(eye, a).expansion(), form.at(eye, b).expansion());
-    let combine = |la: &[f64], lb: &[f64]| {
-        estimate(&expansion_sum(
-            &expansion_product(&oa, lb),
-            &negated(&expansion_product(&ob, la)),
-        ))
+    let at = |x| FormAt { form, eye, x };
+    cut_point_of(picture, [at(a), at(b)], a, b)
+}
+
+/// Whether the forms `f` and `g`, each crossing the segment `ab` (with values of opposite
+/// signs at its ends), vanish at one point of it: exactly when `f(a)·g(b) − f(b)·g(a) = 0`
+/// (`g` at the zero of `f`, times `f(a) − f(b)`).
+pub(crate) fn same_zero(eye: &Eye, f: &Form, g: &Form, a: &Point3, b: &Point3) -> bool {
+    let at = |form, x| FormAt { form, eye, x };
+    Difference(Product(at(f, a), at(g, b)), Product(at(f, b), at(g, a))).sign() == Ordering::Equal
+}
+
+/// The picture of the point of the edge `ab` where an affine function with the exact values
+/// `values` at `a` and `b` (of opposite signs) vanishes: every picture form `L` gives
+/// `L(X) = (O(a)·L(b) − O(b)·L(a)) / (O(a) − O(b))`, and each coordinate is the ratio of two
+/// exact polynomials of the input, each rounded once ([`rounded_ratio`]).
+pub(crate) fn cut_point_of<P: Polynomial + Copy>(
+    picture: &Picture,
+    [oa, ob]: [P; 2],
+    a: &Point3,
+    b: &Point3,
+) -> [f64; 2] {
+    let form = |k, x| PictureAt { picture, k, x };
+    let combine = |k| Difference(Product(oa, form(k, b)), Product(ob, form(k, a)));
+    let exact = |k| {
+        let c = combine(k);
+        c.exponents().exact_for(c.degree())
     };
-    let depth = combine(&picture.form(2, a), &picture.form(2, b));
-    [0, 1].map(|k| combine(&picture.form(k, a), &picture.form(k, b)) / depth)
+    if exact(0) && exact(1) && exact(2) {
+        // The values at the ends expanded once for the three picture forms (the hot path of
+        // every edge cut).
+        let (ea, eb) = (oa.expansion(), ob.expansion());
+        let value = |k| {
+            estimate(&expansion_sum(
+                &expansion_product(&ea, &picture.form(k, b)),
+                &negated(&expansion_product(&eb, &picture.form(k, a))),
+            ))
+        };
+        let depth = value(2);
+        return [0, 1].map(|k| value(k) / depth);
+    }
+    let depth = combine(2);
+    [0, 1].map(|k| rounded_ratio(&combine(k), &depth))
+}
+
+/// Picture form `k` of `picture` at `x`: `rows[k]·(x − origin)` (see [`Picture::rows`]), the
+/// constant 1 for an orthographic view's depth (`k = 2`), as a polynomial.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct PictureAt<'a> {
+    /// The picture map.
+    pub picture: &'a Picture,
+    /// The form: 0 for `x`, 1 for `y`, 2 for depth.
+    pub k: usize,
+    /// The point.
+    pub x: &'a Point3,
+}
+
+impl PictureAt<'_> {
+    /// The form in the ring `R`.
+    fn value<R: Ring>(&self) -> R {
+        if self.k == 2 && !self.picture.is_perspective() {
+            return R::from_f64(1.0);
+        }
+        let (rows, origin) = self.picture.rows();
+        let term = |i: usize| {
+            R::from_f64(rows[self.k][i]) * (R::from_f64(self.x[i]) - R::from_f64(origin[i]))
+        };
+        term(0) + term(1) + term(2)
+    }
+}
+
+impl Polynomial for PictureAt<'_> {
+    fn estimate(&self) -> Estimate {
+        self.value::<Filtered>().0
+    }
+
+    fn expansion(&self) -> Vec<f64> {
+        self.picture.form(self.k, self.x)
+    }
+
+    fn evaluate<R: Ring>(&self) -> R {
+        self.value()
+    }
+
+    fn degree(&self) -> u32 {
+        2
+    }
+
+    fn exponents(&self) -> Exponents {
+        let (rows, origin) = self.picture.rows();
+        Exponents::of(rows[self.k].as_slice())
+            .union(Exponents::of(origin.coords.as_slice()))
+            .union(Exponents::of(self.x.coords.as_slice()))
+    }
 }
 
 /// The picture of the point where the segment `ab` crosses the plane of the triangle `plane`
@@ -187,4 +289,161 @@ pub(crate) fn cut_point_on_plane(
     b: &Point3,
 ) -> [f64; 2] {
     cut_point(picture, eye, &Form::Plane(*plane), a, b)
+}
+
+/// The ring of [`Estimate`]s: each operation's value rounded, its bound the kernel's
+/// ([`Estimate::product`], [`Estimate::difference`]; a sum is the difference with the negated
+/// operand, a negation is exact), so a formula evaluated here carries a certified bound.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Filtered(pub Estimate);
+
+impl Add for Filtered {
+    type Output = Filtered;
+    #[inline]
+    fn add(self, other: Filtered) -> Filtered {
+        self - (-other)
+    }
+}
+
+impl Sub for Filtered {
+    type Output = Filtered;
+    #[inline]
+    fn sub(self, other: Filtered) -> Filtered {
+        Filtered(self.0.difference(&other.0))
+    }
+}
+
+impl Mul for Filtered {
+    type Output = Filtered;
+    #[inline]
+    fn mul(self, other: Filtered) -> Filtered {
+        Filtered(self.0.product(&other.0))
+    }
+}
+
+impl Neg for Filtered {
+    type Output = Filtered;
+    #[inline]
+    fn neg(self) -> Filtered {
+        Filtered(Estimate {
+            value: -self.0.value,
+            bound: self.0.bound,
+        })
+    }
+}
+
+impl Ring for Filtered {
+    #[inline]
+    fn from_f64(x: f64) -> Filtered {
+        Filtered(Estimate::exact(x))
+    }
+}
+
+/// The ring of expansions: exact while no product overflows or underflows (see
+/// [`Exponents::exact_for`]).
+#[derive(Debug, Clone)]
+pub(crate) struct Expanded(pub Vec<f64>);
+
+impl Add for Expanded {
+    type Output = Expanded;
+    fn add(self, other: Expanded) -> Expanded {
+        Expanded(expansion_sum(&self.0, &other.0))
+    }
+}
+
+impl Sub for Expanded {
+    type Output = Expanded;
+    fn sub(self, other: Expanded) -> Expanded {
+        Expanded(expansion_sum(&self.0, &negated(&other.0)))
+    }
+}
+
+impl Mul for Expanded {
+    type Output = Expanded;
+    fn mul(self, other: Expanded) -> Expanded {
+        Expanded(expansion_product(&self.0, &other.0))
+    }
+}
+
+impl Neg for Expanded {
+    type Output = Expanded;
+    fn neg(self) -> Expanded {
+        Expanded(negated(&self.0))
+    }
+}
+
+impl Ring for Expanded {
+    fn from_f64(x: f64) -> Expanded {
+        Expanded(if x == 0.0 { Vec::new() } else { vec![x] })
+    }
+}
+
+/// The sign of `p` from its rational value.
+#[cold]
+pub(crate) fn exact_sign_rational<P: Polynomial>(p: &P) -> Ordering {
+    let x = p.evaluate::<BigRational>();
+    if x.is_zero() {
+        Ordering::Equal
+    } else if x.is_positive() {
+        Ordering::Greater
+    } else {
+        Ordering::Less
+    }
+}
+
+/// The exact value of `p` rounded once to the nearest double.
+pub(crate) fn rounded<P: Polynomial>(p: &P) -> f64 {
+    if p.exponents().exact_for(p.degree()) {
+        estimate(&p.expansion())
+    } else {
+        p.evaluate::<BigRational>().to_f64().unwrap_or(f64::NAN)
+    }
+}
+
+/// `n / d` with each exact polynomial rounded once to the nearest double, then divided (the
+/// rule of every constructed coordinate; see [`crate::geometry::kernel::ratio`]); where the
+/// inputs' exponents do not allow exact expansions, the same rule from rationals, each value
+/// rounded at its own scale so that nothing overflows on the way.
+pub(crate) fn rounded_ratio<N: Polynomial, D: Polynomial>(n: &N, d: &D) -> f64 {
+    if n.exponents().exact_for(n.degree()) && d.exponents().exact_for(d.degree()) {
+        return estimate(&n.expansion()) / estimate(&d.expansion());
+    }
+    let (n, d) = (n.evaluate::<BigRational>(), d.evaluate::<BigRational>());
+    let (xn, en) = split(&n);
+    let (xd, ed) = split(&d);
+    times_power_of_two(xn / xd, en - ed)
+}
+
+/// `x` as a double `m` rounded once and a power of two: `x ≈ m·2^e` with `m` in `[1, 2]`
+/// (`m = 0` for zero). For `x` in the normal range, `m·2^e` is `x` rounded to the nearest
+/// double.
+fn split(x: &BigRational) -> (f64, i64) {
+    if x.is_zero() {
+        return (0.0, 0);
+    }
+    let bits = |n: &BigInt| n.bits() as i64;
+    let mut e = bits(x.numer()) - bits(x.denom());
+    let scaled = |e: i64| {
+        let p = BigRational::from_integer(BigInt::one() << e.unsigned_abs());
+        if e >= 0 { x / p } else { x * p }
+    };
+    let mut y = scaled(e);
+    if y.abs() < BigRational::one() {
+        e -= 1;
+        y = scaled(e);
+    }
+    (y.to_f64().unwrap_or(f64::NAN), e)
+}
+
+/// `x·2^e`, exact while the result is normal.
+fn times_power_of_two(mut x: f64, mut e: i64) -> f64 {
+    while e > 1000 {
+        x *= 2f64.powi(1000);
+        e -= 1000;
+    }
+    while e < -1000 {
+        x *= 2f64.powi(-1000);
+        e += 1000;
+    }
+    x * 2f64.powi(e as i32)
 }

@@ -25,6 +25,7 @@
 pub(crate) mod along;
 pub mod include;
 pub(crate) mod intersections;
+pub(crate) mod meet;
 pub(crate) mod own_solid;
 pub mod projection_grid;
 pub(crate) mod sight;
