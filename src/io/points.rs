@@ -3,8 +3,10 @@
 //!
 //! Blank lines and `#` comments are allowed and produce no point (so answers correspond to the
 //! points in order, not to line numbers). Any other line must hold exactly three finite
-//! numbers of magnitude at most [`MAX_COORDINATE`]; anything else is an error naming the file
-//! and line. Nothing is skipped silently.
+//! numbers (any finite double: the point queries are exact at every scale), or four of
+//! magnitude at most [`MAX_COORDINATE`] for a segment (Franklin's grid computes cells in
+//! floating point); anything else is an error naming the file and line. Nothing is skipped
+//! silently.
 //!
 //! ```
 //! use kepler::io::points::parse_points;
@@ -31,7 +33,7 @@ use std::path::Path;
 /// assert!(parse_points("1 2 nan", "p").unwrap_err().to_string().contains("not a finite number"));
 /// ```
 pub fn parse_points(text: &str, name: &str) -> Result<Vec<Point3>> {
-    let rows = parse_rows::<3>(text, name, "x y z")?;
+    let rows = parse_rows::<3>(text, name, "x y z", f64::MAX)?;
     Ok(rows.into_iter().map(|(_, c)| Point3::from(c)).collect())
 }
 
@@ -47,7 +49,7 @@ pub fn parse_points(text: &str, name: &str) -> Result<Vec<Point3>> {
 /// assert_eq!(err.to_string(), "s.txt:1: expected 4 coordinates (x1 y1 x2 y2), found 3");
 /// ```
 pub fn parse_segments(text: &str, name: &str) -> Result<Vec<(usize, Line<f64>)>> {
-    let rows = parse_rows::<4>(text, name, "x1 y1 x2 y2")?;
+    let rows = parse_rows::<4>(text, name, "x1 y1 x2 y2", MAX_COORDINATE)?;
     Ok(rows
         .into_iter()
         .map(|(line, [x1, y1, x2, y2])| {
@@ -59,12 +61,13 @@ pub fn parse_segments(text: &str, name: &str) -> Result<Vec<(usize, Line<f64>)>>
         .collect())
 }
 
-/// The rows of `N` numbers of a text, with their 1-based line numbers; `fields` names the
-/// numbers in errors.
+/// The rows of `N` numbers of a text, each at most `limit` in magnitude, with their 1-based
+/// line numbers; `fields` names the numbers in errors.
 fn parse_rows<const N: usize>(
     text: &str,
     name: &str,
     fields: &str,
+    limit: f64,
 ) -> Result<Vec<(usize, [f64; N])>> {
     let mut rows = Vec::new();
     for (i, raw) in strip_bom(text).lines().enumerate() {
@@ -90,9 +93,9 @@ fn parse_rows<const N: usize>(
         let mut c = [0.0; N];
         for (k, field) in found.iter().enumerate() {
             c[k] = finite(field, "coordinate").map_err(at)?;
-            if c[k].abs() > MAX_COORDINATE {
+            if c[k].abs() > limit {
                 return Err(at(format!(
-                    "coordinate {} is larger in magnitude than {MAX_COORDINATE:e}",
+                    "coordinate {} is larger in magnitude than {limit:e}",
                     quoted(field)
                 )));
             }
