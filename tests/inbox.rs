@@ -1,6 +1,9 @@
 //! INBOX: it must never poke out of its object, and should be as large as is practical.
 
+mod common;
+
 use kepler::bounds::{InboxMethod, cbox, inbox};
+use kepler::geometry::exact::ldexp;
 use kepler::geometry::predicates::triangle_meets_open_box;
 use kepler::geometry::{Aabb, Point3, Vector3};
 use kepler::mesh::{Containment, Mesh, classify_point_brute_force};
@@ -176,23 +179,6 @@ proptest! {
     }
 }
 
-/// `x · 2^k` for `|k| ≤ 2046`, exactly when the result is normal.
-fn ldexp(x: f64, k: i32) -> f64 {
-    let half = k / 2;
-    x * 2f64.powi(half) * 2f64.powi(k - half)
-}
-
-/// The mesh with every vertex scaled by `2^k` (its faces as they are).
-fn scaled_mesh(mesh: &Mesh, k: i32) -> Mesh {
-    let vertices = mesh
-        .vertices()
-        .iter()
-        .map(|p| p.map(|c| ldexp(c, k)))
-        .collect();
-    let faces = mesh.faces().iter().map(|f| f.vertices().to_vec()).collect();
-    Mesh::from_polygons(vertices, faces).unwrap()
-}
-
 /// Building the INBOX of a valid mesh scaled by any power of two does not panic (near 1e77 the
 /// R-tree's nearest-neighbour search met infinite distances), and the box is certified inside
 /// the scaled mesh, at both ends of the range of normal coordinates.
@@ -230,7 +216,7 @@ fn the_inbox_exists_at_every_power_of_two() {
         for k in [
             -1010, -1000, -700, -256, -151, -150, 150, 151, 250, 256, 257, 500, 1000, 1017,
         ] {
-            let scaled = scaled_mesh(mesh, k);
+            let scaled = common::scaled_mesh(mesh, k).unwrap();
             let what = format!("{name} scaled by 2^{k}");
             let b = inbox(&scaled).unwrap_or_else(|| panic!("{what}: no inbox"));
             assert_inside(&scaled, &b.aabb, &what);

@@ -5,17 +5,12 @@
 mod common;
 
 use common::Rng;
+use kepler::geometry::exact::ldexp;
 use kepler::geometry::{Point3, Vector3};
 use kepler::queries::include::IncludeIndex;
 use kepler::queries::visp::VisibilityIndex;
 use kepler::scene::Scene;
 use kepler::views::View;
-
-/// `x · 2^k`, exactly while the result is normal.
-fn ldexp(x: f64, k: i32) -> f64 {
-    let half = k / 2;
-    x * 2f64.powi(half) * 2f64.powi(k - half)
-}
 
 fn scaled(p: &Point3, k: i32) -> Point3 {
     p.map(|c| ldexp(c, k))

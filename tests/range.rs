@@ -9,29 +9,18 @@
 mod common;
 
 use common::Rng;
+use kepler::geometry::exact::ldexp;
 use kepler::geometry::{Point3, Vector3};
 use kepler::hidden::{Drawing, EdgeSelection, Options, draw};
 use kepler::mesh::Mesh;
 use kepler::scene::{Scene, file};
 use kepler::views::View;
 
-/// `x · 2^k` for `|k| ≤ 2046`, exactly when the result is normal.
-fn ldexp(x: f64, k: i32) -> f64 {
-    let half = k / 2;
-    x * 2f64.powi(half) * 2f64.powi(k - half)
-}
-
 /// The mesh objects of `scene`, each scaled by `2^k` vertex by vertex, as top-level objects.
 fn scaled_scene(scene: &Scene, k: i32) -> Scene {
     let mut out = Scene::new();
     for (id, mesh) in scene.mesh_objects(scene.roots()) {
-        let vertices = mesh
-            .vertices()
-            .iter()
-            .map(|p| p.map(|c| ldexp(c, k)))
-            .collect();
-        let faces = mesh.faces().iter().map(|f| f.vertices().to_vec()).collect();
-        let scaled = Mesh::from_polygons(vertices, faces)
+        let scaled = common::scaled_mesh(mesh, k)
             .unwrap_or_else(|e| panic!("{} scaled by 2^{k}: {e}", scene.path(id)));
         out.add_mesh(None, scene.path(id), scaled)
             .unwrap_or_else(|e| panic!("{e}"));

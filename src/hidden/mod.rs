@@ -1177,13 +1177,7 @@ fn pieces(
             cut_picture(picture, eye, l, bounds[k].1.map(|c| c.at))
         });
     }
-    let mut out = runs.finish(l.ends[1]);
-    if l.clipped {
-        // A drawn end is inside the frustum, in front of the eye, so its picture is finite but
-        // for a cut rounded onto an end: such a piece has no length to draw.
-        out.retain(|p| p.ends.iter().flatten().all(|c| c.is_finite()));
-    }
-    (out, counters)
+    (runs.finish(l.ends[1]), counters)
 }
 
 /// The visible and hidden runs of the intersection line `l` (lying on `m`) cut at `cuts`
@@ -1255,11 +1249,7 @@ fn line_pieces(
         };
         runs.step(state, along(k), || drawn(k));
     }
-    let mut out = runs.finish(l.ends[1]);
-    if l.clipped {
-        out.retain(|p| p.ends.iter().flatten().all(|c| c.is_finite()));
-    }
-    (out, counters)
+    (runs.finish(l.ends[1]), counters)
 }
 
 /// The visible and hidden runs of a line, piece by piece; the pieces a view that clips leaves
@@ -1268,6 +1258,8 @@ struct Runs {
     class: EdgeClass,
     /// The line's index in the pass.
     line: usize,
+    /// Whether the line is clipped (see [`Line::clipped`]).
+    clipped: bool,
     /// The picture of the line's first end.
     first: [f64; 2],
     out: Vec<Piece>,
@@ -1282,6 +1274,7 @@ impl Runs {
         Runs {
             class: l.class,
             line,
+            clipped: l.clipped,
             first: l.ends[0],
             out: Vec::new(),
             run: None,
@@ -1325,6 +1318,12 @@ impl Runs {
                 line: self.line,
                 t: [from, 1.0],
             });
+        }
+        if self.clipped {
+            // A drawn end is inside the frustum, in front of the eye, so its picture is finite
+            // but for a cut rounded onto an end: such a piece has no length to draw.
+            self.out
+                .retain(|p| p.ends.iter().flatten().all(|c| c.is_finite()));
         }
         self.out
     }

@@ -108,3 +108,19 @@ pub fn unit_octahedron() -> kepler::mesh::Mesh {
     ];
     kepler::mesh::Mesh::from_polygons(v, faces).expect("valid octahedron")
 }
+
+/// The mesh with every vertex scaled by `2^k`, exactly while the coordinates stay normal (its
+/// faces as they are); an error if the scaled mesh is refused.
+pub fn scaled_mesh(
+    mesh: &kepler::mesh::Mesh,
+    k: i32,
+) -> Result<kepler::mesh::Mesh, kepler::mesh::MeshError> {
+    use kepler::geometry::exact::ldexp;
+    let vertices = mesh
+        .vertices()
+        .iter()
+        .map(|p| p.map(|c| ldexp(c, k)))
+        .collect();
+    let faces = mesh.faces().iter().map(|f| f.vertices().to_vec()).collect();
+    kepler::mesh::Mesh::from_polygons(vertices, faces)
+}
