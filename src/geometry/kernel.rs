@@ -311,11 +311,11 @@ pub fn exact_sign<P: Polynomial + ?Sized>(p: &P) -> Ordering {
     }
 }
 
-/// The value of `p` to within a few units in the last place: its estimate when the certified
-/// bound is below 2⁻⁴⁰ of it (the common case, no extra work), else its exact expansion
-/// rounded correctly, else its rational value rounded. For parameters computed from
-/// polynomials whose estimates cancel (a far perspective eye, say), where the plain estimate
-/// may be off in every digit or even in sign.
+/// The value of `p` to within a relative 2⁻²⁰, enough to order and place cuts: its estimate
+/// when the certified bound is below 2⁻²⁰ of it (the common case, no extra work), else its
+/// exact expansion rounded correctly, else its rational value rounded. For parameters computed
+/// from polynomials whose estimates cancel (a far perspective eye, say), where the plain
+/// estimate may be off in every digit or even in sign.
 ///
 /// ```
 /// use kepler::geometry::kernel::{Polynomial, value};
@@ -344,8 +344,8 @@ pub fn value<P: Polynomial + ?Sized>(p: &P) -> f64 {
     }
 }
 
-/// The relative bound under which [`value`] keeps an estimate: 2⁻⁴⁰.
-const RELATIVE_VALUE: f64 = 1.0 / (1u64 << 40) as f64;
+/// The relative bound under which [`value`] keeps an estimate: 2⁻²⁰.
+const RELATIVE_VALUE: f64 = 1.0 / (1u64 << 20) as f64;
 
 /// A rational rounded to a double (`None` when it does not fit).
 fn rational_value(x: &BigRational) -> Option<f64> {
