@@ -598,3 +598,112 @@ fn far_perspective_eyes_pass() {
         }
     }
 }
+
+// Stiff families: features eight orders of magnitude apart, slivers, near-coplanar faces.
+
+/// Axis, diagonal and random orthographic views and a perspective view from outside the scene.
+fn views_of(rng: &mut Rng, scene: &Scene) -> Vec<View> {
+    vec![
+        View::orthographic(Vector3::new(0.0, 0.0, -1.0), Vector3::y()).unwrap(),
+        View::orthographic(Vector3::new(1.0, 0.0, 0.0), Vector3::z()).unwrap(),
+        isometric(),
+        View::orthographic(rng.vector(1.0), Vector3::z()).unwrap(),
+        perspective_of(scene),
+    ]
+}
+
+fn check_stiff(name: &str, cases: u64, build: impl Fn(&mut Rng) -> Scene) {
+    for seed in 0..cases {
+        let mut rng = Rng(seed * 104_729 + name.len() as u64);
+        let scene = build(&mut rng);
+        for (k, view) in views_of(&mut rng, &scene).iter().enumerate() {
+            for edges in [EdgeSelection::Feature, EdgeSelection::All] {
+                let options = Options {
+                    edges,
+                    ..Options::default()
+                };
+                passes(
+                    &format!("{name}, seed {seed}, view {k}"),
+                    &scene,
+                    view,
+                    &options,
+                );
+            }
+        }
+    }
+}
+
+/// A box of side about 1e8 with features of about 1e-8 on its top face: one resting on it, one
+/// sunk into it, one piercing an edge; at the origin or offset by 1e8.
+#[test]
+fn a_tiny_feature_on_a_huge_box() {
+    check_stiff("1e-8 on 1e8", 8, |rng| {
+        let big = 1e8;
+        let offset = [0.0, big][rng.below(2)];
+        let lo = [offset, 0.0, 0.0];
+        let mut meshes = vec![solids::box_between(lo, [offset + big, big, big]).unwrap()];
+        let x = offset + rng.range(0.25, 0.75) * big;
+        let y = rng.range(0.25, 0.75) * big;
+        let s = 1e-8 * rng.range(1.0, 4.0);
+        meshes.push(solids::box_between([x, y, big], [x + s, y + s, big + s]).unwrap());
+        meshes.push(
+            solids::box_between([x + 2.0 * s, y, big - s], [x + 3.0 * s, y + s, big + s]).unwrap(),
+        );
+        let e = offset + big;
+        meshes.push(solids::box_between([e - s, y, big - s], [e + s, y + s, big + s]).unwrap());
+        scene_of(meshes)
+    });
+}
+
+/// Tetrahedra with a face of aspect about 1e10 (a sliver, not degenerate), touching a box.
+#[test]
+fn sliver_tetrahedra() {
+    check_stiff("slivers", 12, |rng| {
+        let thin = 1e-10 * rng.range(0.5, 2.0);
+        let v = vec![
+            Point3::new(0.0, 0.0, 0.0),
+            Point3::new(1.0, 0.0, 0.0),
+            Point3::new(rng.range(0.2, 0.8), thin, 0.0),
+            Point3::new(
+                rng.range(0.2, 0.8),
+                rng.range(0.2, 0.8),
+                rng.range(-1.0, 1.0),
+            ),
+        ];
+        let faces = vec![vec![0, 2, 1], vec![0, 1, 3], vec![1, 2, 3], vec![0, 3, 2]];
+        let mut meshes = vec![Mesh::from_polygons(v, faces).unwrap()];
+        meshes.push(solids::box_between([0.0, -1.0, -1.0], [1.0, 0.0, 0.0]).unwrap());
+        scene_of(meshes)
+    });
+}
+
+/// Boxes whose faces are coplanar to one unit in the last place, or tilted by 1e-12.
+#[test]
+fn nearly_coplanar_faces() {
+    check_stiff("nearly coplanar", 12, |rng| {
+        let top = 1.0f64;
+        let z = [top, top.next_up(), top.next_down()][rng.below(3)];
+        let mut meshes = vec![
+            solids::box_between([0.0, 0.0, 0.0], [2.0, 2.0, top]).unwrap(),
+            solids::box_between([0.5, 0.5, z - 1.0], [3.0, 1.5, z]).unwrap(),
+        ];
+        let tilt = 1e-12 * rng.range(0.5, 2.0);
+        let v = vec![
+            Point3::new(-1.0, -1.0, top),
+            Point3::new(1.0, -1.0, top + tilt),
+            Point3::new(1.0, 1.0, top + 2.0 * tilt),
+            Point3::new(-1.0, 1.0, top + tilt),
+            Point3::new(0.0, 0.0, top - 1.0),
+        ];
+        let faces = vec![
+            vec![0, 1, 2],
+            vec![0, 2, 3],
+            vec![0, 4, 1],
+            vec![1, 4, 2],
+            vec![2, 4, 3],
+            vec![3, 4, 0],
+        ];
+        meshes.push(Mesh::from_polygons(v, faces).unwrap());
+        scene_of(meshes)
+    });
+}
