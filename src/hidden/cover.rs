@@ -168,6 +168,12 @@ impl<'s> Occluders<'s> {
         let built: Vec<(ObjectId, PictureGrid)> = meshes
             .par_iter()
             .map(|&(id, mesh, pictures, front)| {
+                // The bounds VISP will ask for, built here in parallel (each is built once, on
+                // first use: left to the queries, the first would wait for all of them).
+                scene.cbox(id);
+                if mesh.triangles().len() <= inbox_limit {
+                    scene.inbox(id);
+                }
                 (id, PictureGrid::new(mesh, pictures, front, queries))
             })
             .collect();
@@ -182,7 +188,10 @@ impl<'s> Occluders<'s> {
                 .any(|m| m.triangles().len() > inbox_limit);
             if large {
                 no_inbox.insert(id, ());
+            } else {
+                scene.inbox(id);
             }
+            scene.cbox(id);
         }
         Occluders {
             scene,
