@@ -895,8 +895,7 @@ fn render_rejects_bad_scenes_views_and_options() {
         "0,0,3",
     ]);
     assert!(parallel.contains("invalid view"), "{parallel}");
-    // An eye inside the scene: render clips, a near distance must be positive, surfaces
-    // does not clip yet.
+    // An eye inside the scene: render and surfaces clip, a near distance must be positive.
     let inside = ["--eye", "0,0,0.5", "--target", "0,0,-5"];
     ok(&[&["render", "scenes/cube.toml", "-o", &svg][..], &inside].concat());
     let near = fails(
@@ -907,8 +906,36 @@ fn render_rejects_bad_scenes_views_and_options() {
         .concat(),
     );
     assert!(near.contains("invalid view"), "{near}");
-    let behind = fails(&[&["surfaces", "scenes/cube.toml", "-o", &svg][..], &inside].concat());
-    assert!(behind.contains("in front of the eye"), "{behind}");
+    let json = temp_path("inside.json");
+    ok(&[
+        &["surfaces", "scenes/cube.toml", "-o", &svg, "--json", &json][..],
+        &inside,
+    ]
+    .concat());
+    let report: Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    // The eye on the top face looks down at the floor: the floor and the two walls along the
+    // picture's sides show, cut by its edges (aspect 277/190 on the default page); the other
+    // walls lie outside the field of view, the top face in the plane of the eye.
+    let faces = report["faces"].as_array().unwrap();
+    let statuses: Vec<&str> = faces
+        .iter()
+        .map(|f| f["status"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        statuses,
+        ["hidden", "hidden", "mixed", "mixed", "mixed", "hidden"],
+        "{report}"
+    );
+    // Up to the rounding of points constructed on the frustum's planes (within 1.5 ulp).
+    let [aspect, top] = [277.0 / 190.0, 1.0].map(|s| s * (1.0 + 1e-15));
+    for f in faces {
+        for polygon in f["polygons"].as_array().unwrap() {
+            for p in polygon["outer"].as_array().unwrap() {
+                let (x, y) = (p[0].as_f64().unwrap(), p[1].as_f64().unwrap());
+                assert!(x.abs() <= aspect && y.abs() <= top, "{report}");
+            }
+        }
+    }
     let nowhere = format!("{}/no/such/dir/out.svg", temp_path("x"));
     assert!(fails(&["render", "scenes/cube.toml", "-o", &nowhere]).starts_with(&nowhere));
     for bad in [

@@ -44,7 +44,7 @@
 //! Picture coordinates: `x` to the right, `y` up; scene units for an orthographic view; for a
 //! perspective view, the field of view spans `y` in `[-1, 1]`. A perspective view with part of
 //! the scene not strictly in front of its eye (an eye inside a room or a street) draws the
-//! parts of lines inside its frustum (see `frustum.rs`).
+//! parts of lines inside its frustum (see `queries/frustum.rs`).
 //!
 //! ```
 //! use kepler::{geometry::Vector3, scene::Scene, views::View};
@@ -63,7 +63,6 @@ mod chain;
 mod cover;
 mod drawing;
 mod edges;
-mod frustum;
 pub mod ideographs;
 pub mod verify;
 
@@ -76,6 +75,7 @@ use crate::grid::SegmentGrid;
 use crate::mesh::Mesh;
 use crate::queries::Counters;
 use crate::queries::along::{Form, cut_point, hides_along, hides_at, same_zero};
+use crate::queries::frustum::{Clip, contour_in_front};
 use crate::queries::intersections;
 use crate::queries::meet::{Meet, OnLine, balance, reversed};
 use crate::queries::own_solid::turned_away;
@@ -84,7 +84,6 @@ use crate::scene::{ObjectId, Scene, SceneError};
 use crate::views::{Eye, Picture, View, ViewError};
 use chain::{Piece, chain};
 use cover::{Occluders, PicturedMesh};
-use frustum::{Clip, contour_in_front};
 use geo::{Line as GeoLine, coord};
 use rayon::prelude::*;
 use rstar::RTree;
@@ -195,7 +194,7 @@ struct Line {
     /// For an edge: the triangles on its sides (in its mesh).
     triangles: Option<[u32; 2]>,
     /// Whether the line crosses the plane of a perspective eye that clips: its picture is
-    /// unbounded (see `frustum.rs`).
+    /// unbounded (see `queries/frustum.rs`).
     wide: bool,
     /// Whether the line is not wholly inside the frustum of a view that clips: its pieces
     /// outside it are not drawn.
@@ -392,7 +391,7 @@ struct Pass<'a> {
 
 impl<'a> Pass<'a> {
     /// The pass over every mesh of the scene; a perspective view with a vertex not strictly
-    /// in front of the eye clips to its frustum (see `frustum.rs`).
+    /// in front of the eye clips to its frustum (see `queries/frustum.rs`).
     fn new(scene: &'a Scene, view: &View) -> Result<Pass<'a>> {
         let picture = Picture::of(view);
         let (meshes, clip) = match picture.mesh_objects_in_front(scene) {

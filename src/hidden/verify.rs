@@ -46,7 +46,6 @@
 //! assert!(verify(&scene, &view, &options, &traced).disagreements > 0);
 //! ```
 
-use super::frustum::Clip;
 use super::{
     Drawing, EdgeClass, Options, Pass, Piece, Result, chained, decided, in_working_range,
     scaled_back,
@@ -55,6 +54,7 @@ use crate::geometry::Point3;
 use crate::geometry::exact::ldexp;
 use crate::mesh::Mesh;
 use crate::queries::along::Form;
+use crate::queries::frustum::Clip;
 use crate::queries::visp::{Visibility, VisibilityIndex};
 use crate::scene::{ObjectId, Scene};
 use crate::views::{Eye, Picture, View};

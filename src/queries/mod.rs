@@ -12,7 +12,8 @@
 //! them ask of a segment or a pair of meshes: the exact sign of a plane's form at a point of an
 //! edge and the picture of the point where the edge crosses the plane, built once from the
 //! input (`along`); the lines where two meshes' faces pierce each other (`intersections`);
-//! and the faces a solid seen from outside hides by itself (`own_solid`).
+//! the faces a solid seen from outside hides by itself (`own_solid`); and the frustum both clip
+//! to when a perspective eye is inside the scene (`frustum`).
 //!
 //! ```
 //! use kepler::{geometry::Point3, scene::Scene, queries::{Stage, include::{Inclusion, include}}};
@@ -23,6 +24,7 @@
 //! ```
 
 pub(crate) mod along;
+pub(crate) mod frustum;
 pub mod include;
 pub(crate) mod intersections;
 pub(crate) mod meet;

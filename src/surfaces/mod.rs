@@ -52,7 +52,8 @@ use crate::geometry::polygon::bounding_box;
 use crate::geometry::predicates::orient3d;
 use crate::geometry::{Aabb, Point3};
 use crate::grid::{CellLists, Cells};
-use crate::mesh::Mesh;
+use crate::mesh::{Face, Mesh};
+use crate::queries::frustum::Clip;
 use crate::queries::own_solid::hidden_by_own_solid;
 use crate::queries::sight::Sight;
 use crate::scene::{Content, ObjectId, Scene};
@@ -192,7 +193,8 @@ pub fn visfac(
     owner: ObjectId,
     face: usize,
 ) -> Result<VisibleFace> {
-    Ok(visfac_among(scene, &[a], view, owner, face, None)?.0)
+    let (_, clip) = pictured(scene, view)?;
+    Ok(visfac_among(scene, &[a], view, owner, face, None, clip.as_ref())?.0)
 }
 
 /// VISFAC against the whole scene (every root object, the face's own included): the visible
@@ -212,7 +214,8 @@ pub fn visfac_scene(
     owner: ObjectId,
     face: usize,
 ) -> Result<VisibleFace> {
-    Ok(visfac_among(scene, scene.roots(), view, owner, face, None)?.0)
+    let (_, clip) = pictured(scene, view)?;
+    Ok(visfac_among(scene, scene.roots(), view, owner, face, None, clip.as_ref())?.0)
 }
 
 /// VISOBJ(A, B) (Franklin 1981, algorithm C): VISIBLE if `a` hides nothing of `b`, HIDDEN if it
@@ -230,14 +233,26 @@ pub fn visfac_scene(
 /// assert_eq!(visobj(&scene, b, a, &View::standard()).unwrap(), Status::Visible);
 /// ```
 pub fn visobj(scene: &Scene, a: ObjectId, b: ObjectId, view: &View) -> Result<Status> {
+    let (_, clip) = pictured(scene, view)?;
+    visobj_clipped(scene, a, b, view, clip.as_ref())
+}
+
+/// [`visobj`] with the view's frustum when it clips.
+fn visobj_clipped(
+    scene: &Scene,
+    a: ObjectId,
+    b: ObjectId,
+    view: &View,
+    clip: Option<&Clip>,
+) -> Result<Status> {
     let answers: Vec<Status> = match scene[b].content() {
         Content::Subobjects(children) => children
             .iter()
-            .map(|&c| visobj(scene, a, c, view))
+            .map(|&c| visobj_clipped(scene, a, c, view, clip))
             .collect::<Result<_>>()?,
         // Faces seen edge-on have no area to be hidden or seen: they do not count.
         Content::Mesh(mesh) => (0..mesh.faces().len())
-            .map(|f| visfac(scene, a, view, b, f))
+            .map(|f| visfac_among(scene, &[a], view, b, f, None, clip).map(|v| v.0))
             .filter(|v| !v.as_ref().is_ok_and(|v| v.edge_on))
             .map(|v| v.map(|v| v.status))
             .collect::<Result<_>>()?,
@@ -284,8 +299,16 @@ pub struct FaceReport {
 /// The whole-scene pass: every face of every mesh object, with its visible polygons against
 /// all objects (its own included), in parallel. Each face is tested only against the faces of
 /// each mesh whose pictures may overlap its own (a uniform grid over the picture per mesh),
-/// after the hierarchy's CBOX and INBOX exits. A perspective view needs every vertex in front
-/// of the eye (an error names the object otherwise).
+/// after the hierarchy's CBOX and INBOX exits.
+///
+/// A perspective eye inside the scene (some vertex not strictly in front of it) sees only
+/// what lies inside the view's frustum ([`View::frustum`], at the aspect of
+/// [`View::with_clipping`]), as the hidden-line pass draws: each face's visible polygons are
+/// VTP(F) cut exactly by the frustum's five planes, so every vertex lies in the picture's
+/// window. Everything in front of the eye still hides what lies behind it. A face is then
+/// VISIBLE only when all of it is seen (inside the frustum, nothing hiding any of it), HIDDEN
+/// when nothing of it is seen (behind the eye, wholly outside the frustum, or hidden), MIXED
+/// otherwise, a face cut by the edge of the picture included.
 ///
 /// ```
 /// use kepler::{geometry::Vector3, scene::Scene, views::View, surfaces::{Status, visible_surfaces}};
@@ -297,10 +320,11 @@ pub struct FaceReport {
 /// ```
 pub fn visible_surfaces(scene: &Scene, view: &View) -> Result<Vec<FaceReport>> {
     let picture = Picture::of(view);
-    let meshes = picture.mesh_objects_in_front(scene)?;
+    let (meshes, clip) = pictured(scene, view)?;
+    let clip = clip.as_ref();
     let built: Vec<(ObjectId, FaceGrid)> = meshes
         .par_iter()
-        .map(|&(id, mesh)| (id, FaceGrid::new(scene, id, mesh, view, &picture)))
+        .map(|&(id, mesh)| (id, FaceGrid::new(scene, (id, mesh), view, &picture, clip)))
         .collect();
     let mut grids = SecondaryMap::new();
     grids.extend(built);
@@ -311,7 +335,8 @@ pub fn visible_surfaces(scene: &Scene, view: &View) -> Result<Vec<FaceReport>> {
     faces
         .par_iter()
         .map(|&(id, _, f)| {
-            let (visible, texture) = visfac_among(scene, scene.roots(), view, id, f, Some(&grids))?;
+            let (visible, texture) =
+                visfac_among(scene, scene.roots(), view, id, f, Some(&grids), clip)?;
             Ok(FaceReport {
                 object: id,
                 face: f,
@@ -322,9 +347,26 @@ pub fn visible_surfaces(scene: &Scene, view: &View) -> Result<Vec<FaceReport>> {
         .collect()
 }
 
+/// Mesh objects of a scene.
+type Meshes<'s> = Vec<(ObjectId, &'s Mesh)>;
+
+/// The scene's mesh objects, and the view's frustum when the view clips: a perspective eye with
+/// some vertex not strictly in front of it (an error for a view without a frustum).
+fn pictured<'s>(scene: &'s Scene, view: &View) -> Result<(Meshes<'s>, Option<Clip>)> {
+    match Picture::of(view).mesh_objects_in_front(scene) {
+        Ok(meshes) => Ok((meshes, None)),
+        Err(e @ ViewError::NotInFront { .. }) => match Clip::of(view) {
+            Some(clip) => Ok((scene.mesh_objects(scene.roots()), Some(clip))),
+            None => Err(e.into()),
+        },
+        Err(e) => Err(e.into()),
+    }
+}
+
 /// VISFAC of one face against the union of `objects`, with its visible polygons in the face's
 /// texture coordinates: VTP(F) is F minus the pieces hidden by every occluder that hides some
-/// area of it, decided and built exactly (see [`vtp`]).
+/// area of it, decided and built exactly (see [`vtp`]), cut to the frustum `clip` when the
+/// view clips.
 fn visfac_among(
     scene: &Scene,
     objects: &[ObjectId],
@@ -332,6 +374,7 @@ fn visfac_among(
     owner: ObjectId,
     face: usize,
     grids: Option<&SecondaryMap<ObjectId, FaceGrid>>,
+    clip: Option<&Clip>,
 ) -> Result<(VisibleFace, MultiPolygon<f64>)> {
     let mesh = scene[owner].mesh().ok_or_else(|| SurfacesError::NotMesh {
         object: scene.path(owner),
@@ -350,7 +393,14 @@ fn visfac_among(
         exits,
         edge_on,
     };
-    let target = Target::new(mesh, face, view);
+    let target = Target::new(mesh, face, view, clip);
+    if target.framing == Framing::Outside {
+        // Nothing of it in the frustum: nothing of it is seen.
+        return Ok((
+            answer(Status::Hidden, nothing.clone(), Exits::default(), false),
+            nothing,
+        ));
+    }
     if target.eye_side == Ordering::Equal {
         // Seen edge-on: no area to hide, so VTP(F) stays F (of zero area, no polygons).
         let seen = answer(Status::Visible, nothing.clone(), Exits::default(), true);
@@ -405,8 +455,10 @@ fn visfac_among(
             ring(texture),
         )
     };
-    // Every occluder hides some area of F (decided exactly), so none means VISIBLE.
-    if occluders.is_empty() {
+    // Every occluder hides some area of F (decided exactly), so none means VISIBLE, when all
+    // of F is inside the frustum.
+    let cut = clip.filter(|_| target.framing == Framing::Across);
+    if occluders.is_empty() && cut.is_none() {
         return Ok(whole(exits));
     }
     let (plane, planar) = spanning_triangle(mesh, face, &target.eye);
@@ -419,6 +471,12 @@ fn visfac_among(
         target.eye_side,
         &target.picture,
     );
+    if clip.is_some() {
+        vtp.may_see_behind();
+    }
+    if let Some(clip) = cut {
+        vtp.clip(clip);
+    }
     for occluder in &occluders {
         vtp.subtract(
             &occluder.corners,
@@ -461,12 +519,27 @@ struct Target {
     picture: Picture,
     /// The side of the face's plane the eye is on.
     eye_side: Ordering,
-    /// The bounding box of its picture.
+    /// A box holding the picture of its part inside the frustum: the bounding box of its
+    /// picture, or the picture's window for a face not wholly in front of the eye.
     extent: [[f64; 2]; 2],
+    /// Where it lies against the frustum of a view that clips.
+    framing: Framing,
+}
+
+/// Where a face lies against the frustum of a view that clips (decided exactly at its
+/// vertices).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Framing {
+    /// Every vertex strictly inside (and any face, when the view does not clip).
+    Inside,
+    /// Every vertex weakly outside one of its planes: no area inside.
+    Outside,
+    /// Neither: its visible polygons are cut by the planes.
+    Across,
 }
 
 impl Target {
-    fn new(mesh: &Mesh, face: usize, view: &View) -> Target {
+    fn new(mesh: &Mesh, face: usize, view: &View, clip: Option<&Clip>) -> Target {
         let vertices: Vec<Point3> = mesh.face_points(face).collect();
         let triangles: Vec<[Point3; 3]> = mesh.faces()[face]
             .triangle_range()
@@ -475,7 +548,23 @@ impl Target {
         let plane = triangles[0];
         let eye = *view.eye();
         let picture = Picture::of(view);
-        let extent = bounding_box(vertices.iter().map(|v| picture.point(v)));
+        let framing = match clip {
+            None => Framing::Inside,
+            Some(c) if vertices.iter().all(|v| c.contains(&eye, v)) => Framing::Inside,
+            Some(c)
+                if c.sides().any(|(form, inside)| {
+                    vertices.iter().all(|v| form.sign_at(&eye, v) != inside)
+                }) =>
+            {
+                Framing::Outside
+            }
+            Some(_) => Framing::Across,
+        };
+        // No picture of a point not in front of the eye is ever built.
+        let extent = match (clip, window(view)) {
+            (Some(c), Some(w)) if !vertices.iter().all(|x| c.in_front(x)) => w,
+            _ => bounding_box(vertices.iter().map(|v| picture.point(v))),
+        };
         Target {
             eye_side: eye.orient3d(&plane[0], &plane[1], &plane[2]),
             canonical: canonical_loop(mesh, face),
@@ -485,6 +574,7 @@ impl Target {
             eye,
             picture,
             extent,
+            framing,
         }
     }
 
@@ -557,26 +647,63 @@ struct FaceGrid {
 }
 
 impl FaceGrid {
-    /// The grid of the faces of `mesh` (object `id`), about one cell per face.
-    fn new(scene: &Scene, id: ObjectId, mesh: &Mesh, view: &View, picture: &Picture) -> FaceGrid {
-        let pictures: Vec<[f64; 2]> = mesh.vertices().iter().map(|v| picture.point(v)).collect();
+    /// The grid of the faces of `mesh` (object `id`), about one cell per face. When the view
+    /// clips (`clip`), only the vertices strictly in front of the eye are pictured: a face
+    /// with none cannot hide anything in front of the eye and is listed nowhere, one with some
+    /// but not all is listed in every cell, and the grid spans the picture's window too.
+    fn new(
+        scene: &Scene,
+        (id, mesh): (ObjectId, &Mesh),
+        view: &View,
+        picture: &Picture,
+        clip: Option<&Clip>,
+    ) -> FaceGrid {
+        let front: Vec<bool> = mesh
+            .vertices()
+            .iter()
+            .map(|v| clip.is_none_or(|c| c.in_front(v)))
+            .collect();
+        let pictures: Vec<[f64; 2]> = mesh
+            .vertices()
+            .iter()
+            .zip(&front)
+            .map(|(v, &f)| if f { picture.point(v) } else { [0.0; 2] })
+            .collect();
+        let reach = |f: &Face| {
+            let inside = f.vertices().iter().filter(|&&v| front[v as usize]).count();
+            (inside > 0, inside == f.vertices().len())
+        };
         let boxes: Vec<[[f64; 2]; 2]> = mesh
             .faces()
             .iter()
-            .map(|f| bounding_box(f.vertices().iter().map(|&v| pictures[v as usize])))
+            .map(|f| match reach(f) {
+                (_, true) => bounding_box(f.vertices().iter().map(|&v| pictures[v as usize])),
+                _ => [[f64::INFINITY; 2], [f64::NEG_INFINITY; 2]],
+            })
             .collect();
-        let [lo, hi] = bounding_box(boxes.iter().flatten().copied());
+        let window = clip.and(window(view));
+        let pictured = boxes.iter().zip(mesh.faces()).filter(|(_, f)| reach(f).1);
+        let [lo, hi] = bounding_box(pictured.map(|(b, _)| b).chain(&window).flatten().copied());
         let side = (boxes.len().max(1) as f64).sqrt().ceil() as usize;
         let extent = [0, 1].map(|k| (hi[k] - lo[k]).max(0.0));
         let cells = Cells::new(lo, extent, [side, side]);
         let margin = GRID_MARGIN * lo.iter().chain(&hi).fold(0.0f64, |m, v| m.max(v.abs()));
         let pairs = boxes
             .iter()
+            .zip(mesh.faces())
             .enumerate()
-            .flat_map(|(f, [low, high])| {
-                cells
-                    .covering(*low, *high, margin)
-                    .map(move |c| (c as u32, f as u32))
+            .flat_map(|(f, ([low, high], face))| {
+                let span = match reach(face) {
+                    (_, true) => Some([*low, *high]),
+                    (true, false) => Some([lo, hi]),
+                    (false, false) => None,
+                };
+                let cells = &cells;
+                span.into_iter().flat_map(move |[low, high]| {
+                    cells
+                        .covering(low, high, margin)
+                        .map(move |c| (c as u32, f as u32))
+                })
             })
             .collect();
         FaceGrid {
@@ -598,6 +725,15 @@ impl FaceGrid {
         out.dedup();
         out
     }
+}
+
+/// A box holding the picture's window (the pictures of the points inside the frustum of a
+/// view that clips: `|x| ≤ aspect`, `|y| ≤ 1`), grown by a relative 2⁻²⁰ over the rounding of
+/// the picture's scale; `None` without a field of view.
+fn window(view: &View) -> Option<[[f64; 2]; 2]> {
+    let [h, v] = view.window()?;
+    let [x, y] = [h / v, 1.0].map(|s| s * (1.0 + 2f64.powi(-20)));
+    Some([[-x, -y], [x, y]])
 }
 
 /// The relative margin of the face grid: 2⁻⁴⁰.

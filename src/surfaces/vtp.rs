@@ -36,6 +36,7 @@ use crate::geometry::kernel::{Difference, Polynomial, Product};
 use crate::geometry::predicates::orient3d;
 use crate::mesh::TextureFrame;
 use crate::queries::along::{Form, cut_point, cut_point_on_plane};
+use crate::queries::frustum::Clip;
 use crate::views::{Eye, Picture};
 use geo::{Coord, LineString, MultiPolygon, Polygon};
 use std::cell::RefCell;
@@ -105,8 +106,12 @@ pub(super) struct Vtp<'a> {
     /// Signs that needed exact arithmetic, by (vertex, line).
     exact: HashMap<(u32, u32), Ordering>,
     cells: Vec<Cell>,
-    /// Whether some occluder took area away.
+    /// Whether some occluder (or the frustum) took area away.
     changed: bool,
+    /// Whether some of the scene may lie behind the eye ([`Vtp::may_see_behind`]): then an
+    /// input point off F's plane stands for a vertex only when the two lie on the same side of
+    /// the eye.
+    behind: bool,
 }
 
 impl<'a> Vtp<'a> {
@@ -144,6 +149,7 @@ impl<'a> Vtp<'a> {
             exact: HashMap::new(),
             cells: Vec::new(),
             changed: false,
+            behind: false,
         };
         match vtp.convex(corners) {
             Some((loop_, turn)) => vtp.add_cell(&loop_, turn),
@@ -298,8 +304,12 @@ impl<'a> Vtp<'a> {
         if let Some(&v) = self.crossings.get(&key) {
             return v;
         }
-        let at = match input.or_else(|| self.input_at(a, b)) {
-            Some(p) => At::Input(p, self.on_f(&p)),
+        let input = input
+            .or_else(|| self.input_at(a, b))
+            .map(|p| (p, self.on_f(&p)))
+            .filter(|&(p, on_plane)| on_plane || self.seen_through(&p));
+        let at = match input {
+            Some((p, on_plane)) => At::Input(p, on_plane),
             None => self.cut_at(a, b),
         };
         let frame = &self.frame;
@@ -319,6 +329,25 @@ impl<'a> Vtp<'a> {
         let v = (self.vertices.len() - 1) as u32;
         self.crossings.insert(key, v);
         v
+    }
+
+    /// Whether the point of F's plane on the line through the eye and the input point `p` (off
+    /// F's plane) lies on `p`'s side of the eye, so that sight planes have the same sign at
+    /// both and `p`'s picture is the point's: with `I_F` the form of F's plane at the eye,
+    /// when `I_F − s_F(p)` has the sign of `I_F`. Always so when nothing lies behind the eye
+    /// (the point is then a point of F, in front of the eye, as `p` is).
+    fn seen_through(&self, p: &Point3) -> bool {
+        if !self.behind {
+            return true;
+        }
+        let [f0, f1, f2] = &self.frame.plane;
+        let eye = &self.frame.eye;
+        Difference(
+            eye.determinant(f0, f1, f2),
+            Kind::Plane(self.frame.plane).at(eye, p),
+        )
+        .sign()
+            == self.eye_side
     }
 
     /// Whether the input point `p` lies on F's plane.
@@ -439,7 +468,9 @@ impl<'a> Vtp<'a> {
                     return Ordering::Equal;
                 }
                 // The picture of an input point of `l` on both sight planes.
-                if let Some(p) = self.input_on(v, l) {
+                if let Some(p) = self.input_on(v, l)
+                    && (self.on_f(&p) || self.seen_through(&p))
+                {
                     let on_plane = self.on_f(&p);
                     self.vertices[v as usize].at = At::Input(p, on_plane);
                     return self.sign_at(v, l);
@@ -542,6 +573,58 @@ impl<'a> Vtp<'a> {
                     self.cells.extend(parts);
                 }
                 None => self.cells.push(cell),
+            }
+        }
+    }
+
+    /// Some of the scene may lie behind the eye (the view clips): an occluder's corner behind
+    /// it may lie on a line of sight through a point of F in front of it.
+    pub(super) fn may_see_behind(&mut self) {
+        self.behind = true;
+    }
+
+    /// Keeps only the part of VTP(F) strictly inside the frustum `clip` (each of its planes a
+    /// line of F's plane, or, for a plane parallel to F's, all of F's plane on one side).
+    pub(super) fn clip(&mut self, clip: &Clip) {
+        let mut region: Vec<(u32, Ordering)> = Vec::with_capacity(5);
+        for (form, inside) in clip.sides() {
+            let kind = match form {
+                Form::Plane(t) => Kind::Plane(t),
+                Form::Sight(a, b) => Kind::Sight(a, b),
+            };
+            match self.line(kind) {
+                Trace::Line(l, s) => region.push((l, times(inside, s))),
+                Trace::Constant(s) if s == inside => {}
+                Trace::Constant(_) => {
+                    self.changed |= !self.cells.is_empty();
+                    self.cells.clear();
+                    return;
+                }
+            }
+        }
+        let cells = std::mem::take(&mut self.cells);
+        for cell in cells {
+            let mut rest = cell;
+            let mut kept = true;
+            for &(k, side) in &region {
+                let signs: Vec<Ordering> = rest
+                    .v
+                    .iter()
+                    .map(|&v| times(self.sign_at(v, k), side))
+                    .collect();
+                if !signs.contains(&Ordering::Less) {
+                    continue;
+                }
+                self.changed = true;
+                if !signs.contains(&Ordering::Greater) {
+                    kept = false;
+                    break;
+                }
+                let (k, s) = self.resolve(k);
+                rest = self.split(&rest, k, times(side, s), &signs).0;
+            }
+            if kept {
+                self.cells.push(rest);
             }
         }
     }

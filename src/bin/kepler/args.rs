@@ -29,9 +29,9 @@ pub struct ViewArgs {
     /// Vertical field of view of a perspective view, in degrees (default 40).
     #[arg(long, value_name = "DEGREES", allow_hyphen_values = true)]
     fov: Option<f64>,
-    /// `render`: the near clipping distance of a perspective view whose eye is inside the scene
-    /// (default 1/1024 of the distance to the target); lines are clipped to the page's field
-    /// of view too.
+    /// `render` and `surfaces`: the near clipping distance of a perspective view whose eye is
+    /// inside the scene (default 1/1024 of the distance to the target); lines and faces are
+    /// clipped to the page's field of view too.
     #[arg(long, value_name = "DIST", allow_hyphen_values = true)]
     near: Option<f64>,
 }
@@ -59,6 +59,15 @@ impl ViewArgs {
         let near = self.near.unwrap_or(view.near());
         Ok(view.with_clipping(near, aspect)?)
     }
+}
+
+/// The width of the page's drawing area over its height (1 when the page is refused: the SVG
+/// writer reports it).
+pub fn page_aspect(options: &SvgOptions) -> f64 {
+    let room = options.page.map(|side| side - 2.0 * options.margin);
+    Some(room[0] / room[1])
+        .filter(|a| a.is_finite() && *a > 0.0)
+        .unwrap_or(1.0)
 }
 
 /// The page options of the commands that write SVG.

@@ -1,6 +1,8 @@
 //! `kepler render`: the exact hidden-line drawing of a scene, as SVG (and JSON).
 
-use crate::args::{FaceArgs, PageArgs, ViewArgs, load_drawable, parse_area, parse_stroke};
+use crate::args::{
+    FaceArgs, PageArgs, ViewArgs, load_drawable, page_aspect, parse_area, parse_stroke,
+};
 use crate::output::{progress_bar, write_file};
 use anyhow::Result;
 use kepler::geometry::polygon::bounding_box;
@@ -82,10 +84,7 @@ pub fn run(args: Args) -> Result<()> {
     let scene = load_drawable(&args.scene, args.faces.validation())?;
     let repairs = repairs(&scene);
     let svg_options = svg_options(&args);
-    let room = svg_options.page.map(|side| side - 2.0 * svg_options.margin);
-    // A page the SVG options refuse is reported when writing; its aspect is not used.
-    let aspect = Some(room[0] / room[1]).filter(|a| a.is_finite() && *a > 0.0);
-    let view = args.view.view_on(&scene, aspect.unwrap_or(1.0))?;
+    let view = args.view.view_on(&scene, page_aspect(&svg_options))?;
     let options = hidden::Options {
         edges: args.edges,
         crease_angle,

@@ -1,6 +1,6 @@
 //! `kepler surfaces`: every face's visible polygons, as a shaded SVG (and JSON).
 
-use crate::args::{FaceArgs, PageArgs, ViewArgs, load_drawable, parse_triple};
+use crate::args::{FaceArgs, PageArgs, ViewArgs, load_drawable, page_aspect, parse_triple};
 use crate::output::write_file;
 use anyhow::Result;
 use kepler::geometry::Vector3;
@@ -40,9 +40,9 @@ pub fn run(args: Args) -> Result<()> {
         anyhow::bail!("--light 0,0,0 has no direction: give a nonzero vector towards the light");
     }
     let scene = load_drawable(&args.scene, args.faces.validation())?;
-    let view = args.view.view(&scene)?;
-    let faces = visible_surfaces(&scene, &view)?;
     let options = args.page.svg_options();
+    let view = args.view.view_on(&scene, page_aspect(&options))?;
+    let faces = visible_surfaces(&scene, &view)?;
     let shading = Shading {
         light: args.light.map(Vector3::from),
         outlines: args.outlines,

@@ -1,10 +1,10 @@
 //! Clipping to the frustum: a perspective eye inside the scene.
 //!
 //! When some vertex of the scene is not strictly in front of a perspective eye (the eye in a
-//! room, walking down a street), the pass draws only the parts of lines inside the view's
+//! room, walking down a street), both drawing layers keep only what lies inside the view's
 //! frustum ([`View::frustum`]: beyond the near plane, within the field of view at the aspect
 //! of [`View::with_clipping`]); everything in front of the eye still hides what lies behind
-//! it, as in the world. So:
+//! it, as in the world. The hidden-line pass (`hidden`) draws the parts of lines inside it:
 //!
 //! - a line wholly behind the eye (no point strictly in front of it) is left out; a line that
 //!   crosses the plane of the eye is *wide*: its picture is unbounded, so it is tested against
@@ -15,6 +15,9 @@
 //! - where a line's picture crosses a wide contour's, the point of the contour behind the
 //!   crossing must be in front of the eye for the contour to cut the line: decided exactly
 //!   ([`contour_in_front`]).
+//!
+//! The visible-surface pass (`surfaces`) cuts each face's visible polygons by the same five
+//! planes ([`Clip::sides`]) and keeps the parts inside.
 //!
 //! Each plane is given by points in doubles, so that each clipped end is the intersection of
 //! an input edge with a plane given exactly, constructed once like every other cut
@@ -88,6 +91,12 @@ impl Clip {
             eye,
             forward,
         })
+    }
+
+    /// The planes as forms (near, left, right, bottom, top), each with the sign of its form
+    /// strictly inside the frustum.
+    pub(crate) fn sides(&self) -> impl Iterator<Item = (Form, Ordering)> + '_ {
+        self.planes.iter().copied()
     }
 
     /// The planes as forms along lines.
