@@ -559,7 +559,7 @@ fn translating_along_an_orthographic_view_changes_nothing() {
             let mut t = [0.0; 3];
             t[axis] = offset;
             let t = Some(Transform::Translate(t));
-            check(tally, "translate along", &scene, &spec, t, Solid::clone);
+            check(tally, "translate along", scene, &spec, t, Solid::clone);
         }
     });
 }
