@@ -17,7 +17,7 @@ use crate::queries::sight::Sight;
 use crate::queries::visp::{Visibility, any_hides, descend};
 use crate::queries::{Counters, Stage};
 use crate::scene::{ObjectId, Scene};
-use crate::views::Eye;
+use crate::views::{Eye, Picture};
 use rayon::prelude::*;
 use slotmap::SecondaryMap;
 
@@ -150,6 +150,8 @@ pub(crate) type PicturedMesh<'a> = (ObjectId, &'a Mesh, &'a [[f64; 2]], &'a [boo
 pub(crate) struct Occluders<'s> {
     scene: &'s Scene,
     eye: Eye,
+    /// The picture map the grids' cells are in.
+    picture: Picture,
     grids: SecondaryMap<ObjectId, PictureGrid>,
     /// Objects whose INBOX is not used: those with a mesh of more than the limit's triangles.
     no_inbox: SecondaryMap<ObjectId, ()>,
@@ -160,7 +162,7 @@ impl<'s> Occluders<'s> {
     /// queries; objects holding a mesh of more than `inbox_limit` triangles use no INBOX.
     pub(crate) fn new(
         scene: &'s Scene,
-        eye: Eye,
+        (eye, picture): (Eye, Picture),
         meshes: &[PicturedMesh],
         inbox_limit: usize,
         queries: usize,
@@ -196,6 +198,7 @@ impl<'s> Occluders<'s> {
         Occluders {
             scene,
             eye,
+            picture,
             grids,
             no_inbox,
         }
@@ -207,15 +210,15 @@ impl<'s> Occluders<'s> {
     }
 
     /// VISP of a point known exactly only to `hides`: `approximate` (within a few units in the
-    /// last place of the exact point) drives the box filters, `picture` (its rounded picture)
-    /// picks each mesh's cell, and `hides(object, triangle)` decides exactly.
+    /// last place of the exact point) drives the box filters, its rounded picture picks each
+    /// mesh's cell, and `hides(object, triangle)` decides exactly.
     pub(crate) fn visp(
         &self,
         approximate: &Point3,
-        picture: [f64; 2],
         hides: impl Fn(ObjectId, usize) -> bool,
         counters: &mut Counters,
     ) -> Visibility {
+        let picture = self.picture.point(approximate);
         let sight = Sight::to_eye(approximate, &self.eye);
         let wanted = |id: ObjectId| !self.no_inbox.contains_key(id);
         let (answer, stage): (Visibility, Stage) =

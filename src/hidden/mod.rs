@@ -75,7 +75,7 @@ use crate::grid::SegmentGrid;
 use crate::mesh::Mesh;
 use crate::queries::Counters;
 use crate::queries::along::{Form, cut_point, hides_along, hides_at, same_zero};
-use crate::queries::frustum::{Clip, contour_in_front};
+use crate::queries::frustum::{Clip, contour_in_front, pictured};
 use crate::queries::intersections;
 use crate::queries::meet::{Meet, OnLine, balance, reversed};
 use crate::queries::own_solid::turned_away;
@@ -394,14 +394,7 @@ impl<'a> Pass<'a> {
     /// in front of the eye clips to its frustum (see `queries/frustum.rs`).
     fn new(scene: &'a Scene, view: &View) -> Result<Pass<'a>> {
         let picture = Picture::of(view);
-        let (meshes, clip) = match picture.mesh_objects_in_front(scene) {
-            Ok(meshes) => (meshes, None),
-            Err(e @ ViewError::NotInFront { .. }) => match Clip::of(view) {
-                Some(clip) => (scene.mesh_objects(scene.roots()), Some(clip)),
-                None => return Err(e.into()),
-            },
-            Err(e) => return Err(e.into()),
-        };
+        let (meshes, clip) = pictured(scene, view)?;
         let leaves = meshes
             .into_iter()
             .map(|(id, mesh)| Leaf {
@@ -836,7 +829,13 @@ impl<'a> Pass<'a> {
             .map(|l| (l.id, l.mesh, l.pictures.as_slice(), l.front.as_slice()))
             .collect();
         let queries = self.lines.iter().filter(|l| !l.back).count() + self.cuts.len();
-        let occluders = Occluders::new(self.scene, self.eye, &meshes, INBOX_LIMIT, queries);
+        let occluders = Occluders::new(
+            self.scene,
+            (self.eye, self.picture),
+            &meshes,
+            INBOX_LIMIT,
+            queries,
+        );
         let large = meshes
             .iter()
             .filter(|(_, m, _, _)| m.triangles().len() > INBOX_LIMIT)
@@ -1164,13 +1163,7 @@ fn pieces(
                     .mesh()
                     .is_some_and(|m| hides_along(eye, &m.triangle(tri), &l.a, &l.b, t))
             };
-            let answer = occluders.visp(
-                &approximate,
-                picture.point(&approximate),
-                hides,
-                &mut counters,
-            );
-            Some(answer == Visibility::Visible)
+            Some(occluders.visp(&approximate, hides, &mut counters) == Visibility::Visible)
         };
         runs.step(state, lo, || {
             cut_picture(picture, eye, l, bounds[k].1.map(|c| c.at))
@@ -1238,13 +1231,7 @@ fn line_pieces(
                         .mesh()
                         .is_some_and(|mesh| hides_at(eye, &mesh.triangle(tri), sign))
             };
-            let answer = occluders.visp(
-                &approximate,
-                picture.point(&approximate),
-                hides,
-                &mut counters,
-            );
-            Some(answer == Visibility::Visible)
+            Some(occluders.visp(&approximate, hides, &mut counters) == Visibility::Visible)
         };
         runs.step(state, along(k), || drawn(k));
     }

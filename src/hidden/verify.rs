@@ -54,10 +54,10 @@ use crate::geometry::Point3;
 use crate::geometry::exact::ldexp;
 use crate::mesh::Mesh;
 use crate::queries::along::Form;
-use crate::queries::frustum::Clip;
+use crate::queries::frustum::pictured;
 use crate::queries::visp::{Visibility, VisibilityIndex};
 use crate::scene::{ObjectId, Scene};
-use crate::views::{Eye, Picture, View};
+use crate::views::{Eye, View};
 use rayon::prelude::*;
 use std::cell::Cell;
 use std::cmp::Ordering;
@@ -577,11 +577,7 @@ fn edge_key(a: &Point3, b: &Point3) -> EdgeKey {
 fn contours(scene: &Scene, view: &View, traced: &Traced, report: &mut Verification) {
     let eye = view.eye();
     // A view that clips draws contours only inside its frustum: those are checked.
-    let clip = Picture::of(view)
-        .mesh_objects_in_front(scene)
-        .is_err()
-        .then(|| Clip::of(view))
-        .flatten();
+    let clip = pictured(scene, view).ok().and_then(|(_, clip)| clip);
     let mut on: HashMap<(ObjectId, EdgeKey), Vec<usize>> = HashMap::new();
     for (i, p) in traced.pieces.iter().enumerate() {
         if let Source::Edge { object } = p.source {

@@ -30,8 +30,10 @@
 use crate::geometry::kernel::{Difference, Polynomial, Product};
 use crate::geometry::predicates::Side;
 use crate::geometry::{Point3, Vector3};
+use crate::mesh::Mesh;
 use crate::queries::along::Form;
-use crate::views::{Eye, View};
+use crate::scene::{ObjectId, Scene};
+use crate::views::{Eye, Picture, View, ViewError};
 use std::cmp::Ordering;
 
 /// The frustum of a perspective view that clips: its near plane and the four planes through
@@ -139,6 +141,24 @@ impl Clip {
     /// Whether `x` lies strictly in front of the eye, exactly.
     pub(crate) fn in_front(&self, x: &Point3) -> bool {
         self.depth(x).sign() == Ordering::Greater
+    }
+}
+
+/// The scene's mesh objects, and the frustum when the view clips (see [`pictured`]).
+pub(crate) type Pictured<'s> = (Vec<(ObjectId, &'s Mesh)>, Option<Clip>);
+
+/// The scene's mesh objects, and the view's frustum when the view clips: a perspective eye
+/// with some vertex not strictly in front of it (an error naming it for a view without a
+/// frustum). The one rule by which the hidden-line and visible-surface passes and `verify`
+/// decide whether to clip.
+pub(crate) fn pictured<'s>(scene: &'s Scene, view: &View) -> Result<Pictured<'s>, ViewError> {
+    match Picture::of(view).mesh_objects_in_front(scene) {
+        Ok(meshes) => Ok((meshes, None)),
+        Err(e @ ViewError::NotInFront { .. }) => match Clip::of(view) {
+            Some(clip) => Ok((scene.mesh_objects(scene.roots()), Some(clip))),
+            None => Err(e),
+        },
+        Err(e) => Err(e),
     }
 }
 

@@ -53,7 +53,7 @@ use crate::geometry::predicates::orient3d;
 use crate::geometry::{Aabb, Point3};
 use crate::grid::{CellLists, Cells};
 use crate::mesh::{Face, Mesh};
-use crate::queries::frustum::Clip;
+use crate::queries::frustum::{self, Clip};
 use crate::queries::own_solid::hidden_by_own_solid;
 use crate::queries::sight::Sight;
 use crate::scene::{Content, ObjectId, Scene};
@@ -347,20 +347,9 @@ pub fn visible_surfaces(scene: &Scene, view: &View) -> Result<Vec<FaceReport>> {
         .collect()
 }
 
-/// Mesh objects of a scene.
-type Meshes<'s> = Vec<(ObjectId, &'s Mesh)>;
-
-/// The scene's mesh objects, and the view's frustum when the view clips: a perspective eye with
-/// some vertex not strictly in front of it (an error for a view without a frustum).
-fn pictured<'s>(scene: &'s Scene, view: &View) -> Result<(Meshes<'s>, Option<Clip>)> {
-    match Picture::of(view).mesh_objects_in_front(scene) {
-        Ok(meshes) => Ok((meshes, None)),
-        Err(e @ ViewError::NotInFront { .. }) => match Clip::of(view) {
-            Some(clip) => Ok((scene.mesh_objects(scene.roots()), Some(clip))),
-            None => Err(e.into()),
-        },
-        Err(e) => Err(e.into()),
-    }
+/// The scene's mesh objects and the frustum when the view clips ([`frustum::pictured`]).
+fn pictured<'s>(scene: &'s Scene, view: &View) -> Result<frustum::Pictured<'s>> {
+    Ok(frustum::pictured(scene, view)?)
 }
 
 /// VISFAC of one face against the union of `objects`, with its visible polygons in the face's
