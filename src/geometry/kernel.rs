@@ -329,28 +329,59 @@ pub fn exact_sign<P: Polynomial + ?Sized>(p: &P) -> Ordering {
 /// assert_eq!(value(&det), 0.5);
 /// ```
 pub fn value<P: Polynomial + ?Sized>(p: &P) -> f64 {
-    let e = p.estimate();
-    if e.value.is_finite() && e.bound <= e.value.abs() * RELATIVE_VALUE {
-        return e.value;
-    }
-    let exponents = p.exponents();
-    if exponents.max > 1023 {
-        return e.value;
-    }
-    if exponents.exact_for(p.degree()) {
-        estimate(&p.expansion())
-    } else {
-        rational_value(&p.evaluate::<BigRational>()).unwrap_or(e.value)
-    }
+    value_within(p, RELATIVE_VALUE)
 }
 
 /// The relative bound under which [`value`] keeps an estimate: 2⁻²⁰.
 const RELATIVE_VALUE: f64 = 1.0 / (1u64 << 20) as f64;
 
-/// A rational rounded to a double (`None` when it does not fit).
-fn rational_value(x: &BigRational) -> Option<f64> {
+/// The value of `p` to within a relative `relative` (at least a few units in the last place):
+/// its estimate when the certified bound allows, else [`rounded`] (the estimate again if that
+/// does not fit a double).
+///
+/// ```
+/// use kepler::geometry::kernel::value_within;
+/// use kepler::geometry::{Point3, predicates::Orient3d};
+/// let det = Orient3d([
+///     Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0),
+///     Point3::new(0.0, 1.0, 0.0), Point3::new(0.0, 0.0, -3.0),
+/// ]);
+/// assert_eq!(value_within(&det, 1e-15), 3.0);
+/// ```
+pub fn value_within<P: Polynomial + ?Sized>(p: &P, relative: f64) -> f64 {
+    let e = p.estimate();
+    if e.value.is_finite() && e.bound <= e.value.abs() * relative {
+        return e.value;
+    }
+    if p.exponents().max > 1023 {
+        return e.value;
+    }
+    Some(rounded(p))
+        .filter(|v| v.is_finite())
+        .unwrap_or(e.value)
+}
+
+/// The exact value of `p` rounded once to the nearest double: from its expansion when its
+/// inputs allow exact expansions, else from its rational value (NaN where that does not fit a
+/// double).
+///
+/// ```
+/// use kepler::geometry::kernel::rounded;
+/// use kepler::geometry::{Point3, predicates::Orient3d};
+/// let t = 1e-300; // products underflow: rounded from the rational value
+/// let det = Orient3d([
+///     Point3::new(0.0, 0.0, 0.0), Point3::new(t, 0.0, 0.0),
+///     Point3::new(0.0, t, 0.0), Point3::new(0.0, 0.0, -t),
+/// ]);
+/// assert_eq!(rounded(&det), 0.0); // 1e-900 rounds to zero
+/// ```
+pub fn rounded<P: Polynomial + ?Sized>(p: &P) -> f64 {
     use num_traits::ToPrimitive;
-    x.to_f64().filter(|v| v.is_finite())
+    if p.exponents().exact_for(p.degree()) {
+        estimate(&p.expansion())
+    } else {
+        p.evaluate::<BigRational>().to_f64().unwrap_or(f64::NAN)
+    }
 }
 
 /// The sign of an exact rational.

@@ -391,15 +391,6 @@ pub(crate) fn exact_sign_rational<P: Polynomial>(p: &P) -> Ordering {
     }
 }
 
-/// The exact value of `p` rounded once to the nearest double.
-pub(crate) fn rounded<P: Polynomial>(p: &P) -> f64 {
-    if p.exponents().exact_for(p.degree()) {
-        estimate(&p.expansion())
-    } else {
-        p.evaluate::<BigRational>().to_f64().unwrap_or(f64::NAN)
-    }
-}
-
 /// `n / d` with each exact polynomial rounded once to the nearest double, then divided (the
 /// rule of every constructed coordinate; see [`crate::geometry::kernel::ratio`]); where the
 /// inputs' exponents do not allow exact expansions, the same rule from rationals, each value

@@ -60,12 +60,12 @@
 //! scene and eye together give the same bits, transformed.
 
 use super::along::{
-    Expanded, Filtered, Form, FormAt, cut_point, cut_point_of, exact_sign_rational, rounded,
-    rounded_ratio,
+    Expanded, Filtered, Form, FormAt, cut_point, cut_point_of, exact_sign_rational, rounded_ratio,
 };
 use crate::geometry::exact::{expansion_sum, ldexp, scale_expansion};
 use crate::geometry::kernel::{
-    Difference, Estimate, Exponents, Polynomial, Product, Ring, expansion_sign,
+    Difference, Estimate, Exponents, Polynomial, Product, Ring, expansion_sign, rounded,
+    value_within,
 };
 use crate::geometry::predicates::{Orient3d, Orientation};
 use crate::geometry::{Point3, Vector3};
@@ -759,15 +759,9 @@ impl Polynomial for Midpoint<'_> {
 /// point or weight: `2⁻⁴²`, below the `2⁻⁴⁰` margins of the visibility queries' box filters.
 const ACCURATE: f64 = 1.0 / (1u64 << 42) as f64;
 
-/// The value of `p` within `2⁻⁴²` of its magnitude: its estimate when the bound is small,
-/// else its exact value rounded once.
+/// The value of `p` within `2⁻⁴²` of its magnitude ([`value_within`]).
 fn accurate<P: Polynomial>(p: &P) -> f64 {
-    let e = p.estimate();
-    if e.value.is_finite() && e.bound <= e.value.abs() * ACCURATE {
-        e.value
-    } else {
-        rounded(p)
-    }
+    value_within(p, ACCURATE)
 }
 
 /// The power of two that brings a positive weight near 1 (1 for a weight that is not a
