@@ -1,6 +1,6 @@
 //! End-to-end hidden-line drawings (`kepler::hidden::draw`, everything from edge classes to
 //! chained polylines; not file output) of a scan-like closed mesh of 69,600 triangles from
-//! three views, with `--edges feature` (target: under 0.3 s each) and `--edges all` (under
+//! four views (one from an eye inside the torus's hole, clipped to its frustum), with `--edges feature` (target: under 0.3 s each) and `--edges all` (under
 //! 0.5 s), and of a mesh of 1,000,000 triangles with `--edges feature` (under 3 s).
 //!
 //! The meshes are tori whose surface is displaced by smooth waves and a little seeded noise,
@@ -44,8 +44,9 @@ fn scanlike(segments: u32, sides: u32) -> Mesh {
     Mesh::from_polygons(vertices, faces).expect("valid mesh")
 }
 
-/// The three views: two orthographic, one perspective.
-fn views() -> [(&'static str, View); 3] {
+/// The four views: two orthographic, one perspective from outside, and one from an eye in the
+/// torus's hole, which clips to its frustum (the torus surrounds the eye).
+fn views() -> [(&'static str, View); 4] {
     [
         (
             "iso",
@@ -62,6 +63,16 @@ fn views() -> [(&'static str, View); 3] {
                 Point3::origin(),
                 Vector3::z(),
                 40.0,
+            )
+            .expect("view"),
+        ),
+        (
+            "inside",
+            View::perspective(
+                Point3::new(0.0, 0.0, 0.25),
+                Point3::new(3.0, 1.0, 0.0),
+                Vector3::z(),
+                70.0,
             )
             .expect("view"),
         ),
@@ -93,6 +104,12 @@ fn render_70k(c: &mut Criterion) {
             ..Options::default()
         };
         for (view_name, view) in views() {
+            // With every smooth edge, thousands of edges cross the plane of the inside eye and
+            // are tested against every other line: 25 s a drawing today, left out until those
+            // tests go through the grid too.
+            if edges == EdgeSelection::All && view_name == "inside" {
+                continue;
+            }
             group.bench_function(format!("{name} {view_name}"), |b| {
                 b.iter(|| draw(black_box(&scene), &view, &options).expect("drawing"))
             });
