@@ -104,12 +104,6 @@ fn render_70k(c: &mut Criterion) {
             ..Options::default()
         };
         for (view_name, view) in views() {
-            // With every smooth edge, thousands of edges cross the plane of the inside eye and
-            // are tested against every other line: 25 s a drawing today, left out until those
-            // tests go through the grid too.
-            if edges == EdgeSelection::All && view_name == "inside" {
-                continue;
-            }
             group.bench_function(format!("{name} {view_name}"), |b| {
                 b.iter(|| draw(black_box(&scene), &view, &options).expect("drawing"))
             });

@@ -7,12 +7,16 @@
 //! 2⁻⁴⁰ of the largest picture coordinate, far more than the rounding of any picture point; a
 //! cell is found by the grid's one monotone index function. So a triangle whose exact picture
 //! contains a point's exact picture is always listed in the cell of the point's rounded
-//! picture, and the exact test then decides.
+//! picture, and the exact test then decides. A point known only to within a distance (a point
+//! of an edge or an intersection line, defined exactly but approximated for finding what is
+//! near it) is looked up in every cell within the reach of its picture's error
+//! ([`Picture::reach`]): nearly always the one cell.
 
 use crate::geometry::Point3;
 use crate::geometry::polygon::bounding_box;
 use crate::grid::{CellLists, Cells};
 use crate::mesh::Mesh;
+use crate::queries::frustum::ray_direction;
 use crate::queries::sight::Sight;
 use crate::queries::visp::{Visibility, any_hides, descend};
 use crate::queries::{Counters, Stage};
@@ -20,6 +24,7 @@ use crate::scene::{ObjectId, Scene};
 use crate::views::{Eye, Picture};
 use rayon::prelude::*;
 use slotmap::SecondaryMap;
+use std::cmp::Ordering;
 
 /// The relative margin of the cells' lists: 2⁻⁴⁰.
 const MARGIN: f64 = 1.0 / (1u64 << 40) as f64;
@@ -29,42 +34,45 @@ const MARGIN: f64 = 1.0 / (1u64 << 40) as f64;
 pub(crate) struct PictureGrid {
     cells: Cells,
     lists: CellLists,
-    /// Triangles whose pictures are unbounded (they cross the plane of a perspective eye that
-    /// clips): candidates everywhere.
-    wide: Vec<u32>,
 }
+
+/// The window of a view that clips (half its width and height, grown), with the picture map:
+/// only points whose pictures lie in it are asked about.
+pub(crate) type Window<'a> = (&'a Picture, [f64; 2]);
 
 impl PictureGrid {
     /// Lists the triangles of `mesh` whose vertices' pictures are `pictures`, in cells sized
-    /// for about `queries` queries (see [`cell_factor`]). When the view clips, `front` says
-    /// which vertices are in front of the eye (the others' pictures mean nothing): a triangle
-    /// with none in front hides nothing in front of the eye and is left out, one with some is
-    /// a candidate everywhere.
+    /// for about `queries` queries (see [`cell_factor`]). When the view clips (`window`),
+    /// `front` says which vertices are in front of the eye (the others' pictures mean
+    /// nothing), the cells cover the window only (every point asked about lies in the frustum),
+    /// and a triangle is listed by the part of its picture's box in the window: a triangle with
+    /// no vertex in front hides nothing in front of the eye and is left out; the picture of
+    /// the front part of one that crosses the plane of the eye is unbounded along the pictures
+    /// of its edges towards the eye's plane (see [`Clip::framed`](crate::queries::frustum)).
     pub(crate) fn new(
         mesh: &Mesh,
         pictures: &[[f64; 2]],
-        front: &[bool],
+        (front, window): (&[bool], Option<Window>),
         queries: usize,
     ) -> PictureGrid {
         let in_front = |v: u32| front.get(v as usize).is_none_or(|&f| f);
-        let [lo, hi] = bounding_box(
-            pictures
-                .iter()
-                .enumerate()
-                .filter(|&(v, _)| in_front(v as u32))
-                .map(|(_, p)| *p),
-        );
-        let n = mesh.triangles().len().max(1);
+        let boxes: Vec<Option<[[f64; 2]; 2]>> = mesh
+            .triangles()
+            .par_iter()
+            .map(|tri| match window {
+                None => Some(bounding_box(tri.map(|v| pictures[v as usize]))),
+                Some((picture, w)) => framed_box(mesh, tri, pictures, &in_front, picture, w),
+            })
+            .collect();
+        let [lo, hi] = bounding_box(boxes.iter().flatten().flatten().copied());
+        let n = boxes.iter().flatten().count().max(1);
         let extent = [0, 1].map(|k| (hi[k] - lo[k]).max(0.0));
         // Cells about the size of a triangle's picture times the factor, no smaller than one
         // per triangle would give.
-        let mean = mesh
-            .triangles()
+        let mean = boxes
             .iter()
-            .map(|tri| {
-                let [low, high] = bounding_box(tri.map(|v| pictures[v as usize]));
-                (high[0] - low[0]).max(high[1] - low[1])
-            })
+            .flatten()
+            .map(|[low, high]| (high[0] - low[0]).max(high[1] - low[1]))
             .sum::<f64>()
             / n as f64;
         let side =
@@ -81,13 +89,11 @@ impl PictureGrid {
         }
         let cells = Cells::new(lo, extent, shape);
         let margin = MARGIN * lo.iter().chain(&hi).fold(0.0f64, |m, v| m.max(v.abs()));
-        let pairs: Vec<(u32, u32)> = mesh
-            .triangles()
+        let pairs: Vec<(u32, u32)> = boxes
             .par_iter()
             .enumerate()
-            .filter(|(_, tri)| tri.iter().all(|&v| in_front(v)))
-            .fold(Vec::new, |mut out, (t, tri)| {
-                let [low, high] = bounding_box(tri.map(|v| pictures[v as usize]));
+            .filter_map(|(t, b)| b.map(|b| (t, b)))
+            .fold(Vec::new, |mut out, (t, [low, high])| {
                 out.extend(
                     cells
                         .covering(low, high, margin)
@@ -99,36 +105,66 @@ impl PictureGrid {
                 x.append(&mut y);
                 x
             });
-        let wide = if front.is_empty() {
-            Vec::new()
-        } else {
-            (0..mesh.triangles().len() as u32)
-                .filter(|&t| {
-                    let tri = mesh.triangles()[t as usize];
-                    tri.iter().any(|&v| in_front(v)) && !tri.iter().all(|&v| in_front(v))
-                })
-                .collect()
-        };
         PictureGrid {
             lists: CellLists::new(cells.count(), pairs),
             cells,
-            wide,
         }
     }
 
-    /// The triangles that may hide a point whose picture is `p`: those listed in its cell,
-    /// then the wide ones.
-    pub(crate) fn at(&self, p: [f64; 2]) -> impl Iterator<Item = &u32> {
-        self.lists
-            .get(self.cells.cell_of(p[0], p[1]))
-            .iter()
-            .chain(&self.wide)
+    /// The triangles that may hide a point whose picture lies within `reach` of `p`: those
+    /// listed in the cells within that reach (a triangle may come more than once).
+    pub(crate) fn near(&self, p: [f64; 2], reach: f64) -> impl Iterator<Item = &u32> {
+        self.cells
+            .covering(p, p, reach)
+            .flat_map(|c| self.lists.get(c))
     }
 
     /// The number of (cell, triangle) entries.
     pub(crate) fn entries(&self) -> usize {
         self.lists.entries()
     }
+}
+
+/// The box of the picture of the part of triangle `tri` in front of the eye, within the window
+/// `[-w, w]` (`None` when it misses the window or no vertex is in front): the box of its front
+/// vertices' pictures, unbounded towards the side of each picture of an edge from a front
+/// vertex towards the eye's plane (its direction from [`Clip::framed`]'s formula, each
+/// component's sign exact), then cut to the window.
+///
+/// [`Clip::framed`]: crate::queries::frustum
+fn framed_box(
+    mesh: &Mesh,
+    tri: &[u32; 3],
+    pictures: &[[f64; 2]],
+    in_front: &impl Fn(u32) -> bool,
+    picture: &Picture,
+    w: [f64; 2],
+) -> Option<[[f64; 2]; 2]> {
+    let (mut low, mut high) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for &f in tri.iter().filter(|&&v| in_front(v)) {
+        let p = pictures[f as usize];
+        for k in 0..2 {
+            low[k] = low[k].min(p[k]);
+            high[k] = high[k].max(p[k]);
+        }
+        for &g in tri.iter().filter(|&&v| !in_front(v)) {
+            let direction = ray_direction(
+                picture,
+                &mesh.vertices()[f as usize],
+                &mesh.vertices()[g as usize],
+            );
+            for k in 0..2 {
+                match direction[k].partial_cmp(&0.0) {
+                    Some(Ordering::Greater) => high[k] = f64::INFINITY,
+                    Some(Ordering::Less) => low[k] = f64::NEG_INFINITY,
+                    _ => {}
+                }
+            }
+        }
+    }
+    let low = [0, 1].map(|k| low[k].max(-w[k]));
+    let high = [0, 1].map(|k| high[k].min(w[k]));
+    (low[0] <= high[0] && low[1] <= high[1]).then_some([low, high])
 }
 
 /// The cell side over the mean triangle picture size that balances building against querying:
@@ -159,10 +195,12 @@ pub(crate) struct Occluders<'s> {
 
 impl<'s> Occluders<'s> {
     /// The index over the given meshes (with their vertices' pictures), for about `queries`
-    /// queries; objects holding a mesh of more than `inbox_limit` triangles use no INBOX.
+    /// queries, over the window of a view that clips (`window`, see [`PictureGrid::new`]);
+    /// objects holding a mesh of more than `inbox_limit` triangles use no INBOX.
     pub(crate) fn new(
         scene: &'s Scene,
         (eye, picture): (Eye, Picture),
+        window: Option<[f64; 2]>,
         meshes: &[PicturedMesh],
         inbox_limit: usize,
         queries: usize,
@@ -176,7 +214,11 @@ impl<'s> Occluders<'s> {
                 if mesh.triangles().len() <= inbox_limit {
                     scene.inbox(id);
                 }
-                (id, PictureGrid::new(mesh, pictures, front, queries))
+                let window = window.map(|w| (&picture, w));
+                (
+                    id,
+                    PictureGrid::new(mesh, pictures, (front, window), queries),
+                )
             })
             .collect();
         let mut grids = SecondaryMap::new();
@@ -209,24 +251,26 @@ impl<'s> Occluders<'s> {
         self.grids.values().map(PictureGrid::entries).sum()
     }
 
-    /// VISP of a point known exactly only to `hides`: `approximate` (within a few units in the
-    /// last place of the exact point) drives the box filters, its rounded picture picks each
-    /// mesh's cell, and `hides(object, triangle)` decides exactly.
+    /// VISP of a point known exactly only to `hides`: `approximate`, within `radius` of the
+    /// exact point, drives the box filters (widened by the radius) and its picture picks each
+    /// mesh's cells (all those within the reach of the picture's error), and
+    /// `hides(object, triangle)` decides exactly.
     pub(crate) fn visp(
         &self,
-        approximate: &Point3,
+        (approximate, radius): (&Point3, f64),
         hides: impl Fn(ObjectId, usize) -> bool,
         counters: &mut Counters,
     ) -> Visibility {
         let picture = self.picture.point(approximate);
-        let sight = Sight::to_eye(approximate, &self.eye);
+        let reach = self.picture.reach(approximate, picture, radius);
+        let sight = Sight::to_eye(approximate, &self.eye).blurred(radius);
         let wanted = |id: ObjectId| !self.no_inbox.contains_key(id);
         let (answer, stage): (Visibility, Stage) =
             any_hides(self.scene.roots().iter().map(|&id| {
                 descend(self.scene, id, &sight, &wanted, &|leaf, _| {
                     self.grids
                         .get(leaf)
-                        .is_some_and(|g| g.at(picture).any(|&t| hides(leaf, t as usize)))
+                        .is_some_and(|g| g.near(picture, reach).any(|&t| hides(leaf, t as usize)))
                 })
             }));
         counters.record(stage);

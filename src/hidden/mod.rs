@@ -74,8 +74,8 @@ use crate::geometry::{Aabb, Point3};
 use crate::grid::SegmentGrid;
 use crate::mesh::Mesh;
 use crate::queries::Counters;
-use crate::queries::along::{Form, cut_point, hides_along, hides_at, same_zero};
-use crate::queries::frustum::{Clip, contour_in_front, pictured};
+use crate::queries::along::{Form, Sample, Zero, cut_point, hides_at};
+use crate::queries::frustum::{Clip, Framed, FramedLine, contour_in_front, pictured};
 use crate::queries::intersections;
 use crate::queries::meet::{Meet, OnLine, balance, reversed};
 use crate::queries::own_solid::turned_away;
@@ -220,41 +220,42 @@ impl Line {
     }
 }
 
-/// Where a line is cut: at parameter `t` (approximate; on an edge for ordering, on an
-/// intersection line for a first sort), the point given by the zero of a form along the line
-/// or, for collinear pictures, by an input vertex's picture. `key` names the cut from the
-/// indices of what makes it, the same in a transformed scene (of two cuts at one point, the one
-/// with the smaller key is drawn).
+/// Where a line is cut: the zero of a form along it, strictly inside it (on an edge, with its
+/// approximate parameter and a bound on that parameter's error, ordered exactly; on an
+/// intersection line, a form increasing along it with a rough parameter for a first sort,
+/// ordered exactly by the line). `sighted` is the picture of an input vertex when the cut is
+/// where the line of sight through that vertex meets the line (collinear pictures); the other
+/// cuts' pictures are built from their forms. `key` names the cut from the indices of what
+/// makes it, the same in a transformed scene (of two cuts at one point, the one with the
+/// smaller key is drawn).
 #[derive(Debug, Clone, Copy)]
 struct Cut {
-    t: f64,
-    at: CutAt,
+    zero: Zero,
+    sighted: Option<[f64; 2]>,
     key: [u32; 4],
-}
-
-#[derive(Debug, Clone, Copy)]
-enum CutAt {
-    /// Where the form vanishes; on an intersection line, the form increases along it.
-    Form(Form),
-    /// On an edge: an input vertex's picture (collinear pictures).
-    Point([f64; 2]),
-    /// On an intersection line: where the form (increasing along it) vanishes, on the line of
-    /// sight through an input vertex, whose picture this is.
-    Sighted(Form, [f64; 2]),
 }
 
 impl Cut {
     /// A cut of an edge.
-    fn on_edge(t: f64, at: CutAt, key: [u32; 4]) -> Cut {
-        Cut { t, at, key }
+    fn on_edge(zero: Zero, sighted: Option<[f64; 2]>, key: [u32; 4]) -> Cut {
+        Cut { zero, sighted, key }
     }
 
-    /// A cut of an intersection line, as a point of it.
-    fn on_line(&self) -> Option<OnLine> {
-        match self.at {
-            CutAt::Form(form) | CutAt::Sighted(form, _) => Some(OnLine::Cut(form)),
-            CutAt::Point(_) => None,
-        }
+    /// A cut of an intersection line where `form`, increasing along it, vanishes; `t` its
+    /// rough parameter.
+    fn on_line(form: Form, t: f64, sighted: Option<[f64; 2]>, key: [u32; 4]) -> Cut {
+        let zero = Zero {
+            form,
+            rising: true,
+            t,
+            error: f64::INFINITY,
+        };
+        Cut { zero, sighted, key }
+    }
+
+    /// The cut of an intersection line, as a point of it.
+    fn point(&self) -> OnLine {
+        OnLine::Cut(self.zero.form)
     }
 }
 
@@ -688,22 +689,17 @@ impl<'a> Pass<'a> {
                         {
                             triple += 1;
                             let face = mesh.face_of(t) as u32;
-                            self.cuts.push((
-                                l,
-                                Cut {
-                                    t: rough_parameter(&eye, &form, &line.a, &line.b),
-                                    at: CutAt::Form(form),
-                                    key: [1, leaf_of[&object], face, 0],
-                                },
-                            ));
+                            let t = rough_parameter(&eye, &form, &line.a, &line.b);
+                            let key = [1, leaf_of[&object], face, 0];
+                            self.cuts.push((l, Cut::on_line(form, t, None, key)));
                         }
                     }
                     None => {
                         let key = [1, leaf_of[&object], mesh.face_of(t) as u32, 0];
-                        if let Some(u) = intersections::pierces(&eye, &line.a, &line.b, mesh, t) {
+                        if let Some(zero) = intersections::pierces(&eye, &line.a, &line.b, mesh, t)
+                        {
                             pierced += 1;
-                            let at = CutAt::Form(Form::Plane(intersections::plane_of(mesh, t).1));
-                            self.cuts.push((l, Cut::on_edge(u, at, key)));
+                            self.cuts.push((l, Cut::on_edge(zero, None, key)));
                         }
                     }
                 }
@@ -769,28 +765,39 @@ impl<'a> Pass<'a> {
             );
             (all, method)
         } else {
-            // Lines hidden by their own solid are neither cut nor contours: not in the grid;
-            // nor are wide lines (unbounded pictures), each tested against every other line.
-            let gridded: Vec<usize> = (0..lines.len())
-                .filter(|&i| !lines[i].back && !lines[i].wide)
-                .collect();
-            let wide: Vec<usize> = (0..lines.len())
-                .filter(|&i| !lines[i].back && lines[i].wide)
-                .collect();
-            let segments: Vec<GeoLine<f64>> = gridded
-                .iter()
-                .map(|&i| {
-                    let [a, b] = lines[i].ends;
-                    GeoLine::new(coord! { x: a[0], y: a[1] }, coord! { x: b[0], y: b[1] })
-                })
-                .collect();
+            // Lines hidden by their own solid are neither cut nor contours: not in the grid.
+            // When the view clips, each line is gridded by the part of its picture inside the
+            // window (none: left out), or, where that cannot be bounded, tested against every
+            // other line.
+            let (mut gridded, mut segments, mut untamed) = (Vec::new(), Vec::new(), Vec::new());
+            let mut relevant = vec![false; lines.len()];
+            for (i, l) in lines.iter().enumerate().filter(|(_, l)| !l.back) {
+                let framed = match clip {
+                    Some(n) if l.clipped => self.framed(&n, l),
+                    _ => Framed::Inside(l.ends),
+                };
+                match framed {
+                    Framed::Inside([a, b]) => {
+                        gridded.push(i);
+                        segments.push(GeoLine::new(
+                            coord! { x: a[0], y: a[1] },
+                            coord! { x: b[0], y: b[1] },
+                        ));
+                    }
+                    Framed::Unbounded => untamed.push(i),
+                    Framed::Outside => continue,
+                }
+                relevant[i] = true;
+            }
             let grid = SegmentGrid::new(&segments);
             let candidates = grid.candidates(|i, j| cuts_needed(gridded[i], gridded[j]));
-            let with_wide: Vec<(usize, usize)> = wide
+            let is_untamed = |j: usize| untamed.binary_search(&j).is_ok();
+            let (relevant, is_untamed) = (&relevant, &is_untamed);
+            let with_untamed: Vec<(usize, usize)> = untamed
                 .iter()
                 .flat_map(|&w| {
                     (0..lines.len())
-                        .filter(move |&j| j != w && !lines[j].back && !(lines[j].wide && j < w))
+                        .filter(move |&j| j != w && relevant[j] && !(is_untamed(j) && j < w))
                         .map(move |j| (w, j))
                 })
                 .filter(|&(i, j)| cuts_needed(i, j))
@@ -798,17 +805,26 @@ impl<'a> Pass<'a> {
             let all: Vec<(usize, Cut)> = candidates
                 .par_iter()
                 .map(|&(i, j)| (gridded[i], gridded[j]))
-                .chain(with_wide.par_iter().copied())
+                .chain(with_untamed.par_iter().copied())
                 .flat_map_iter(|(i, j)| crossing_cuts(i, j))
                 .collect();
             let [nx, ny] = grid.shape();
+            let own = lines.iter().filter(|l| l.back).count();
+            let outside = lines.len() - own - gridded.len() - untamed.len();
+            let framing = match clip {
+                Some(_) => format!(
+                    "; pictures clipped to the window: {outside} lines outside it left out, {} \
+                     too far out to clip tested against every line",
+                    untamed.len()
+                ),
+                None => String::new(),
+            };
             let method = format!(
-                "uniform grid {nx}×{ny} over {} lines ({:.2} cells per line; {} lines hidden by \
-                 their own solid left out), {} candidate pairs",
+                "uniform grid {nx}×{ny} over {} lines ({:.2} cells per line; {own} lines hidden \
+                 by their own solid left out{framing}), {} candidate pairs",
                 gridded.len(),
                 grid.cells_per_segment(),
-                lines.len() - gridded.len(),
-                candidates.len()
+                candidates.len() + with_untamed.len()
             );
             (all, method)
         };
@@ -818,6 +834,23 @@ impl<'a> Pass<'a> {
         );
         self.cuts.extend(found);
         self.stage("cuts", clock, done, None);
+    }
+
+    /// The part of line `l`'s picture inside the window of a view that clips (see
+    /// [`Clip::framed`]): a wide intersection line is unbounded.
+    fn framed(&self, clip: &Clip, l: &Line) -> Framed {
+        if !l.wide {
+            return clip.framed(&self.picture, FramedLine::Segment(l.ends));
+        }
+        if l.meet.is_some() {
+            return Framed::Unbounded;
+        }
+        let (front, from, other) = if clip.in_front(&l.a) {
+            (&l.a, l.ends[0], &l.b)
+        } else {
+            (&l.b, l.ends[1], &l.a)
+        };
+        clip.framed(&self.picture, FramedLine::Ray { front, from, other })
     }
 
     /// Stage 4: the occluder index, then the visible and hidden runs of every line.
@@ -832,6 +865,7 @@ impl<'a> Pass<'a> {
         let occluders = Occluders::new(
             self.scene,
             (self.eye, self.picture),
+            self.clip.map(|c| c.window()),
             &meshes,
             INBOX_LIMIT,
             queries,
@@ -855,7 +889,7 @@ impl<'a> Pass<'a> {
 
         let clock = Instant::now();
         let cuts = &mut self.cuts;
-        cuts.par_sort_unstable_by(|x, y| x.0.cmp(&y.0).then(x.1.t.total_cmp(&y.1.t)));
+        cuts.par_sort_unstable_by(|x, y| x.0.cmp(&y.0).then(x.1.zero.t.total_cmp(&y.1.zero.t)));
         let lines = &self.lines;
         let mut first_cut = vec![0usize; lines.len() + 1];
         for &(l, _) in cuts.iter() {
@@ -946,19 +980,19 @@ fn crossing(
     );
     let zero = Ordering::Equal;
     if [sc, sd, sa, sb].iter().all(|&s| s == zero) {
-        // Collinear pictures: cut at the contour's ends that lie inside this line (in front of
-        // the eye, both: the pictures of a wide line's ends are not all meaningful).
-        let [p, q] = l.ends;
-        let d = [q[0] - p[0], q[1] - p[1]];
-        let norm = d[0] * d[0] + d[1] * d[1];
+        // Collinear pictures: cut where the lines of sight through the contour's ends meet this
+        // line strictly inside it (in front of the eye, both: the pictures of a wide line's ends
+        // are not all meaningful), each the zero of the plane through the eye, the end and a
+        // point off the plane of both lines.
+        let sides = c_sides();
         let ends_in_front = [c.a, c.b].map(|x| clip.is_none_or(|n| n.in_front(&x)));
+        let off = off_plane(eye, l, sides.iter().flatten());
         let mut cuts: Vec<Cut> = (0..2)
             .filter(|&k| ends_in_front[k] && !l.wide)
             .filter_map(|k| {
-                let e = c.ends[k];
-                let t = ((e[0] - p[0]) * d[0] + (e[1] - p[1]) * d[1]) / norm;
+                let zero = Form::Sight([c.a, c.b][k], off?).zero_on(eye, &l.a, &l.b)?;
                 let key = [0, c.leaf, c.vertices[k], 0];
-                (t > 0.0 && t < 1.0).then_some(Cut::on_edge(t, CutAt::Point(e), key))
+                Some(Cut::on_edge(zero, Some(c.ends[k]), key))
             })
             .collect();
         // Both lines lie in one plane through the eye, which meets a face of `c` not seen
@@ -966,19 +1000,13 @@ fn crossing(
         // it lies behind the face's plane, so it is cut where it crosses that plane too (at an
         // end of `c` when one lies on the line of `l`: cut there already).
         let meets_end = collinear(&l.a, &l.b, &c.a) || collinear(&l.a, &l.b, &c.b);
-        for tri in c_sides().into_iter().filter(|_| !meets_end) {
+        for tri in sides.into_iter().filter(|_| !meets_end) {
             let form = Form::Plane(tri);
             if eye.orient3d(&tri[0], &tri[1], &tri[2]) != zero
-                && let Some(t) = form.zero_along(eye, &l.a, &l.b)
-                && t > 0.0
-                && t < 1.0
+                && let Some(z) = form.zero_on(eye, &l.a, &l.b)
             {
                 let [u, v] = c.vertices;
-                cuts.push(Cut::on_edge(
-                    t,
-                    CutAt::Form(form),
-                    [1, c.leaf, u.min(v), u.max(v)],
-                ));
+                cuts.push(Cut::on_edge(z, None, [1, c.leaf, u.min(v), u.max(v)]));
             }
         }
         return Some(cuts);
@@ -1004,11 +1032,35 @@ fn crossing(
     if volume != zero && volume != c_side.0 {
         return None;
     }
-    let form = Form::Sight(c.a, c.b);
-    let t = form.zero_along(eye, &l.a, &l.b)?;
+    let zero = Form::Sight(c.a, c.b).zero_on(eye, &l.a, &l.b)?;
     let [u, v] = c.vertices;
-    let key = [2, c.leaf, u.min(v), u.max(v)];
-    (t > 0.0 && t < 1.0).then(|| vec![Cut::on_edge(t, CutAt::Form(form), key)])
+    Some(vec![Cut::on_edge(
+        zero,
+        None,
+        [2, c.leaf, u.min(v), u.max(v)],
+    )])
+}
+
+/// A point off the plane through the eye and the edge `l` (not seen end-on): one of `near`
+/// if any is, else one of four affinely independent points at the scale of `l`'s ends, of
+/// which one must be. Only the plane it spans with the eye and a point of `l`'s plane matters,
+/// never where it is.
+fn off_plane<'p>(eye: &Eye, l: &Line, near: impl Iterator<Item = &'p Point3>) -> Option<Point3> {
+    let top = l.a.coords.amax().max(l.b.coords.amax());
+    let scale = if top.is_normal() {
+        2f64.powi((top.log2().ceil() as i32).min(1023))
+    } else {
+        1.0
+    };
+    let corners = [
+        Point3::origin(),
+        Point3::new(scale, 0.0, 0.0),
+        Point3::new(0.0, scale, 0.0),
+        Point3::new(0.0, 0.0, scale),
+    ];
+    near.copied()
+        .chain(corners)
+        .find(|w| eye.orient3d(&l.a, &l.b, w) != Ordering::Equal)
 }
 
 /// The cuts on the intersection line `l` (lying on `m`) where its picture meets the picture of
@@ -1046,11 +1098,8 @@ fn crossing_line(eye: &Eye, m: &MeetLine, l: &Line, c: &Line) -> Option<Vec<Cut>
                 let form = meet.increasing(eye, Form::Sight(p, off));
                 let inside = meet.sign_at(eye, x, &form) == Ordering::Less
                     && meet.sign_at(eye, y, &form) == Ordering::Greater;
-                inside.then(|| Cut {
-                    t: rough(&form),
-                    at: CutAt::Sighted(form, picture),
-                    key: [0, c.leaf, c.vertices[k], 0],
-                })
+                let key = [0, c.leaf, c.vertices[k], 0];
+                inside.then(|| Cut::on_line(form, rough(&form), Some(picture), key))
             })
             .collect();
         return Some(cuts);
@@ -1074,25 +1123,15 @@ fn crossing_line(eye: &Eye, m: &MeetLine, l: &Line, c: &Line) -> Option<Vec<Cut>
     } else {
         reversed(&sight)
     };
-    let (at, key) = if sc == zero {
-        (
-            CutAt::Sighted(form, c.ends[0]),
-            [0, c.leaf, c.vertices[0], 0],
-        )
+    let (sighted, key) = if sc == zero {
+        (Some(c.ends[0]), [0, c.leaf, c.vertices[0], 0])
     } else if sd == zero {
-        (
-            CutAt::Sighted(form, c.ends[1]),
-            [0, c.leaf, c.vertices[1], 0],
-        )
+        (Some(c.ends[1]), [0, c.leaf, c.vertices[1], 0])
     } else {
         let [u, v] = c.vertices;
-        (CutAt::Form(form), [2, c.leaf, u.min(v), u.max(v)])
+        (None, [2, c.leaf, u.min(v), u.max(v)])
     };
-    Some(vec![Cut {
-        t: rough(&form),
-        at,
-        key,
-    }])
+    Some(vec![Cut::on_line(form, rough(&form), sighted, key)])
 }
 
 /// The parameter along `ab` where `form` vanishes, roughly (for a first sort of cuts only).
@@ -1109,8 +1148,11 @@ fn rough_parameter(eye: &Eye, form: &Form, a: &Point3, b: &Point3) -> f64 {
     }
 }
 
-/// The visible and hidden runs of line `l` (index `line`) cut at `cuts` (sorted by `t`), and the
-/// stages that decided its pieces.
+/// The visible and hidden runs of the edge `l` (index `line`) cut at `cuts` (sorted by their
+/// approximate parameters), and the stages that decided its pieces. The cuts are put in their
+/// exact order along the edge (their parameters' error bounds leave only near ties to decide
+/// exactly), those at one point taken once (the smallest key); each piece between two
+/// consecutive cuts is decided at a point strictly inside it ([`Sample`]).
 fn pieces(
     occluders: &Occluders,
     scene: &Scene,
@@ -1131,42 +1173,54 @@ fn pieces(
         };
         return (vec![piece], counters);
     }
-    // Cuts at one point (equal parameters, or forms whose zeros on the line coincide exactly)
-    // make one bound, drawn from the cut with the smallest key.
-    let mut bounds: Vec<(f64, Option<Cut>)> = vec![(0.0, None)];
-    for c in cuts.iter().filter(|c| c.t > 0.0 && c.t < 1.0) {
-        match bounds.last_mut() {
-            Some((t, Some(last))) if *t == c.t || same_point(eye, l, last, c) => {
-                if c.key < last.key {
-                    *last = *c;
-                }
-            }
-            _ => bounds.push((c.t, Some(*c))),
+    let (a, b) = (&l.a, &l.b);
+    let order = |x: &Cut, y: &Cut| x.zero.compare(&y.zero, eye, a, b);
+    // Insertion sort: the cuts come sorted by parameter, so only near ties move.
+    let mut sorted = cuts.to_vec();
+    for i in 1..sorted.len() {
+        let mut j = i;
+        while j > 0 && order(&sorted[j], &sorted[j - 1]) == Ordering::Less {
+            sorted.swap(j, j - 1);
+            j -= 1;
         }
     }
-    bounds.push((1.0, None));
+    let mut bounds: Vec<Cut> = Vec::with_capacity(sorted.len());
+    for c in sorted {
+        match bounds.last_mut() {
+            Some(last) if order(last, &c) == Ordering::Equal => {
+                if c.key < last.key {
+                    *last = c;
+                }
+            }
+            _ => bounds.push(c),
+        }
+    }
     let mut runs = Runs::new(l, line);
-    for k in 0..bounds.len() - 1 {
-        let (lo, hi) = (bounds[k].0, bounds[k + 1].0);
-        let t = lo + (hi - lo) / 2.0;
-        let state = if !(t > lo && t < hi) {
-            // A piece too short to hold a double strictly inside: it takes its neighbour's.
-            runs.state().unwrap_or((!l.clipped).then_some(true))
-        } else if l.clipped && !clip.is_some_and(|n| n.contains_along(eye, &l.a, &l.b, t)) {
+    for k in 0..=bounds.len() {
+        let lo = k.checked_sub(1).map(|k| &bounds[k]);
+        let sample = Sample::between(
+            eye,
+            a,
+            b,
+            [lo.map(|c| &c.zero), bounds.get(k).map(|c| &c.zero)],
+        );
+        let sign = |form: &Form| sample.sign(form, eye, a, b);
+        let state = if l.clipped && !clip.is_some_and(|n| n.contains_by(sign)) {
             None
         } else if l.back {
             Some(false)
         } else {
-            let approximate = l.a + (l.b - l.a) * t;
+            let (approximate, radius) = sample.point(a, b);
             let hides = |object: ObjectId, tri: usize| {
                 scene[object]
                     .mesh()
-                    .is_some_and(|m| hides_along(eye, &m.triangle(tri), &l.a, &l.b, t))
+                    .is_some_and(|m| hides_at(eye, &m.triangle(tri), sign))
             };
-            Some(occluders.visp(&approximate, hides, &mut counters) == Visibility::Visible)
+            let answer = occluders.visp((&approximate, radius), hides, &mut counters);
+            Some(answer == Visibility::Visible)
         };
-        runs.step(state, lo, || {
-            cut_picture(picture, eye, l, bounds[k].1.map(|c| c.at))
+        runs.step(state, lo.map_or(0.0, |c| c.zero.t), || {
+            cut_picture(picture, eye, l, lo)
         });
     }
     (runs.finish(l.ends[1]), counters)
@@ -1187,10 +1241,7 @@ fn line_pieces(
     cuts: &[Cut],
 ) -> (Vec<Piece>, Counters) {
     let meet = &m.meet;
-    let mut inner: Vec<(OnLine, &Cut)> = cuts
-        .iter()
-        .filter_map(|c| c.on_line().map(|p| (p, c)))
-        .collect();
+    let mut inner: Vec<(OnLine, &Cut)> = cuts.iter().map(|c| (c.point(), c)).collect();
     // Stable: the cuts come roughly sorted already.
     inner.sort_by(|x, y| meet.compare(eye, &x.0, &y.0).then(x.1.key.cmp(&y.1.key)));
     inner.dedup_by(|b, a| meet.compare(eye, &a.0, &b.0) == Ordering::Equal);
@@ -1205,15 +1256,16 @@ fn line_pieces(
         if k == points.len() - 1 {
             return l.ends[1];
         }
-        match inner[k - 1].1.at {
-            CutAt::Sighted(_, p) | CutAt::Point(p) => p,
-            CutAt::Form(_) => meet.picture(picture, eye, &points[k]),
+        match inner[k - 1].1.sighted {
+            Some(p) => p,
+            None => meet.picture(picture, eye, &points[k]),
         }
     };
     let weights: Vec<f64> = points.iter().map(|p| meet.weight(eye, p)).collect();
     let places: Vec<Point3> = points.iter().map(|p| meet.approximate(eye, p)).collect();
+    let magnitudes: Vec<f64> = points.iter().map(|p| meet.magnitude(p)).collect();
     // Each point's rough parameter along the line, for the pieces' provenance.
-    let along = |k: usize| if k == 0 { 0.0 } else { inner[k - 1].1.t };
+    let along = |k: usize| if k == 0 { 0.0 } else { inner[k - 1].1.zero.t };
     let mut counters = Counters::default();
     let mut runs = Runs::new(l, line);
     for k in 0..points.len() - 1 {
@@ -1225,13 +1277,21 @@ fn line_pieces(
             let (u, v) = (weights[k] * scales[0], weights[k + 1] * scales[1]);
             let approximate =
                 Point3::from((places[k].coords * u + places[k + 1].coords * v) / (u + v));
+            // The places are within 2⁻⁴² of their magnitudes, the weights within 2⁻⁴² of
+            // theirs: the point between them is within 2⁻³⁹ of those magnitudes.
+            let radius = [k, k + 1]
+                .iter()
+                .map(|&i| magnitudes[i].max(places[i].coords.amax()))
+                .fold(0.0f64, f64::max)
+                / (1u64 << 39) as f64;
             let hides = |object: ObjectId, tri: usize| {
                 !on_faces(m, scene, object, tri)
                     && scene[object]
                         .mesh()
                         .is_some_and(|mesh| hides_at(eye, &mesh.triangle(tri), sign))
             };
-            Some(occluders.visp(&approximate, hides, &mut counters) == Visibility::Visible)
+            let answer = occluders.visp((&approximate, radius), hides, &mut counters);
+            Some(answer == Visibility::Visible)
         };
         runs.step(state, along(k), || drawn(k));
     }
@@ -1265,11 +1325,6 @@ impl Runs {
             out: Vec::new(),
             run: None,
         }
-    }
-
-    /// The state of the last piece, if any.
-    fn state(&self) -> Option<Option<bool>> {
-        self.run.map(|r| r.0)
     }
 
     /// The next piece's state, from parameter `t`; where it changes, the run ends at the
@@ -1315,21 +1370,6 @@ impl Runs {
     }
 }
 
-/// Whether two cuts of the edge `l` with nearly equal parameters are at one point: the zeros
-/// of their forms on the edge coincide, decided exactly ([`same_zero`]).
-fn same_point(eye: &Eye, l: &Line, x: &Cut, y: &Cut) -> bool {
-    match (x.at, y.at) {
-        (CutAt::Form(f), CutAt::Form(g)) => {
-            (y.t - x.t).abs() <= NEAR && same_zero(eye, &f, &g, &l.a, &l.b)
-        }
-        _ => false,
-    }
-}
-
-/// How close the parameters of two cuts of an edge are for an exact test of whether they are
-/// one point (the parameters' error is far smaller).
-const NEAR: f64 = 1.0 / (1u64 << 30) as f64;
-
 /// Whether triangle `tri` of `object` lies on one of the faces an intersection line runs on.
 fn on_faces(m: &MeetLine, scene: &Scene, object: ObjectId, tri: usize) -> bool {
     m.on_faces
@@ -1352,10 +1392,7 @@ fn frustum_cuts(
         .filter_map(|(k, form)| {
             let key = [3, k as u32, 0, 0];
             let cut = match m {
-                None => {
-                    let t = form.zero_along(eye, &l.a, &l.b)?;
-                    (t > 0.0 && t < 1.0).then_some(Cut::on_edge(t, CutAt::Form(form), key))?
-                }
+                None => Cut::on_edge(form.zero_on(eye, &l.a, &l.b)?, None, key),
                 Some(m) => {
                     // On an intersection line, strictly between its ends, as a form increasing
                     // along it.
@@ -1365,11 +1402,7 @@ fn frustum_cuts(
                         return None;
                     }
                     let form = m.meet.increasing(eye, form);
-                    Cut {
-                        t: rough_parameter(eye, &form, &l.a, &l.b),
-                        at: CutAt::Form(form),
-                        key,
-                    }
+                    Cut::on_line(form, rough_parameter(eye, &form, &l.a, &l.b), None, key)
                 }
             };
             Some((i, cut))
@@ -1377,11 +1410,13 @@ fn frustum_cuts(
         .collect()
 }
 
-/// The picture of a cut of line `l`.
-fn cut_picture(picture: &Picture, eye: &Eye, l: &Line, at: Option<CutAt>) -> [f64; 2] {
-    match at {
-        Some(CutAt::Form(form)) => cut_point(picture, eye, &form, &l.a, &l.b),
-        Some(CutAt::Point(p) | CutAt::Sighted(_, p)) => p,
+/// The picture of a cut of the edge `l` (`None`: its first end).
+fn cut_picture(picture: &Picture, eye: &Eye, l: &Line, cut: Option<&Cut>) -> [f64; 2] {
+    match cut {
+        Some(Cut {
+            sighted: Some(p), ..
+        }) => *p,
+        Some(c) => cut_point(picture, eye, &c.zero.form, &l.a, &l.b),
         None => l.ends[0],
     }
 }

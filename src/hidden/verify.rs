@@ -53,7 +53,7 @@ use super::{
 use crate::geometry::Point3;
 use crate::geometry::exact::ldexp;
 use crate::mesh::Mesh;
-use crate::queries::along::Form;
+use crate::queries::along::{Form, Sample};
 use crate::queries::frustum::pictured;
 use crate::queries::visp::{Visibility, VisibilityIndex};
 use crate::scene::{ObjectId, Scene};
@@ -509,9 +509,10 @@ fn sampled(p: &TracedPiece, t: f64, visibility: Visibility, grazing: bool) -> Sa
 /// VISP at `X(t)` on `line`, with the closed faces, and whether the answer rests on lines of
 /// sight through faces' edges only (HIDDEN with the closed faces, VISIBLE with the open ones).
 fn visp_at(index: &VisibilityIndex, eye: &Eye, [a, b]: &[Point3; 2], t: f64) -> (Visibility, bool) {
-    let near = a + (b - a) * t;
+    let (near, radius) = Sample::At(t).point(a, b);
+    let near = (&near, radius);
     let grazed = Cell::new(false);
-    let (closed, _) = index.visp_by(&near, |tri| {
+    let (closed, _) = index.visp_by(near, |tri| {
         let (hides, grazes) = hides_at(eye, tri, a, b, t);
         grazed.set(grazed.get() || grazes);
         hides
@@ -519,7 +520,7 @@ fn visp_at(index: &VisibilityIndex, eye: &Eye, [a, b]: &[Point3; 2], t: f64) -> 
     if closed == Visibility::Visible || !grazed.get() {
         return (closed, false);
     }
-    let (open, _) = index.visp_by(&near, |tri| hides_at(eye, tri, a, b, t) == (true, false));
+    let (open, _) = index.visp_by(near, |tri| hides_at(eye, tri, a, b, t) == (true, false));
     (closed, open == Visibility::Visible)
 }
 

@@ -22,15 +22,15 @@
 //! (estimates with the kernel's certified bounds) and [`Expanded`] (exact expansions).
 
 use crate::geometry::Point3;
-use crate::geometry::exact::{estimate, expansion_product, expansion_sum, negated};
+use crate::geometry::exact::{estimate, expansion_product, expansion_sum, lerp, negated};
 use crate::geometry::kernel::{
-    Between, Difference, Estimate, Exponents, Polynomial, Product, Ring, value,
+    Between, Difference, Estimate, Exponents, Polynomial, Product, Ring, UNIT_ROUNDOFF, rounded,
 };
 use crate::geometry::predicates::{Orient3d, Orientation};
 use crate::views::{Eye, Picture};
-use num_bigint::BigInt;
+use num_bigint::{BigInt, Sign};
 use num_rational::BigRational;
-use num_traits::{One, Signed, ToPrimitive, Zero};
+use num_traits::{One, Signed, ToPrimitive, Zero as _};
 use std::cmp::Ordering;
 use std::ops::{Add, Mul, Neg, Sub};
 
@@ -75,34 +75,207 @@ impl Form {
         FormAt { form: self, eye, x }.sign()
     }
 
-    /// The parameter `t` of the zero of the form on the edge `ab`, approximately (for ordering
-    /// cuts; [`cut_point`] builds the point itself exactly). `None` when the form has the same
-    /// strict sign at both ends or vanishes on the whole edge.
-    pub(crate) fn zero_along(&self, eye: &Eye, a: &Point3, b: &Point3) -> Option<f64> {
-        let (fa, fb) = (
-            FormAt {
-                form: self,
-                eye,
-                x: a,
-            },
-            FormAt {
-                form: self,
-                eye,
-                x: b,
-            },
-        );
+    /// Where the form vanishes strictly inside the edge `ab` (its signs at `a` and `b` strictly
+    /// opposite), with its parameter approximately and a certified bound on that parameter's
+    /// error (for ordering cuts; [`cut_point`] builds the point itself exactly). `None` when
+    /// the form vanishes at an end or has the same sign at both.
+    pub(crate) fn zero_on(&self, eye: &Eye, a: &Point3, b: &Point3) -> Option<Zero> {
+        let at = |x| FormAt { form: self, eye, x };
+        let (fa, fb) = (at(a), at(b));
         let (sa, sb) = (fa.sign(), fb.sign());
-        match (sa, sb) {
-            (Ordering::Equal, Ordering::Equal) => None,
-            (Ordering::Equal, _) => Some(0.0),
-            (_, Ordering::Equal) => Some(1.0),
-            _ if sa == sb => None,
-            _ => {
-                let (va, vb) = (value(&fa), value(&fb));
-                Some((va / (va - vb)).clamp(0.0, 1.0))
+        if sa == Ordering::Equal || sb == Ordering::Equal || sa == sb {
+            return None;
+        }
+        let ((va, ra), (vb, rb)) = (approximate(&fa), approximate(&fb));
+        let t = va / (va - vb);
+        let (t, error) = if t.is_finite() && ra.is_finite() && rb.is_finite() {
+            // Opposite signs: the difference does not cancel, so `t` is within a relative
+            // `ra + max(ra, rb)` and three roundings of the exact parameter.
+            let relative = 2.0 * (ra + rb) + 8.0 * UNIT_ROUNDOFF;
+            (t.clamp(0.0, 1.0), t.abs() * relative + f64::MIN_POSITIVE)
+        } else {
+            (0.5, f64::INFINITY)
+        };
+        Some(Zero {
+            form: *self,
+            rising: sb == Ordering::Greater,
+            t,
+            error,
+        })
+    }
+}
+
+/// The value of `p` and a certified bound on its relative error: the estimate when its bound is
+/// below 2⁻²⁰ of it, else the exact value rounded once (infinite error where that fails: an
+/// input outside the range the engine draws in).
+fn approximate<P: Polynomial>(p: &P) -> (f64, f64) {
+    let e = p.estimate();
+    if e.value.is_finite() && e.value != 0.0 && e.bound <= e.value.abs() * RELATIVE {
+        return (e.value, e.bound / e.value.abs());
+    }
+    let v = rounded(p);
+    if v.is_finite() && v != 0.0 && v.abs() >= f64::MIN_POSITIVE {
+        (v, 2.0 * UNIT_ROUNDOFF)
+    } else {
+        (e.value, f64::INFINITY)
+    }
+}
+
+/// The relative error under which [`approximate`] keeps an estimate.
+const RELATIVE: f64 = 1.0 / (1u64 << 20) as f64;
+
+/// The zero of a [`Form`] strictly inside an edge `ab`: a cut of the edge, defined from the
+/// input (see [`Form::zero_on`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Zero {
+    /// The form.
+    pub form: Form,
+    /// Whether the form is positive at `b` (and so negative at `a`).
+    pub rising: bool,
+    /// The zero's parameter `t` along the edge, approximately.
+    pub t: f64,
+    /// A bound on the error of `t`.
+    pub error: f64,
+}
+
+impl Zero {
+    /// The exact order of two zeros along the edge `ab`: with both forms rising, `t_f < t_g`
+    /// exactly when `g(a)·f(b) − f(a)·g(b) < 0`; their parameters decide when their error
+    /// bounds keep them apart.
+    pub(crate) fn compare(&self, other: &Zero, eye: &Eye, a: &Point3, b: &Point3) -> Ordering {
+        if self.apart(other) {
+            return self.t.total_cmp(&other.t);
+        }
+        let at = |form, x| FormAt { form, eye, x };
+        let (f, g) = (&self.form, &other.form);
+        let s = Difference(Product(at(g, a), at(f, b)), Product(at(f, a), at(g, b))).sign();
+        if self.rising == other.rising {
+            s
+        } else {
+            s.reverse()
+        }
+    }
+
+    /// Whether the two parameters' error bounds keep the zeros apart (then their parameters
+    /// order them).
+    fn apart(&self, other: &Zero) -> bool {
+        (self.t - other.t).abs() > (self.error + other.error) * (1.0 + 4.0 * UNIT_ROUNDOFF)
+    }
+
+    /// The exact sign of the form at a sample of the edge, as if it were rising: `Greater`
+    /// past the zero.
+    fn past(&self, sample: &Sample, eye: &Eye, a: &Point3, b: &Point3) -> Ordering {
+        let s = sample.sign(&self.form, eye, a, b);
+        if self.rising { s } else { s.reverse() }
+    }
+
+    /// The exact parameter of the zero.
+    fn parameter(&self, eye: &Eye, a: &Point3, b: &Point3) -> BigRational {
+        let at = |x| {
+            FormAt {
+                form: &self.form,
+                eye,
+                x,
+            }
+            .evaluate::<BigRational>()
+        };
+        let fa = at(a);
+        let denominator = &fa - at(b);
+        fa / denominator
+    }
+}
+
+/// A point `X(t) = a + t·(b − a)` strictly inside a piece of an edge `ab` between two cuts,
+/// where the pass decides the piece: `t` a double when one lies strictly between the cuts
+/// (nearly always: the middle of their parameters, checked exactly when their error bounds do
+/// not decide), else the exact middle of the two zeros as a rational. Either way never rounded:
+/// every form is evaluated exactly at it.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Sample {
+    /// At a double parameter.
+    At(f64),
+    /// At a rational parameter (no double lies strictly between the cuts).
+    Exactly(BigRational),
+}
+
+impl Sample {
+    /// A point strictly between `lo` and `hi` (`None`: the edge's end `a`, resp. `b`), which
+    /// must be in that order along `ab`, distinct.
+    pub(crate) fn between(
+        eye: &Eye,
+        a: &Point3,
+        b: &Point3,
+        [lo, hi]: [Option<&Zero>; 2],
+    ) -> Sample {
+        let (t0, t1) = (lo.map_or(0.0, |z| z.t), hi.map_or(1.0, |z| z.t));
+        let middle = t0 + (t1 - t0) / 2.0;
+        if strictly_between(eye, a, b, [lo, hi], middle) {
+            return Sample::At(middle);
+        }
+        let exact = |z: Option<&Zero>, end: f64| match z {
+            Some(z) => z.parameter(eye, a, b),
+            None => BigRational::from_float(end).unwrap_or_else(BigRational::zero),
+        };
+        let half = BigRational::new(BigInt::one(), BigInt::from(2));
+        let m = (exact(lo, 0.0) + exact(hi, 1.0)) * half;
+        // The double nearest the middle lies between the cuts whenever any double does.
+        match m.to_f64() {
+            Some(t) if strictly_between(eye, a, b, [lo, hi], t) => Sample::At(t),
+            _ => Sample::Exactly(m),
+        }
+    }
+
+    /// The point of the edge `ab`, each coordinate rounded once, and a bound on its distance
+    /// from the exact point (for finding what lies near it, never for a decision).
+    pub(crate) fn point(&self, a: &Point3, b: &Point3) -> (Point3, f64) {
+        let x = match self {
+            Sample::At(t) => Point3::from(std::array::from_fn(|k| lerp(a[k], b[k], *t))),
+            Sample::Exactly(t) => Point3::from(std::array::from_fn(|k| {
+                let [ak, bk] = [a[k], b[k]].map(|v| BigRational::from_float(v).unwrap_or_default());
+                (&ak + t * (bk - &ak)).to_f64().unwrap_or(a[k])
+            })),
+        };
+        // Each coordinate within a unit in the last place of the largest.
+        (x, 4.0 * UNIT_ROUNDOFF * x.coords.amax() + f64::MIN_POSITIVE)
+    }
+
+    /// The exact sign of `form` at the sample of the edge `ab`.
+    pub(crate) fn sign(&self, form: &Form, eye: &Eye, a: &Point3, b: &Point3) -> Ordering {
+        match self {
+            Sample::At(t) => form.sign_along(eye, a, b, *t),
+            Sample::Exactly(t) => {
+                let at = |x| FormAt { form, eye, x }.evaluate::<BigRational>();
+                let fa = at(a);
+                let value = &fa + t * (at(b) - &fa);
+                match value.numer().sign() {
+                    Sign::Minus => Ordering::Less,
+                    Sign::NoSign => Ordering::Equal,
+                    Sign::Plus => Ordering::Greater,
+                }
             }
         }
     }
+}
+
+/// Whether `X(t)` lies strictly between the zeros `lo` and `hi` of the edge `ab` (`None`: its
+/// ends): certified by the zeros' error bounds, else decided exactly.
+fn strictly_between(
+    eye: &Eye,
+    a: &Point3,
+    b: &Point3,
+    [lo, hi]: [Option<&Zero>; 2],
+    t: f64,
+) -> bool {
+    if !(t > 0.0 && t < 1.0) {
+        return false;
+    }
+    let slack = 1.0 + 4.0 * UNIT_ROUNDOFF;
+    let after = |z: &Zero| {
+        t - z.t > z.error * slack || z.past(&Sample::At(t), eye, a, b) == Ordering::Greater
+    };
+    let before =
+        |z: &Zero| z.t - t > z.error * slack || z.past(&Sample::At(t), eye, a, b) == Ordering::Less;
+    lo.is_none_or(after) && hi.is_none_or(before)
 }
 
 /// A [`Form`] at a point: a polynomial whose sign is answered at once when the form passes
@@ -145,11 +318,6 @@ impl Polynomial for FormAt<'_> {
     }
 }
 
-/// Whether the triangle `tri` hides `X(t)` on the edge `ab` from the eye (see [`hides_at`]).
-pub(crate) fn hides_along(eye: &Eye, tri: &[Point3; 3], a: &Point3, b: &Point3, t: f64) -> bool {
-    hides_at(eye, tri, |form| form.sign_along(eye, a, b, t))
-}
-
 /// Whether the triangle `tri` hides a point from the eye, given the exact sign of any form at
 /// the point (`sign`): the point lies strictly behind the triangle's plane and the line of
 /// sight through it meets the closed triangle. An edge-on triangle hides nothing; a point on
@@ -184,14 +352,6 @@ pub(crate) fn cut_point(
 ) -> [f64; 2] {
     let at = |x| FormAt { form, eye, x };
     cut_point_of(picture, [at(a), at(b)], a, b)
-}
-
-/// Whether the forms `f` and `g`, each crossing the segment `ab` (with values of opposite
-/// signs at its ends), vanish at one point of it: exactly when `f(a)·g(b) − f(b)·g(a) = 0`
-/// (`g` at the zero of `f`, times `f(a) − f(b)`).
-pub(crate) fn same_zero(eye: &Eye, f: &Form, g: &Form, a: &Point3, b: &Point3) -> bool {
-    let at = |form, x| FormAt { form, eye, x };
-    Difference(Product(at(f, a), at(g, b)), Product(at(f, b), at(g, a))).sign() == Ordering::Equal
 }
 
 /// The picture of the point of the edge `ab` where an affine function with the exact values

@@ -7,9 +7,13 @@
 //! it, as in the world. The hidden-line pass (`hidden`) draws the parts of lines inside it:
 //!
 //! - a line wholly behind the eye (no point strictly in front of it) is left out; a line that
-//!   crosses the plane of the eye is *wide*: its picture is unbounded, so it is tested against
-//!   every other line rather than through the grid, and a triangle that crosses that plane is
-//!   listed in every picture cell;
+//!   crosses the plane of the eye is *wide*: its picture is unbounded. Only crossings of
+//!   pictures inside the picture's window can cut a drawn piece (drawn pieces lie in the
+//!   frustum) or be made by a contour in front of the eye, so each line's picture is clipped to
+//!   the window, grown a little ([`Clip::framed`]), before the grid: for a wide edge, the
+//!   picture of its part in front of the eye, a ray. A picture too far out to clip reliably
+//!   (and a wide intersection line) is tested against every other line instead. A triangle
+//!   that crosses the plane of the eye is listed in every picture cell;
 //! - a line not wholly inside the frustum is cut where it crosses each of its planes, and its
 //!   pieces outside are not drawn;
 //! - where a line's picture crosses a wide contour's, the point of the contour behind the
@@ -27,11 +31,11 @@
 //! points' magnitude). Their rounding turns the planes by about 2⁻⁵³ radians from the exact
 //! frustum: immaterial for drawing, and every decision is made against the same planes.
 
-use crate::geometry::kernel::{Difference, Polynomial, Product};
+use crate::geometry::kernel::{Difference, Polynomial, Product, rounded};
 use crate::geometry::predicates::Side;
 use crate::geometry::{Point3, Vector3};
 use crate::mesh::Mesh;
-use crate::queries::along::Form;
+use crate::queries::along::{Form, PictureAt};
 use crate::scene::{ObjectId, Scene};
 use crate::views::{Eye, Picture, View, ViewError};
 use std::cmp::Ordering;
@@ -46,6 +50,20 @@ pub(crate) struct Clip {
     eye: Point3,
     /// The view's forward direction: the depth of `x` is `forward·(x − eye)`.
     forward: Vector3,
+    /// Half the width and height of the picture's window, grown by 2⁻¹⁶ (the side planes'
+    /// pictures are within a few units in the last place of `±aspect` and `±1`).
+    window: [f64; 2],
+}
+
+/// The part of a line's picture inside the window of a view that clips (see [`Clip::framed`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Framed {
+    /// The part inside the grown window: a segment.
+    Inside([[f64; 2]; 2]),
+    /// No part is inside the window.
+    Outside,
+    /// The part could not be bounded reliably (a picture far outside the window).
+    Unbounded,
 }
 
 impl Clip {
@@ -88,11 +106,67 @@ impl Clip {
                 return None;
             }
         }
+        let grown = 1.0 + 1.0 / (1u64 << 16) as f64;
         Some(Clip {
             planes,
             eye,
             forward,
+            window: [h / v * grown, grown],
         })
+    }
+
+    /// The part inside the (grown) window of the picture of a line of the scene: the segment
+    /// between the pictures `ends` of its ends (both in front of the eye), or, for a line
+    /// crossing the plane of the eye from `front` (in front, with picture `from`) to `other`,
+    /// the picture of its part in front of the eye: the ray from `from` along
+    /// `L(other)·D(front) − L(front)·D(other)` (picture forms `L`, depth `D`; each component
+    /// exact, rounded once). Clipped in floating point, which the grown window covers unless a
+    /// point is more than 2³⁰ times the window away: then `Unbounded`.
+    pub(crate) fn framed(&self, picture: &Picture, line: FramedLine) -> Framed {
+        let (start, direction, limit) = match line {
+            FramedLine::Segment([p, q]) => (p, [q[0] - p[0], q[1] - p[1]], 1.0),
+            FramedLine::Ray { front, from, other } => {
+                (from, ray_direction(picture, front, other), f64::INFINITY)
+            }
+        };
+        let far = 2f64.powi(30) * self.window[0].max(self.window[1]);
+        let beyond = |p: [f64; 2]| !(p[0].abs() <= far && p[1].abs() <= far);
+        if beyond(start) || direction.iter().any(|d| !d.is_finite()) {
+            return Framed::Unbounded;
+        }
+        // Liang and Barsky: the parameters where the line is inside each slab.
+        let (mut enter, mut exit) = (0.0f64, limit);
+        for k in 0..2 {
+            let w = self.window[k];
+            if direction[k] == 0.0 {
+                if start[k].abs() > w {
+                    return Framed::Outside;
+                }
+                continue;
+            }
+            let (s0, s1) = (
+                (-w - start[k]) / direction[k],
+                (w - start[k]) / direction[k],
+            );
+            enter = enter.max(s0.min(s1));
+            exit = exit.min(s0.max(s1));
+        }
+        if enter
+            .partial_cmp(&exit)
+            .is_none_or(|o| o == Ordering::Greater)
+        {
+            return Framed::Outside;
+        }
+        let at = |s: f64| {
+            [0, 1].map(|k| (start[k] + s * direction[k]).clamp(-self.window[k], self.window[k]))
+        };
+        Framed::Inside([at(enter), at(exit)])
+    }
+
+    /// Half the width and height of the picture's window, grown a little: every point inside
+    /// the frustum has its picture inside.
+    pub(crate) fn window(&self) -> [f64; 2] {
+        self.window
     }
 
     /// The planes as forms (near, left, right, bottom, top), each with the sign of its form
@@ -121,13 +195,6 @@ impl Clip {
             .all(|(form, inside)| sign(form) == *inside)
     }
 
-    /// Whether the point `X(t) = a + t·(b − a)` lies strictly inside the frustum, exactly.
-    pub(crate) fn contains_along(&self, eye: &Eye, a: &Point3, b: &Point3, t: f64) -> bool {
-        self.planes
-            .iter()
-            .all(|(form, inside)| form.sign_along(eye, a, b, t) == *inside)
-    }
-
     /// The depth of `x` as a polynomial: positive in front of the eye (the same form as the
     /// picture's depth, so the same decisions).
     fn depth(&self, x: &Point3) -> Side {
@@ -142,6 +209,38 @@ impl Clip {
     pub(crate) fn in_front(&self, x: &Point3) -> bool {
         self.depth(x).sign() == Ordering::Greater
     }
+}
+
+/// The direction of the picture of the segment from `front`, in front of a perspective eye,
+/// towards `other`, not in front (up to where it crosses the plane of the eye): the ray from
+/// `front`'s picture along `L(other)·D(front) − L(front)·D(other)`, for the picture forms `L`
+/// and the depth `D` (its picture is `L/D`, and `P(x) − P(front)` is that vector times
+/// `t / (D(x)·D(front))` at `x = front + t·(other − front)`). Each component exact, rounded
+/// once (so its sign is exact).
+pub(crate) fn ray_direction(picture: &Picture, front: &Point3, other: &Point3) -> [f64; 2] {
+    let at = |k, x| PictureAt { picture, k, x };
+    [0, 1].map(|k| {
+        rounded(&Difference(
+            Product(at(k, other), at(2, front)),
+            Product(at(k, front), at(2, other)),
+        ))
+    })
+}
+
+/// A line's picture for [`Clip::framed`].
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum FramedLine<'a> {
+    /// A segment between the pictures of two points in front of the eye.
+    Segment([[f64; 2]; 2]),
+    /// A line from `front`, in front of the eye with picture `from`, to `other`, not.
+    Ray {
+        /// The end in front of the eye.
+        front: &'a Point3,
+        /// Its picture.
+        from: [f64; 2],
+        /// The other end.
+        other: &'a Point3,
+    },
 }
 
 /// The scene's mesh objects, and the frustum when the view clips (see [`pictured`]).

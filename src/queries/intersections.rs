@@ -21,7 +21,7 @@
 //! triangulation: an input vertex first, then the crossing of a face's edge (of the first
 //! mesh, then of the second), then of a diagonal.
 
-use super::along::Form;
+use super::along::{Form, Zero};
 use super::meet::{Meet, OnLine, reversed};
 use crate::geometry::predicates::{collinear, orient3d};
 use crate::geometry::{Aabb, Point3};
@@ -498,9 +498,9 @@ fn section(
 }
 
 /// Where the segment `ab` passes through the closed triangle `t` of `mesh` crossing its plane
-/// (its ends strictly on either side of it), the parameter of the crossing along `ab`, where
-/// the plane of its face (see [`plane_of`]) vanishes.
-pub(crate) fn pierces(eye: &Eye, a: &Point3, b: &Point3, mesh: &Mesh, t: usize) -> Option<f64> {
+/// (its ends strictly on either side of it), the crossing: the zero along `ab` of the plane of
+/// its face (see [`plane_of`]).
+pub(crate) fn pierces(eye: &Eye, a: &Point3, b: &Point3, mesh: &Mesh, t: usize) -> Option<Zero> {
     let tri = mesh.triangle(t);
     let (sa, sb) = (
         orient3d(&tri[0], &tri[1], &tri[2], a),
@@ -520,7 +520,7 @@ pub(crate) fn pierces(eye: &Eye, a: &Point3, b: &Point3, mesh: &Mesh, t: usize) 
     if above && below {
         return None;
     }
-    Form::Plane(plane_of(mesh, t).1).zero_along(eye, a, b)
+    Form::Plane(plane_of(mesh, t).1).zero_on(eye, a, b)
 }
 
 /// Where the segment `ends` of the line `meet` passes through the closed triangle `tri`

@@ -230,6 +230,29 @@ impl Meet {
         }
     }
 
+    /// The largest coordinate magnitude of the points that define the line and `p` (the scale
+    /// of [`Meet::approximate`]'s error).
+    pub(crate) fn magnitude(&self, p: &OnLine) -> f64 {
+        let form_points = |f: &Form| match f {
+            Form::Plane(t) => t.to_vec(),
+            Form::Sight(c, d) => vec![*c, *d],
+        };
+        let own = match p {
+            OnLine::Vertex { point, .. } => vec![*point],
+            OnLine::Crossing { edge, plane, .. } => {
+                let mut v = edge.to_vec();
+                v.extend(form_points(plane));
+                v
+            }
+            OnLine::Cut(form) => form_points(form),
+        };
+        self.planes
+            .iter()
+            .flatten()
+            .chain(&own)
+            .fold(0.0f64, |m, x| m.max(x.coords.amax()))
+    }
+
     /// The point, within `2⁻⁴²` of the magnitude of its coordinates or of the points that
     /// define it (for the box filters of visibility queries, whose margins are `2⁻⁴⁰` of such
     /// magnitudes; never for decisions): from the estimates when their bounds allow, else from

@@ -9,6 +9,8 @@
 //! place of `max|coordinate| / |d|`, while the margin moves it by 2⁻⁴⁰ of that. The direction
 //! of an orthographic eye is scaled by a power of two (exactly) so the parameters cannot
 //! overflow; the direction to a perspective eye is rounded once, an error of the same order.
+//! A sight from a point known only to within a distance ([`Sight::blurred`]) widens the
+//! margin by that distance: every line of sight from a point so near lies within it.
 
 use crate::geometry::exact::unit_scaled;
 use crate::geometry::{Aabb, Point3, Vector3};
@@ -27,6 +29,8 @@ pub(crate) struct Sight {
     limit: f64,
     /// The largest coordinate magnitude of the origin and a perspective eye.
     scale: f64,
+    /// How far the exact point may lie from `origin` (see [`Sight::blurred`]).
+    slack: f64,
 }
 
 impl Sight {
@@ -39,6 +43,7 @@ impl Sight {
                 direction: e - p,
                 limit: 1.0,
                 scale: max_abs(p).max(max_abs(e)),
+                slack: 0.0,
             },
             Eye::Infinity(u) => Sight::ray(p, u),
         }
@@ -52,7 +57,23 @@ impl Sight {
             direction: Vector3::from(unit_scaled((*u).into())),
             limit: f64::INFINITY,
             scale: max_abs(p),
+            slack: 0.0,
         }
+    }
+
+    /// The sight from a point known only to lie within `radius` of this one's origin: its box
+    /// tests answer for every point so near (each box is grown, or shrunk, by `radius` more).
+    pub(crate) fn blurred(self, radius: f64) -> Sight {
+        Sight {
+            slack: radius * (1.0 + 1.0 / (1u64 << 20) as f64),
+            ..self
+        }
+    }
+
+    /// The margin of the box `b`'s tests.
+    #[inline]
+    fn margin(&self, b: &Aabb) -> f64 {
+        MARGIN * self.scale.max(max_abs_box(b)) + self.slack
     }
 
     /// Whether the eye is outside the closed box `b` (an eye at infinity always is), decided
@@ -66,14 +87,14 @@ impl Sight {
     /// Whether the sight may meet the closed box `b`; never false when it does.
     #[inline]
     pub(crate) fn may_meet(&self, b: &Aabb) -> bool {
-        let m = MARGIN * self.scale.max(max_abs_box(b));
+        let m = self.margin(b);
         self.slabs(b.min.map(|v| v - m), b.max.map(|v| v + m), false)
     }
 
     /// Whether the sight surely meets the open box `b`; never true when it does not.
     #[inline]
     pub(crate) fn surely_meets_open(&self, b: &Aabb) -> bool {
-        let m = MARGIN * self.scale.max(max_abs_box(b));
+        let m = self.margin(b);
         let (lo, hi) = (b.min.map(|v| v + m), b.max.map(|v| v - m));
         (0..3).all(|k| lo[k] < hi[k]) && self.slabs(lo, hi, true)
     }

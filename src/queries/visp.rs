@@ -256,18 +256,18 @@ impl<'s> VisibilityIndex<'s> {
     /// ```
     pub fn visp(&self, p: &Point3) -> (Visibility, Stage) {
         let eye = self.view.eye();
-        self.visp_by(p, |t| hides(eye, t, p))
+        self.visp_by((p, 0.0), |t| hides(eye, t, p))
     }
 
     /// VISP of a point given by its face test `hides` (whether a triangle hides the point,
-    /// decided exactly however the point is given) and a point `near` it, within a few units
-    /// in the last place, for the bounds (whose tests keep a far wider margin: see `sight.rs`).
+    /// decided exactly however the point is given) and a point `near` it, within `radius`,
+    /// for the bounds (whose tests are widened by that radius: see `sight.rs`).
     pub(crate) fn visp_by(
         &self,
-        near: &Point3,
+        (near, radius): (&Point3, f64),
         hides: impl Fn(&[Point3; 3]) -> bool,
     ) -> (Visibility, Stage) {
-        let sight = Sight::to_eye(near, self.view.eye());
+        let sight = Sight::to_eye(near, self.view.eye()).blurred(radius);
         any_hides(self.objects.iter().map(|&id| {
             descend(self.scene, id, &sight, &|_| true, &|leaf, _| {
                 self.trees[leaf]

@@ -146,6 +146,41 @@ impl Picture {
         }
     }
 
+    /// How far from `picture`, the picture of `p` ([`Picture::point`]), the picture of any point
+    /// within `radius` of `p` may lie (infinite when such a point may be at or behind a
+    /// perspective eye): `radius` times the rows' lengths for an orthographic view; for a
+    /// perspective one, with `L` a picture form and `D` the depth, the picture moves by at most
+    /// `(|rows[k]| + |picture|·|rows[2]|)·radius / (D(p) − |rows[2]|·radius)`. For finding
+    /// what lies near a point known only approximately, never for a decision.
+    ///
+    /// ```
+    /// use kepler::{geometry::{Point3, Vector3}, views::{Picture, View}};
+    /// let pic = Picture::of(&View::standard());
+    /// let p = Point3::new(3.0, 4.0, 5.0);
+    /// assert_eq!(pic.reach(&p, pic.point(&p), 0.0), 0.0);
+    /// assert!(pic.reach(&p, pic.point(&p), 0.5) >= 0.5);
+    /// ```
+    pub fn reach(&self, p: &Point3, picture: [f64; 2], radius: f64) -> f64 {
+        if radius == 0.0 {
+            return 0.0;
+        }
+        let norm = |k: usize| self.rows[k].norm();
+        let across = norm(0).max(norm(1));
+        let reach = if self.perspective {
+            let depth = self.rounded(2, p) - norm(2) * radius;
+            if depth.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+                return f64::INFINITY;
+            }
+            let spread = picture[0].abs().max(picture[1].abs());
+            radius * (across + spread * norm(2)) / depth
+        } else {
+            radius * across
+        };
+        // The bound's own roundings, generously.
+        let reach = reach * (1.0 + 1.0 / (1u64 << 20) as f64);
+        if reach.is_nan() { f64::INFINITY } else { reach }
+    }
+
     /// The point of the plane `normal·x + d = 0` whose picture is `p`, in floating point (for
     /// texture coordinates, not for decisions), or `None` when the plane contains the lines of
     /// sight (seen edge-on) or the point is not in front of a perspective eye.
