@@ -980,15 +980,15 @@ fn crossing(
     );
     let zero = Ordering::Equal;
     if [sc, sd, sa, sb].iter().all(|&s| s == zero) {
-        // Collinear pictures: cut where the lines of sight through the contour's ends meet this
-        // line strictly inside it (in front of the eye, both: the pictures of a wide line's ends
-        // are not all meaningful), each the zero of the plane through the eye, the end and a
-        // point off the plane of both lines.
+        // Collinear pictures: cut where the lines of sight through the contour's ends (those in
+        // front of the eye, whose pictures are drawn) meet this line strictly inside it, each
+        // the zero of the plane through the eye, the end and a point off the plane of both
+        // lines. On a wide line the point may lie behind the eye: then it bounds no drawn piece.
         let sides = c_sides();
         let ends_in_front = [c.a, c.b].map(|x| clip.is_none_or(|n| n.in_front(&x)));
         let off = off_plane(eye, l, sides.iter().flatten());
         let mut cuts: Vec<Cut> = (0..2)
-            .filter(|&k| ends_in_front[k] && !l.wide)
+            .filter(|&k| ends_in_front[k])
             .filter_map(|k| {
                 let zero = Form::Sight([c.a, c.b][k], off?).zero_on(eye, &l.a, &l.b)?;
                 let key = [0, c.leaf, c.vertices[k], 0];
