@@ -7,6 +7,7 @@ use kepler::geometry::exact::ldexp;
 use kepler::geometry::predicates::triangle_meets_open_box;
 use kepler::geometry::{Aabb, Point3, Vector3};
 use kepler::mesh::{Containment, Mesh, classify_point_brute_force};
+use kepler::scene::Scene;
 use kepler::solids::{self, Polyhedron};
 use nalgebra::{Matrix4, Rotation3};
 use proptest::prelude::*;
@@ -228,4 +229,68 @@ fn the_inbox_exists_at_every_power_of_two() {
             assert!(ratio > 0.1, "{what}: inbox {:?} vs {unit:?}", b.aabb);
         }
     }
+}
+
+/// The bounds report at every scale: a cube (and one turned inside out) scaled by `2^k` from
+/// the bottom of the normal range to the top reports ratios of exactly 1, 6 tribox faces, an
+/// INBOX, the right orientation, and volumes and areas that are the unscaled ones scaled (or
+/// infinite where the true value exceeds the doubles), never NaN. Before, volumes overflowed
+/// from 2^342 (NaN ratios), the tribox of a cube at 2^1022 had 18 faces, a tiny inside-out
+/// cube was reported as `yes`, and a cube of side 5e-324 had no INBOX. Objects of very
+/// different scales in one scene are each measured at their own.
+#[test]
+fn the_bounds_report_holds_at_every_scale() {
+    use kepler::scene::report::BoundsReport;
+    let unit = kepler::solids::box_between([0.0; 3], [1.0; 3]).unwrap();
+    let reversed = |m: &Mesh| {
+        let faces = m
+            .faces()
+            .iter()
+            .map(|f| f.vertices().iter().rev().copied().collect())
+            .collect();
+        Mesh::from_polygons(m.vertices().to_vec(), faces).unwrap()
+    };
+    let mut scene = Scene::new();
+    let ks = [-1074, -1070, -900, -359, -150, 0, 150, 341, 342, 600, 1000, 1022];
+    for &k in &ks {
+        let cube = common::scaled_mesh(&unit, k).unwrap();
+        scene.add_mesh(None, format!("cube{k}"), cube.clone()).unwrap();
+        scene
+            .add_mesh(None, format!("inverted{k}"), reversed(&cube))
+            .unwrap();
+    }
+    let report = BoundsReport::of(&scene);
+    assert_eq!(report.objects.len(), 2 * ks.len());
+    for (o, k) in report.objects.iter().zip(ks.iter().flat_map(|k| [k, k])) {
+        let name = &o.name;
+        assert_eq!(o.inside_out, name.starts_with("inverted"), "{name}");
+        assert_eq!(o.tribox.faces, 6, "{name}");
+        for ratio in [o.inbox_ratio, o.tribox_ratio, o.cbox_ratio] {
+            assert_eq!(ratio, Some(1.0), "{name}");
+        }
+        let side = ldexp(1.0, *k);
+        assert_eq!(o.cbox.max, [side; 3], "{name}");
+        assert_eq!(o.inbox.map(|b| b.max), Some([side; 3]), "{name}");
+        let (volume, area) = (ldexp(1.0, 3 * k), ldexp(6.0, 2 * k));
+        assert_eq!(o.volume, Some(volume), "{name}");
+        assert_eq!(o.cbox.volume, volume, "{name}");
+        assert_eq!(o.surface_area, area, "{name}");
+        assert_eq!(o.tribox.surface_area, area, "{name}");
+        assert!(!o.tribox.volume.is_nan(), "{name}");
+    }
+    // A flat box of finite volume whose sides span 2^-333 to 2^664.
+    let flat = Mesh::from_polygons(
+        unit.vertices()
+            .iter()
+            .map(|p| Point3::new(p.x * 1e200, p.y * 1e200, p.z * 1e-100))
+            .collect(),
+        unit.faces().iter().map(|f| f.vertices().to_vec()).collect(),
+    )
+    .unwrap();
+    let mut scene = Scene::new();
+    scene.add_mesh(None, "flat", flat).unwrap();
+    let o = &BoundsReport::of(&scene).objects[0];
+    assert_eq!(o.cbox_ratio, Some(1.0));
+    assert_eq!(o.inbox_ratio, Some(1.0));
+    assert!((o.cbox.volume / (1e200 * (1e200 * 1e-100)) - 1.0).abs() < 1e-15);
 }

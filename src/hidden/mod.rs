@@ -79,6 +79,7 @@ use crate::queries::frustum::{Clip, Framed, FramedLine, contour_in_front, pictur
 use crate::queries::intersections;
 use crate::queries::meet::{Meet, OnLine, balance, reversed};
 use crate::queries::own_solid::turned_away;
+use crate::queries::range::in_working_range;
 use crate::queries::visp::Visibility;
 use crate::scene::{ObjectId, Scene, SceneError};
 use crate::views::{Eye, Picture, View, ViewError};
@@ -294,26 +295,11 @@ pub fn draw_with_progress(
     options: &Options,
     progress: &(dyn Fn(u64, u64) + Sync),
 ) -> Result<Drawing> {
-    let (drawing, shift) = in_working_range(scene, view, |scene, view| {
+    let (drawing, shift) = in_working_range::<_, DrawError>(scene, view, |scene, view| {
         let (pass, pieces) = decided(scene, view, options, progress)?;
         Ok(chained(pass, pieces, options))
     })?;
     Ok(scaled_back(drawing, view, shift))
-}
-
-/// `work` on the scene and view brought into the kernel's working range by a power of two,
-/// `2^shift`, with that shift: a scene of extreme coordinates is drawn scaled into the range
-/// where every construction is exact, and its results are scaled back (the same bits, scaled).
-fn in_working_range<T>(
-    scene: &Scene,
-    view: &View,
-    work: impl FnOnce(&Scene, &View) -> Result<T>,
-) -> Result<(T, i32)> {
-    let shift = scene.exponents().union(view.exponents()).shift();
-    if shift == 0 {
-        return Ok((work(scene, view)?, 0));
-    }
-    Ok((work(&scene.scaled(shift)?, &view.scaled(shift))?, shift))
 }
 
 /// A drawing made in the working range by `2^shift` brought back to the view's scale: a

@@ -47,14 +47,14 @@
 //! ```
 
 use super::{
-    Drawing, EdgeClass, Options, Pass, Piece, Result, chained, decided, in_working_range,
-    scaled_back,
+    DrawError, Drawing, EdgeClass, Options, Pass, Piece, Result, chained, decided, scaled_back,
 };
 use crate::geometry::Point3;
 use crate::geometry::exact::ldexp;
 use crate::mesh::Mesh;
 use crate::queries::along::{Form, Sample};
 use crate::queries::frustum::pictured;
+use crate::queries::range::in_working_range;
 use crate::queries::visp::{Visibility, VisibilityIndex};
 use crate::scene::{ObjectId, Scene};
 use crate::views::{Eye, View};
@@ -163,7 +163,7 @@ pub fn draw_traced(
     options: &Options,
     progress: &(dyn Fn(u64, u64) + Sync),
 ) -> Result<Traced> {
-    let (traced, shift) = in_working_range(scene, view, |scene, view| {
+    let (traced, shift) = in_working_range::<_, DrawError>(scene, view, |scene, view| {
         let (pass, pieces) = decided(scene, view, options, progress)?;
         Ok(traced(pass, pieces, options))
     })?;

@@ -12,8 +12,9 @@
 //! them ask of a segment or a pair of meshes: the exact sign of a plane's form at a point of an
 //! edge and the picture of the point where the edge crosses the plane, built once from the
 //! input (`along`); the lines where two meshes' faces pierce each other (`intersections`);
-//! the faces a solid seen from outside hides by itself (`own_solid`); and the frustum both clip
-//! to when a perspective eye is inside the scene (`frustum`).
+//! the faces a solid seen from outside hides by itself (`own_solid`); the frustum both clip
+//! to when a perspective eye is inside the scene (`frustum`); and the power of two that brings
+//! a scene of extreme coordinates into the range where the kernel is exact (`range`).
 //!
 //! ```
 //! use kepler::{geometry::Point3, scene::Scene, queries::{Stage, include::{Inclusion, include}}};
@@ -30,6 +31,7 @@ pub(crate) mod intersections;
 pub(crate) mod meet;
 pub(crate) mod own_solid;
 pub mod projection_grid;
+pub(crate) mod range;
 pub(crate) mod sight;
 pub mod visp;
 

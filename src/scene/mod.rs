@@ -833,12 +833,27 @@ impl Scene {
     /// assert_eq!(big.cbox(c).max, [2f64.powi(500); 3]);
     /// ```
     pub fn scaled(&self, exponent: i32) -> Result<Scene> {
+        self.scaled_where(exponent, |_| true)
+    }
+
+    /// The scene with the meshes of the subtrees of `roots` scaled by `2^exponent` (the others
+    /// as they are): how the bounds report measures each object at its own scale.
+    pub(crate) fn scaled_subtrees(&self, exponent: i32, roots: &[ObjectId]) -> Result<Scene> {
+        let inside: std::collections::HashSet<ObjectId> =
+            self.depth_first(roots).into_iter().map(|(o, _)| o).collect();
+        self.scaled_where(exponent, |id| inside.contains(&id))
+    }
+
+    /// The scene with the meshes of the objects `chosen` scaled by `2^exponent`, exactly.
+    fn scaled_where(&self, exponent: i32, chosen: impl Fn(ObjectId) -> bool) -> Result<Scene> {
         // In two steps: 2^exponent itself may not be a double.
         let half = exponent / 2;
         let steps = [half, exponent - half].map(|k| nalgebra::Matrix4::new_scaling(2f64.powi(k)));
         let mut objects = self.objects.clone();
-        for o in objects.values_mut() {
-            if let Content::Mesh(mesh) = &o.content {
+        for (id, o) in objects.iter_mut() {
+            if let Content::Mesh(mesh) = &o.content
+                && chosen(id)
+            {
                 let scaled = mesh
                     .transformed(&steps[0])
                     .and_then(|m| m.transformed(&steps[1]))

@@ -3,6 +3,8 @@
 
 use super::{ObjectId, Scene};
 use crate::bounds::{Aabb, InboxMethod};
+use crate::geometry::exact::ldexp;
+use crate::geometry::kernel::Exponents;
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -122,13 +124,59 @@ impl BoundsReport {
     /// assert_eq!(kepler::scene::report::BoundsReport::of(&s).objects.len(), 1);
     /// ```
     pub fn of(scene: &Scene) -> BoundsReport {
-        scene.compute_bounds();
+        // An object of extreme coordinates is measured brought into the kernel's working range
+        // by a power of two (volumes and areas of huge or tiny objects neither overflow nor
+        // underflow there, and the tribox's corners are classified exactly), then scaled back:
+        // each object by the power of two its own subtree needs, one copy of the scene per
+        // power with those subtrees scaled.
         let walk = scene.walk();
-        let objects = walk
-            .par_iter()
-            .map(|&(id, depth)| object_report(scene, id, depth))
+        let shifts: Vec<i32> = walk
+            .iter()
+            .map(|&(id, _)| {
+                let vertices = scene.meshes(id).into_iter().flat_map(|m| m.vertices());
+                vertices
+                    .fold(Exponents::NONE, |e, p| e.union(Exponents::of(p.coords.as_slice())))
+                    .shift()
+            })
             .collect();
-        BoundsReport { objects }
+        let mut distinct: Vec<i32> = shifts.clone();
+        distinct.sort_unstable();
+        distinct.dedup();
+        let mut objects: Vec<Option<ObjectReport>> = vec![None; walk.len()];
+        for wanted in distinct {
+            // (Where the scaled scene is not valid, the objects are measured as they are.)
+            let scaled = match wanted {
+                0 => None,
+                _ => {
+                    let roots: Vec<ObjectId> = (0..walk.len())
+                        .filter(|&k| shifts[k] == wanted)
+                        .map(|k| walk[k].0)
+                        .collect();
+                    scene.scaled_subtrees(wanted, &roots).ok()
+                }
+            };
+            let (at, shift) = match &scaled {
+                Some(s) => (s, wanted),
+                None => (scene, 0),
+            };
+            at.compute_bounds();
+            let reports: Vec<(usize, ObjectReport)> = walk
+                .par_iter()
+                .enumerate()
+                .filter(|(k, _)| shifts[*k] == wanted)
+                .map(|(k, &(id, depth))| {
+                    let mut o = object_report(at, id, depth);
+                    o.scale_back(shift);
+                    (k, o)
+                })
+                .collect();
+            for (k, o) in reports {
+                objects[k] = Some(o);
+            }
+        }
+        BoundsReport {
+            objects: objects.into_iter().flatten().collect(),
+        }
     }
 
     /// The report as an aligned text table, one line per object, names indented by depth.
@@ -210,11 +258,73 @@ impl BoundsReport {
     }
 }
 
-/// A compact rendering of a coordinate for the table (JSON keeps full precision).
+impl ObjectReport {
+    /// The report of the object scaled by `2^shift`, brought back to the object's scale:
+    /// lengths scaled by `2^-shift`, areas and volumes by its square and cube (infinite where
+    /// the true value exceeds the doubles), ratios as they are. A coordinate that does not
+    /// scale back exactly (below the normal range) is rounded outward for the CBOX and the
+    /// tribox and inward for the INBOX, so each bound still holds.
+    fn scale_back(&mut self, shift: i32) {
+        if shift == 0 {
+            return;
+        }
+        let length = |x: f64| ldexp(x, -shift);
+        let area = |x: f64| ldexp(x, -2 * shift);
+        let volume = |x: f64| ldexp(x, -3 * shift);
+        // `outward`: towards -inf for a low bound (`low`), +inf for a high one.
+        let bound = |x: f64, low: bool, outward: bool| {
+            let y = length(x);
+            let back = ldexp(y, shift);
+            match (low == outward, back.partial_cmp(&x)) {
+                (true, Some(std::cmp::Ordering::Greater)) => y.next_down(),
+                (false, Some(std::cmp::Ordering::Less)) => y.next_up(),
+                _ => y,
+            }
+        };
+        let boxed = |b: &mut BoxReport, outward: bool| {
+            b.min = b.min.map(|x| bound(x, true, outward));
+            b.max = b.max.map(|x| bound(x, false, outward));
+            b.volume = volume(b.volume);
+            b.surface_area = area(b.surface_area);
+        };
+        boxed(&mut self.cbox, true);
+        if let Some(inbox) = &mut self.inbox {
+            boxed(inbox, false);
+            if (0..3).any(|k| inbox.min[k] > inbox.max[k]) {
+                self.inbox = None;
+                self.inbox_method = None;
+                self.inbox_ratio = None;
+            }
+        }
+        // Min then max of each direction.
+        for (k, b) in self.tribox.bounds.iter_mut().enumerate() {
+            *b = bound(*b, k % 2 == 0, true);
+        }
+        self.tribox.volume = volume(self.tribox.volume);
+        self.tribox.surface_area = area(self.tribox.surface_area);
+        self.volume = self.volume.map(volume);
+        self.surface_area = area(self.surface_area);
+    }
+}
+
+/// A compact rendering of a coordinate for the table (JSON keeps full precision): four
+/// decimals, or five significant digits with an exponent for magnitudes from 10⁷ up or below
+/// 10⁻⁴ (so neither a 151-digit integer nor a row of zeros).
+///
+/// ```text
+/// 0.5 → 0.5, -0 → 0, 1e150 → 1e150, 2^-1070 → 7.9050e-323 → 7.905e-323
+/// ```
 fn short(x: f64) -> String {
-    let s = format!("{x:.4}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s == "-0" { "0".into() } else { s.into() }
+    let trimmed = |s: &str| s.trim_end_matches('0').trim_end_matches('.').to_string();
+    if x != 0.0 && (x.abs() >= 1e7 || x.abs() < 1e-4) {
+        let s = format!("{x:.4e}");
+        return match s.split_once('e') {
+            Some((mantissa, exponent)) => format!("{}e{exponent}", trimmed(mantissa)),
+            None => s,
+        };
+    }
+    let s = trimmed(&format!("{x:.4}"));
+    if s == "-0" { "0".into() } else { s }
 }
 
 fn object_report(scene: &Scene, id: ObjectId, depth: usize) -> ObjectReport {

@@ -48,6 +48,7 @@
 //! assert_eq!(statuses.iter().filter(|&&s| s == Status::Hidden).count(), 3);
 //! ```
 
+use crate::geometry::exact::ldexp;
 use crate::geometry::polygon::bounding_box;
 use crate::geometry::predicates::orient3d;
 use crate::geometry::{Aabb, Point3};
@@ -55,10 +56,11 @@ use crate::grid::{CellLists, Cells};
 use crate::mesh::{Face, Mesh};
 use crate::queries::frustum::{self, Clip};
 use crate::queries::own_solid::hidden_by_own_solid;
+use crate::queries::range::in_working_range;
 use crate::queries::sight::Sight;
-use crate::scene::{Content, ObjectId, Scene};
+use crate::scene::{Content, ObjectId, Scene, SceneError};
 use crate::views::{Eye, Picture, View, ViewError};
-use geo::{Coord, LineString, MultiPolygon, Polygon};
+use geo::{Coord, LineString, MapCoords, MultiPolygon, Polygon};
 use rayon::prelude::*;
 use slotmap::SecondaryMap;
 use std::cmp::Ordering;
@@ -78,11 +80,15 @@ use vtp::Vtp;
 /// let e = visfac(&scene, cube, &View::standard(), cube, 6).unwrap_err();
 /// assert!(matches!(e, SurfacesError::NoFace { face: 6, faces: 6, .. }));
 /// ```
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[derive(Debug, thiserror::Error)]
 pub enum SurfacesError {
     /// The scene cannot be pictured in the view.
     #[error(transparent)]
     View(#[from] ViewError),
+    /// The scene, brought into the kernel's working range, is not valid (see
+    /// [`Scene::scaled`]).
+    #[error(transparent)]
+    Scene(#[from] SceneError),
     /// VISFAC asked of an object without faces.
     #[error("object '{object}': VISFAC needs a face of a mesh object")]
     NotMesh {
@@ -193,8 +199,11 @@ pub fn visfac(
     owner: ObjectId,
     face: usize,
 ) -> Result<VisibleFace> {
-    let (_, clip) = pictured(scene, view)?;
-    Ok(visfac_among(scene, &[a], view, owner, face, None, clip.as_ref())?.0)
+    let (seen, shift) = in_working_range::<_, SurfacesError>(scene, view, |scene, view| {
+        let (_, clip) = pictured(scene, view)?;
+        Ok(visfac_among(scene, &[a], view, owner, face, None, clip.as_ref())?.0)
+    })?;
+    Ok(seen.scaled_back(view, shift))
 }
 
 /// VISFAC against the whole scene (every root object, the face's own included): the visible
@@ -214,8 +223,11 @@ pub fn visfac_scene(
     owner: ObjectId,
     face: usize,
 ) -> Result<VisibleFace> {
-    let (_, clip) = pictured(scene, view)?;
-    Ok(visfac_among(scene, scene.roots(), view, owner, face, None, clip.as_ref())?.0)
+    let (seen, shift) = in_working_range::<_, SurfacesError>(scene, view, |scene, view| {
+        let (_, clip) = pictured(scene, view)?;
+        Ok(visfac_among(scene, scene.roots(), view, owner, face, None, clip.as_ref())?.0)
+    })?;
+    Ok(seen.scaled_back(view, shift))
 }
 
 /// VISOBJ(A, B) (Franklin 1981, algorithm C): VISIBLE if `a` hides nothing of `b`, HIDDEN if it
@@ -233,8 +245,11 @@ pub fn visfac_scene(
 /// assert_eq!(visobj(&scene, b, a, &View::standard()).unwrap(), Status::Visible);
 /// ```
 pub fn visobj(scene: &Scene, a: ObjectId, b: ObjectId, view: &View) -> Result<Status> {
-    let (_, clip) = pictured(scene, view)?;
-    visobj_clipped(scene, a, b, view, clip.as_ref())
+    let (status, _) = in_working_range::<_, SurfacesError>(scene, view, |scene, view| {
+        let (_, clip) = pictured(scene, view)?;
+        visobj_clipped(scene, a, b, view, clip.as_ref())
+    })?;
+    Ok(status)
 }
 
 /// [`visobj`] with the view's frustum when it clips.
@@ -319,6 +334,19 @@ pub struct FaceReport {
 /// assert_eq!(faces.iter().filter(|f| f.visible.status == Status::Visible).count(), 3);
 /// ```
 pub fn visible_surfaces(scene: &Scene, view: &View) -> Result<Vec<FaceReport>> {
+    let (reports, shift) = in_working_range(scene, view, visible_surfaces_in_range)?;
+    Ok(reports
+        .into_iter()
+        .map(|r| FaceReport {
+            visible: r.visible.scaled_back(view, shift),
+            texture: scaled(r.texture, -shift),
+            ..r
+        })
+        .collect())
+}
+
+/// [`visible_surfaces`] of a scene and view in the kernel's working range.
+fn visible_surfaces_in_range(scene: &Scene, view: &View) -> Result<Vec<FaceReport>> {
     let picture = Picture::of(view);
     let (meshes, clip) = pictured(scene, view)?;
     let clip = clip.as_ref();
@@ -345,6 +373,31 @@ pub fn visible_surfaces(scene: &Scene, view: &View) -> Result<Vec<FaceReport>> {
             })
         })
         .collect()
+}
+
+/// Polygons scaled by `2^exponent` (exactly, unless a coordinate leaves the normal range).
+fn scaled(polygons: MultiPolygon<f64>, exponent: i32) -> MultiPolygon<f64> {
+    if exponent == 0 {
+        return polygons;
+    }
+    polygons.map_coords(|c| Coord {
+        x: ldexp(c.x, exponent),
+        y: ldexp(c.y, exponent),
+    })
+}
+
+impl VisibleFace {
+    /// The answer found in the working range by `2^shift` brought back to the view's scale: a
+    /// perspective picture does not scale.
+    fn scaled_back(self, view: &View, shift: i32) -> VisibleFace {
+        if view.is_perspective() {
+            return self;
+        }
+        VisibleFace {
+            polygons: scaled(self.polygons, -shift),
+            ..self
+        }
+    }
 }
 
 /// The scene's mesh objects and the frustum when the view clips ([`frustum::pictured`]).
