@@ -739,3 +739,81 @@ fn transformed_by_any_power_of_two() {
         }
     }
 }
+
+/// The exact signed volume `6V = Σ det[a − o, b − o, c − o]` of a mesh's triangles, as a
+/// rational: the reference for [`Mesh::orientation`].
+fn exact_orientation(mesh: &Mesh) -> Ordering {
+    let o = qp(&mesh.vertices()[0]);
+    let total = mesh.triangles().iter().fold(Q::zero(), |s, t| {
+        let [a, b, c] = t.map(|i| qsub(&qp(&mesh.vertices()[i as usize]), &o));
+        s + qdet(&a, &b, &c)
+    });
+    qsign(&total)
+}
+
+/// Closed meshes are oriented exactly: needle tetrahedra whose three tip vertices lie a few
+/// ulps apart (so that the rounded volume often has the wrong sign or is zero), each also
+/// turned inside out, at three scales; the orientation is the sign of the rational volume
+/// every time. Before, it was the sign of the
+/// rounded volume: an inside-out needle read as outward, and its crease between two faces
+/// turned towards the eye was drawn hidden.
+#[test]
+fn closed_meshes_are_oriented_exactly() {
+    let mut rng = Rng(0x0b1e);
+    let faces = vec![vec![1, 2, 0], vec![3, 1, 0], vec![3, 2, 1], vec![2, 3, 0]];
+    let (mut checked, mut rounded_wrong) = (0, 0);
+    for case in 0..400 {
+        let base = Point3::new(
+            rng.range(-2.0, 2.0),
+            rng.range(-2.0, 2.0),
+            rng.range(-2.0, 2.0),
+        );
+        let tip = base + rng.vector(3.0);
+        // Three points a few ulps apart near the tip: a needle.
+        let nudge = |x: f64, n: i32| {
+            let mut y = x;
+            for _ in 0..n.unsigned_abs() {
+                y = if n > 0 { y.next_up() } else { y.next_down() };
+            }
+            y
+        };
+        let mut near = || {
+            let k = rng.int(-40, 40) as i32;
+            Point3::new(
+                nudge(tip.x, k),
+                nudge(tip.y, rng.int(-40, 40) as i32),
+                nudge(tip.z, k / 2),
+            )
+        };
+        let v = vec![base, tip, near(), near()];
+        let Ok(mesh) = Mesh::from_polygons(v.clone(), faces.clone()) else {
+            continue;
+        };
+        if !mesh.is_solid() {
+            continue;
+        }
+        let reversed = Mesh::from_polygons(
+            v.clone(),
+            faces
+                .iter()
+                .map(|f| f.iter().rev().copied().collect())
+                .collect(),
+        )
+        .unwrap();
+        for (k, m) in [mesh, reversed].iter().enumerate() {
+            for scale in [0, -500, 500] {
+                let m = common::scaled_mesh(m, scale).unwrap();
+                let want = exact_orientation(&m);
+                assert_eq!(m.orientation(), want, "needle case {case}/{k} at 2^{scale}");
+                let rounded = m.volume().partial_cmp(&0.0).unwrap_or(Ordering::Equal);
+                rounded_wrong += usize::from(rounded != want);
+                checked += 1;
+            }
+        }
+    }
+    // The family reaches what rounding gets wrong.
+    assert!(
+        checked > 1000 && rounded_wrong > 10,
+        "{checked} checked, {rounded_wrong} rounded wrong"
+    );
+}

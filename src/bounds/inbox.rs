@@ -141,10 +141,10 @@ fn unscaled_inbox(mesh: &Mesh) -> Option<Inbox> {
     if cbox.volume() <= 0.0 {
         return None;
     }
-    let outward = if mesh.volume() >= 0.0 {
-        Ordering::Less
-    } else {
+    let outward = if mesh.orientation() == Ordering::Less {
         Ordering::Greater
+    } else {
+        Ordering::Less
     };
     if in_kernel(mesh, &cbox, outward) {
         return Some(Inbox {

@@ -134,6 +134,51 @@ pub fn expansion_sum(e: &[f64], f: &[f64]) -> Vec<f64> {
     h
 }
 
+/// The expansion `e` with the same value in as few components as the value needs (Shewchuk's
+/// Compress, with [`two_sum`]): sums of many expansions stay short when compressed now and
+/// then, since nonoverlapping components of a compressed expansion differ in magnitude by
+/// at least `2^53`.
+///
+/// ```
+/// use kepler::geometry::exact::{compress, expansion_sum};
+/// let mut sum: Vec<f64> = Vec::new();
+/// for _ in 0..100 {
+///     sum = expansion_sum(&sum, &[0.1, 1.0]);
+/// }
+/// let short = compress(&sum);
+/// assert!(short.len() <= 2);
+/// assert_eq!(short.iter().sum::<f64>(), sum.iter().sum::<f64>());
+/// assert!(compress(&[]).is_empty());
+/// ```
+pub fn compress(e: &[f64]) -> Vec<f64> {
+    let Some(&top) = e.last() else {
+        return Vec::new();
+    };
+    // From the top down: gather the bits into components that do not overlap.
+    let mut g = Vec::with_capacity(e.len());
+    let mut q = top;
+    for &c in e[..e.len() - 1].iter().rev() {
+        let (sum, low) = two_sum(q, c);
+        if low != 0.0 {
+            g.push(sum);
+            q = low;
+        } else {
+            q = sum;
+        }
+    }
+    g.push(q);
+    // From the bottom up (g holds the components from the largest down): join neighbours.
+    let mut h = Vec::with_capacity(g.len());
+    let mut q = g[g.len() - 1];
+    for &c in g[..g.len() - 1].iter().rev() {
+        let (sum, low) = two_sum(c, q);
+        push_nonzero(&mut h, low);
+        q = sum;
+    }
+    push_nonzero(&mut h, q);
+    h
+}
+
 /// The components of `e` and `f` merged by nondecreasing magnitude (each is assumed sorted).
 fn merge_by_magnitude<'a>(e: &'a [f64], f: &'a [f64]) -> impl Iterator<Item = f64> + 'a {
     let (mut i, mut j) = (0, 0);

@@ -48,10 +48,14 @@ pub use topology::Topology;
 pub use tree::TriangleTree;
 
 use crate::geometry::Point3;
-use crate::geometry::predicates::orient3d;
+use crate::geometry::exact::{compress, expansion_sum};
+use crate::geometry::kernel::{Estimate, Exponents, Polynomial, expansion_sign, sum_error_bound};
+use crate::geometry::predicates::{Orient3d, orient3d};
 use build::{Shape, diagonals_of};
 pub(crate) use build::{largest_coordinate, normalising_exponent, times_power_of_two};
 use nalgebra::Matrix4;
+use num_rational::BigRational;
+use num_traits::Zero;
 use std::cmp::Ordering;
 use topology::Junction;
 
@@ -467,6 +471,63 @@ impl Mesh {
             })
             .sum();
         times_power_of_two(six_v / 6.0, -3 * e)
+    }
+
+    /// The exact sign of the signed volume ([`Mesh::volume`]): `Greater` for a closed mesh
+    /// whose faces point outward, `Less` for one turned inside out, `Equal` for none (or a
+    /// flat one). The volume is the sum over the triangles of `orient3d(a, b, c, o)` / 6 for
+    /// any point `o` (here the first vertex); the sum of their estimates decides when its
+    /// certified bound allows, else the exact sum (expansions, compressed as they grow, or
+    /// rationals where the coordinates' exponents are too far apart for expansions). A thin
+    /// solid whose rounded volume has the wrong sign is oriented rightly.
+    ///
+    /// ```
+    /// use std::cmp::Ordering;
+    /// let cube = kepler::solids::cube(2.0).unwrap();
+    /// assert_eq!(cube.orientation(), Ordering::Greater);
+    /// ```
+    pub fn orientation(&self) -> Ordering {
+        let Some(o) = self.vertices.first() else {
+            return Ordering::Equal;
+        };
+        let dets = || {
+            self.triangles.iter().map(|t| {
+                let [a, b, c] = t.map(|i| self.vertices[i as usize]);
+                Orient3d([a, b, c, *o])
+            })
+        };
+        let (mut value, mut bound, mut magnitude) = (0.0f64, 0.0f64, 0.0f64);
+        for d in dets() {
+            let e = d.estimate();
+            value += e.value;
+            bound += e.bound;
+            magnitude += e.value.abs();
+        }
+        let bound = (bound + sum_error_bound(self.triangles.len() + 1, magnitude))
+            * (1.0 + 1.0 / (1u64 << 20) as f64);
+        let filtered = Estimate { value, bound }.sign();
+        if let Some(sign) = filtered {
+            return sign;
+        }
+        let exponents = Exponents::of(
+            &self
+                .vertices
+                .iter()
+                .flat_map(|p| p.coords.iter().copied())
+                .collect::<Vec<f64>>(),
+        );
+        if exponents.exact_for(3) {
+            let mut sum: Vec<f64> = Vec::new();
+            for (k, d) in dets().enumerate() {
+                sum = expansion_sum(&sum, &d.expansion());
+                if k % 64 == 63 {
+                    sum = compress(&sum);
+                }
+            }
+            return expansion_sign(&sum);
+        }
+        let sum = dets().fold(BigRational::zero(), |s, d| s + d.evaluate::<BigRational>());
+        sum.cmp(&BigRational::zero())
     }
 
     /// The total area of the faces.

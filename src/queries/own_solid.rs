@@ -39,12 +39,8 @@ pub(crate) fn turned_away(scene: &Scene, id: ObjectId, mesh: &Mesh, eye: &Eye) -
         return None;
     }
     // Seen from outside, an outward face is counter-clockwise: orient3d(face, eye) < 0.
-    let volume = mesh.volume();
-    if volume > 0.0 {
-        Some(Ordering::Greater)
-    } else if volume < 0.0 {
-        Some(Ordering::Less)
-    } else {
-        None
+    match mesh.orientation() {
+        Ordering::Equal => None,
+        sign => Some(sign),
     }
 }

@@ -135,7 +135,9 @@ impl BoundsReport {
             .map(|&(id, _)| {
                 let vertices = scene.meshes(id).into_iter().flat_map(|m| m.vertices());
                 vertices
-                    .fold(Exponents::NONE, |e, p| e.union(Exponents::of(p.coords.as_slice())))
+                    .fold(Exponents::NONE, |e, p| {
+                        e.union(Exponents::of(p.coords.as_slice()))
+                    })
                     .shift()
             })
             .collect();
@@ -354,7 +356,7 @@ fn object_report(scene: &Scene, id: ObjectId, depth: usize) -> ObjectReport {
         inside_out: scene
             .meshes(id)
             .iter()
-            .any(|m| m.is_solid() && m.volume() < 0.0),
+            .any(|m| m.is_solid() && m.orientation() == std::cmp::Ordering::Less),
         volume,
         surface_area: scene.surface_area(id),
         cbox: BoxReport::from(&cbox),
