@@ -1075,3 +1075,31 @@ fn a_huge_token_is_not_echoed_whole() {
         assert!(e.contains("(1048"), "{e}");
     }
 }
+
+/// A mesh file whose faces all have zero area once its coordinates are rounded to doubles (a
+/// 1e-6 box placed at 1e15) is a valid, empty object: it loads with its degenerate faces
+/// counted and draws nothing. A file with no face at all is still an error.
+#[test]
+fn a_file_of_degenerate_faces_only_is_an_empty_object() {
+    let dir = std::env::temp_dir().join(format!("kepler-degenerate-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("far.obj");
+    let mut obj = String::new();
+    for x in [1e15, 1e15 + 1e-6] {
+        for y in [1e15, 1e15 + 1e-6] {
+            for z in [1e15, 1e15 + 1e-6] {
+                obj.push_str(&format!("v {x} {y} {z}\n"));
+            }
+        }
+    }
+    obj.push_str("f 1 2 4 3\nf 5 7 8 6\nf 1 5 6 2\nf 3 4 8 7\nf 1 3 7 5\nf 2 6 8 4\n");
+    std::fs::write(&path, obj).unwrap();
+    let mesh = kepler::io::read_mesh(&path).unwrap();
+    assert!(mesh.faces().is_empty());
+    assert_eq!(mesh.degenerate_faces(), 6);
+    let empty = dir.join("empty.obj");
+    std::fs::write(&empty, "v 0 0 0\nv 1 0 0\n").unwrap();
+    let e = kepler::io::read_mesh(&empty).unwrap_err();
+    assert!(e.to_string().contains("the file has no faces"), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

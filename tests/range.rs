@@ -273,3 +273,61 @@ fn visible_surfaces_scale_bit_for_bit() {
         }
     }
 }
+
+/// Perspective eyes at the ends of the range: at 1.7e308 (the distance to the target
+/// overflows a double) and a subnormal eye looking at boxes of subnormal size (a 1024th of
+/// the distance underflows). Both draw, pass `verify`, and the subnormal scene draws the
+/// picture of the same scene at unit size (a perspective picture does not scale). Before,
+/// both views were refused (their default near distance was infinite or zero).
+#[test]
+fn eyes_at_the_ends_of_the_range_draw() {
+    use kepler::hidden::verify::{draw_traced, verify};
+    let mut scene = Scene::new();
+    scene
+        .add_mesh(
+            None,
+            "a",
+            kepler::solids::box_between([0.0; 3], [1.0; 3]).unwrap(),
+        )
+        .unwrap();
+    scene
+        .add_mesh(
+            None,
+            "b",
+            kepler::solids::box_between([0.5, 0.25, 1.0], [1.5, 1.25, 2.0]).unwrap(),
+        )
+        .unwrap();
+    let checked = |name: &str, scene: &Scene, view: &View| -> Drawing {
+        let traced = draw_traced(scene, view, &Options::default(), &|_, _| {})
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        let report = verify(scene, view, &Options::default(), &traced);
+        assert_eq!(report.disagreements, 0, "{name}:\n{report}");
+        assert!(
+            !traced.drawing.polylines.is_empty(),
+            "{name}: nothing drawn"
+        );
+        traced.drawing
+    };
+    let huge = 1.7e308;
+    let far = View::perspective(
+        Point3::new(huge, huge * 0.75, huge * 0.5),
+        Point3::new(0.5, 0.5, 0.5),
+        Vector3::z(),
+        1e-10,
+    )
+    .unwrap();
+    assert!(far.near().is_finite() && far.near() > 0.0);
+    checked("eye at 1.7e308", &scene, &far);
+    let unit = View::perspective(
+        Point3::new(4.0, -6.0, 8.0),
+        Point3::new(0.5, 0.5, 0.5),
+        Vector3::z(),
+        40.0,
+    )
+    .unwrap();
+    let tiny = -1070;
+    let small = scaled_scene(&scene, tiny);
+    let small_view = unit.scaled(tiny);
+    let d = checked("subnormal eye", &small, &small_view);
+    assert!(plain(&d) == plain(&draw(&scene, &unit, &Options::default()).unwrap()));
+}

@@ -172,7 +172,9 @@ pub fn read_mesh_with(path: &Path, validation: Validation) -> Result<Mesh> {
         "obj" => obj::parse_with(&String::from_utf8_lossy(&bytes), &name, validation),
         _ => off::parse_with(&String::from_utf8_lossy(&bytes), &name, validation),
     }?;
-    if mesh.faces().is_empty() {
+    // A file whose faces were all dropped as degenerate (zero area, after rounding to doubles)
+    // is a valid, empty object; one without any face is not a mesh file.
+    if mesh.faces().is_empty() && mesh.degenerate_faces() == 0 {
         return Err(FileError::Input {
             path: name,
             at: "1".into(),

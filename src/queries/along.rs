@@ -94,7 +94,17 @@ impl Form {
             let relative = 2.0 * (ra + rb) + 8.0 * UNIT_ROUNDOFF;
             (t.clamp(0.0, 1.0), t.abs() * relative + f64::MIN_POSITIVE)
         } else {
-            (0.5, f64::INFINITY)
+            // The values do not fit a double (inputs of far apart exponents): the parameter
+            // from their exact ratio, rounded once.
+            let (xa, xb) = (fa.evaluate::<BigRational>(), fb.evaluate::<BigRational>());
+            let denominator = &xa - xb;
+            match (xa / denominator).to_f64() {
+                Some(t) if t.is_finite() => (
+                    t.clamp(0.0, 1.0),
+                    t * 4.0 * UNIT_ROUNDOFF + f64::MIN_POSITIVE,
+                ),
+                _ => (0.5, f64::INFINITY),
+            }
         };
         Some(Zero {
             form: *self,

@@ -223,8 +223,12 @@ pub struct View {
     right: Vector3,
     up: Vector3,
     fov: Option<f64>,
-    /// A perspective view's near clipping distance.
+    /// A perspective view's near clipping distance is `near · 2^near_exponent` (apart, so that
+    /// the default near plane of an eye at an extreme distance neither overflows nor
+    /// underflows, and scales exactly with the view).
     near: f64,
+    /// See `near`.
+    near_exponent: i32,
     /// A perspective view's picture width over its height.
     aspect: f64,
 }
@@ -247,6 +251,7 @@ impl View {
             up: Vector3::y(),
             fov: None,
             near: 0.0,
+            near_exponent: 0,
             aspect: 1.0,
         }
     }
@@ -278,6 +283,7 @@ impl View {
             up,
             fov: None,
             near: 0.0,
+            near_exponent: 0,
             aspect: 1.0,
         })
     }
@@ -314,10 +320,13 @@ impl View {
             target.coords * 0.5 - eye.coords * 0.5
         };
         let (forward, right, up) = frame(&direction, &up)?;
-        // The near plane at 1/1024 of the distance to the target, computed without overflow.
+        // The near plane at 1/1024 of the distance to the target, kept as a number near 1 and a
+        // power of two (the distance's, twice it where the direction was halved).
         let scaled = unit_scaled(direction.into());
         let magnitude = direction.amax() / scaled.iter().fold(0.0f64, |m, c| m.max(c.abs()));
-        let near = Vector3::from(scaled).norm() * magnitude / 1024.0;
+        let halved = i32::from(!(target - eye).iter().all(|c| c.is_finite()));
+        let near = Vector3::from(scaled).norm() / 1024.0;
+        let near_exponent = magnitude.log2().round() as i32 + halved;
         Ok(View {
             eye: Eye::Point(eye),
             forward,
@@ -325,6 +334,7 @@ impl View {
             up,
             fov: Some(fov),
             near,
+            near_exponent,
             aspect: 1.0,
         })
     }
@@ -362,7 +372,7 @@ impl View {
         };
         View {
             eye,
-            near: ldexp(self.near, exponent),
+            near_exponent: self.near_exponent + exponent,
             ..*self
         }
     }
@@ -388,6 +398,7 @@ impl View {
         }
         Ok(View {
             near,
+            near_exponent: 0,
             aspect,
             ..self
         })
@@ -410,7 +421,7 @@ impl View {
         let [horizontal, vertical] = self.window()?;
         Some(Frustum {
             planes: [
-                (eye + f * self.near, f),
+                (eye + f * self.near(), f),
                 (eye, r + f * horizontal),
                 (eye, f * horizontal - r),
                 (eye, u + f * vertical),
@@ -429,7 +440,28 @@ impl View {
     /// assert_eq!(v.with_clipping(0.25, 1.5).unwrap().near(), 0.25);
     /// ```
     pub fn near(&self) -> f64 {
-        self.near
+        ldexp(self.near, self.near_exponent)
+    }
+
+    /// The same view clipped to a picture `aspect` times as wide as high, with its near
+    /// distance as it is (see [`with_clipping`](Self::with_clipping)). An error unless the
+    /// aspect is positive and finite.
+    ///
+    /// ```
+    /// use kepler::{geometry::{Point3, Vector3}, views::View};
+    /// let far = 2f64.powi(1020);
+    /// let v = View::perspective(Point3::new(far, far, far), Point3::origin(), Vector3::z(), 40.0).unwrap();
+    /// let v = v.with_aspect(1.5).unwrap();
+    /// assert!(v.near().is_finite() && v.near() > 0.0);
+    /// assert_eq!(v.window().unwrap()[0] / v.window().unwrap()[1], 1.5);
+    /// ```
+    pub fn with_aspect(self, aspect: f64) -> Result<View, ViewError> {
+        if !(aspect > 0.0 && aspect.is_finite()) {
+            return Err(ViewError::Options(
+                "the aspect ratio must be a positive number",
+            ));
+        }
+        Ok(View { aspect, ..self })
     }
 
     /// The half-width and half-height of a perspective view's picture window at unit depth

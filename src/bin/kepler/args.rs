@@ -56,8 +56,10 @@ impl ViewArgs {
         if !view.is_perspective() {
             return Ok(view);
         }
-        let near = self.near.unwrap_or(view.near());
-        Ok(view.with_clipping(near, aspect)?)
+        Ok(match self.near {
+            Some(near) => view.with_clipping(near, aspect)?,
+            None => view.with_aspect(aspect)?,
+        })
     }
 }
 
