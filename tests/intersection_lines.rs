@@ -500,8 +500,9 @@ fn permuting_axes_permutes_the_drawing() {
             );
         }
     });
-    // Where the frame's normalisation rounds differently the case is skipped: most are not.
-    assert!(tally.compared > 2 * tally.skipped, "{tally:?}");
+    // The view's frame is normalised by a length rounded once from the exact sum of squares,
+    // so it permutes exactly with the axes: no case has a frame that rounds differently.
+    assert_eq!(tally.skipped, 0, "{tally:?}");
 }
 
 #[test]

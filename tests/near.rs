@@ -253,3 +253,131 @@ fn eyes_inside_a_dense_mesh_pass_verify() {
     }
     assert!(samples >= 20_000, "{samples} samples");
 }
+
+/// The vertices of every mesh of `scene` mapped by `f` (faces reversed when `reverse`, as a
+/// mirror needs to keep them outward), the same vertex numbering.
+fn mapped(scene: &Scene, f: impl Fn(Point3) -> Point3, reverse: bool) -> Scene {
+    let mut out = Scene::new();
+    for (id, mesh) in scene.mesh_objects(scene.roots()) {
+        let faces = mesh
+            .faces()
+            .iter()
+            .map(|face| {
+                let mut v = face.vertices().to_vec();
+                if reverse {
+                    v.reverse();
+                }
+                v
+            })
+            .collect();
+        let vertices = mesh.vertices().iter().map(|&p| f(p)).collect();
+        let mesh = kepler::mesh::Mesh::from_polygons(vertices, faces).unwrap();
+        out.add_mesh(None, scene.path(id), mesh).unwrap();
+    }
+    out
+}
+
+/// A drawing's segments as bits, each with its ends in order, sorted, its pictures mapped by
+/// `map` first.
+fn bit_segments(
+    d: &Drawing,
+    map: impl Fn([f64; 2]) -> [f64; 2],
+) -> Vec<(EdgeClass, bool, [[u64; 2]; 2])> {
+    let bits = |p: [f64; 2]| map(p).map(|x| (x + 0.0).to_bits());
+    let mut out: Vec<_> = d
+        .polylines
+        .iter()
+        .flat_map(|p| {
+            p.points.windows(2).map(move |w| {
+                let (a, b) = (bits(w[0]), bits(w[1]));
+                (p.class, p.visible, if a <= b { [a, b] } else { [b, a] })
+            })
+        })
+        .collect();
+    out.sort_unstable_by_key(|x| (x.0 as u8, x.1, x.2));
+    out
+}
+
+/// Clipped drawings are invariant like the others: an eye inside a room of boxes (piercing
+/// each other and the walls), the scene and the view mirrored in x or y, with x and y swapped,
+/// permuted cyclically (up too), and translated by 2^20, 2^40 and about 1e8 (dyadic), draw the
+/// same segments bit for bit (the picture's x negated for a mirror or a swap). The frustum's
+/// planes are given relative to the eye by the view's frame (so a translation leaves them as
+/// they are), and the frame's vectors are normalised by a length rounded once from the exact
+/// sum of squares (so they mirror and permute exactly). Before, the planes went through
+/// rounded points: 13 of 30 such rooms drew a clipped end differently mirrored, 22 of 30
+/// translated.
+#[test]
+fn clipped_drawings_mirror_permute_and_translate() {
+    let mut rng = Rng(0x3c1f);
+    let mut compared = 0;
+    for case in 0..16 {
+        let mut scene = Scene::new();
+        boxed(&mut scene, "room", [-8.0, -8.0, 0.0], [8.0, 8.0, 5.0]);
+        for i in 0..3 {
+            let lo = [rng.int(-7, 4) / 2.0, rng.int(-7, 4) / 2.0, 0.0];
+            let hi = [
+                lo[0] + rng.int(1, 6) / 2.0,
+                lo[1] + rng.int(1, 6) / 2.0,
+                rng.int(1, 12) / 2.0,
+            ];
+            boxed(&mut scene, &format!("crate{i}"), lo, hi);
+        }
+        let eye = Point3::new(
+            rng.int(-56, 56) / 8.0,
+            rng.int(-56, 56) / 8.0,
+            rng.int(4, 36) / 8.0,
+        );
+        let target = Point3::new(
+            rng.int(-64, 64) / 8.0 + 1.0 / 1024.0,
+            rng.int(-64, 64) / 8.0,
+            rng.int(0, 40) / 8.0,
+        );
+        let fov = rng.pick(&[50.0, 70.0, 100.0]);
+        let Ok(view) = View::perspective(eye, target, Vector3::z(), fov) else {
+            continue;
+        };
+        let options = Options {
+            edges: EdgeSelection::All,
+            ..Options::default()
+        };
+        let base = draw(&scene, &view, &options).unwrap();
+        let same = bit_segments(&base, |p| p);
+        let negated = bit_segments(&base, |p| [-p[0], p[1]]);
+        type Map = fn(Point3) -> Point3;
+        let shift = |t: [f64; 3]| move |p: Point3| p + Vector3::from(t);
+        let variants: [(&str, Map, bool, bool); 4] = [
+            ("mirror x", |p| Point3::new(-p.x, p.y, p.z), true, true),
+            ("mirror y", |p| Point3::new(p.x, -p.y, p.z), true, true),
+            ("swap x y", |p| Point3::new(p.y, p.x, p.z), true, true),
+            ("cycle", |p| Point3::new(p.z, p.x, p.y), false, false),
+        ];
+        for (name, f, reverse, flips) in variants {
+            let up = if name == "cycle" {
+                f(Point3::new(0.0, 0.0, 1.0)).coords
+            } else {
+                Vector3::z()
+            };
+            let moved = View::perspective(f(eye), f(target), up, fov).unwrap();
+            let d = draw(&mapped(&scene, f, reverse), &moved, &options).unwrap();
+            let want = if flips { &negated } else { &same };
+            assert!(bit_segments(&d, |p| p) == *want, "case {case}: {name}");
+            compared += 1;
+        }
+        for t in [
+            [2f64.powi(20), -(2f64.powi(20)), 2f64.powi(19)],
+            [2f64.powi(40), 2f64.powi(40), -(2f64.powi(40))],
+            [1e8, -123_456_789.25, 98_765_432.5],
+        ] {
+            let f = shift(t);
+            let moved = View::perspective(f(eye), f(target), Vector3::z(), fov).unwrap();
+            let d = draw(&mapped(&scene, f, false), &moved, &options).unwrap();
+            assert!(
+                bit_segments(&d, |p| p) == same,
+                "case {case}: translated by {t:?}"
+            );
+            compared += 1;
+        }
+    }
+    assert!(compared >= 100, "{compared} compared");
+}

@@ -306,6 +306,8 @@ pub enum Orientation {
     Point(Orient3d),
     /// Against a point at infinity.
     Infinity(Orient3dAtInfinity),
+    /// The side of a plane given by a point, a normal and an offset (degree 2).
+    Side(Side),
 }
 
 impl Polynomial for Orientation {
@@ -314,6 +316,7 @@ impl Polynomial for Orientation {
         match self {
             Orientation::Point(d) => d.estimate(),
             Orientation::Infinity(d) => d.estimate(),
+            Orientation::Side(d) => d.estimate(),
         }
     }
 
@@ -321,6 +324,7 @@ impl Polynomial for Orientation {
         match self {
             Orientation::Point(d) => d.expansion(),
             Orientation::Infinity(d) => d.expansion(),
+            Orientation::Side(d) => d.expansion(),
         }
     }
 
@@ -328,17 +332,22 @@ impl Polynomial for Orientation {
         match self {
             Orientation::Point(d) => d.evaluate(),
             Orientation::Infinity(d) => d.evaluate(),
+            Orientation::Side(d) => d.evaluate(),
         }
     }
 
     fn degree(&self) -> u32 {
-        3
+        match self {
+            Orientation::Side(_) => 2,
+            _ => 3,
+        }
     }
 
     fn exponents(&self) -> Exponents {
         match self {
             Orientation::Point(d) => d.exponents(),
             Orientation::Infinity(d) => d.exponents(),
+            Orientation::Side(d) => d.exponents(),
         }
     }
 
@@ -347,6 +356,7 @@ impl Polynomial for Orientation {
         match self {
             Orientation::Point(d) => d.sign(),
             Orientation::Infinity(d) => d.sign(),
+            Orientation::Side(d) => d.sign(),
         }
     }
 }
@@ -456,10 +466,11 @@ impl Polynomial for Orient2d {
     }
 }
 
-/// The side of the point `x` of the plane through `origin` with normal `normal`,
-/// `normal · (x − origin)`, as a [`Polynomial`] of degree 2: positive on the side the normal
-/// points to. A plane given by a point and a normal in doubles (a clipping plane of a view
-/// frustum, say) is exact input like any vertex.
+/// The side of the point `x` of the plane `normal · (x − origin) = offset`, as a
+/// [`Polynomial`] of degree 2: positive on the side the normal points to. A plane given by a
+/// point, a normal and an offset in doubles (a clipping plane of a view frustum, relative to
+/// the eye: the same plane wherever scene and eye are moved together) is exact input like any
+/// vertex.
 ///
 /// Its estimate rounds the three differences and products and the two additions: each term
 /// `n_k·d_k` is off by at most `2u` of its magnitude and the sum adds `γ2` of the terms'
@@ -469,10 +480,12 @@ impl Polynomial for Orient2d {
 /// ```
 /// use kepler::geometry::{Point3, Vector3, kernel::Polynomial, predicates::Side};
 /// use std::cmp::Ordering;
-/// let s = |x| Side { origin: Point3::new(0.0, 0.0, 1.0), normal: Vector3::z(), x };
+/// let s = |x| Side { origin: Point3::new(0.0, 0.0, 1.0), normal: Vector3::z(), offset: 0.0, x };
 /// assert_eq!(s(Point3::new(5.0, 5.0, 3.0)).estimate().value, 2.0);
 /// assert_eq!(s(Point3::new(0.1, 0.7, 1.0)).sign(), Ordering::Equal);
 /// assert_eq!(s(Point3::new(0.0, 0.0, 0.0)).expansion(), vec![-1.0]);
+/// let beyond = Side { offset: 0.5, ..s(Point3::new(0.0, 0.0, 1.5)) };
+/// assert_eq!(beyond.sign(), Ordering::Equal);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Side {
@@ -480,6 +493,8 @@ pub struct Side {
     pub origin: Point3,
     /// The plane's normal (need not be a unit vector).
     pub normal: Vector3,
+    /// The plane's offset from `origin` along the normal (0 for a plane through `origin`).
+    pub offset: f64,
     /// The point whose side is asked.
     pub x: Point3,
 }
@@ -488,19 +503,20 @@ impl Polynomial for Side {
     #[inline]
     fn estimate(&self) -> Estimate {
         let terms = [0, 1, 2].map(|k| self.normal[k] * (self.x[k] - self.origin[k]));
-        let magnitude = terms.iter().map(|t| t.abs()).sum::<f64>();
+        let magnitude = terms.iter().map(|t| t.abs()).sum::<f64>() + self.offset.abs();
         Estimate {
-            value: terms[0] + terms[1] + terms[2],
-            bound: super::kernel::sum_error_bound(4, magnitude),
+            value: terms[0] + terms[1] + terms[2] - self.offset,
+            bound: super::kernel::sum_error_bound(5, magnitude),
         }
     }
 
     fn expansion(&self) -> Vec<f64> {
-        let mut terms = Vec::with_capacity(12);
+        let mut terms = Vec::with_capacity(13);
         for k in 0..3 {
             let (s, e) = two_sum(self.x[k], -self.origin[k]);
             product_terms(&[s, e], &[self.normal[k]], &mut terms);
         }
+        terms.push(-self.offset);
         super::exact::expansion(&terms)
     }
 
@@ -508,7 +524,7 @@ impl Polynomial for Side {
         let term = |k: usize| {
             R::from_f64(self.normal[k]) * (R::from_f64(self.x[k]) - R::from_f64(self.origin[k]))
         };
-        term(0) + term(1) + term(2)
+        term(0) + term(1) + term(2) - R::from_f64(self.offset)
     }
 
     fn degree(&self) -> u32 {
@@ -519,6 +535,7 @@ impl Polynomial for Side {
         Exponents::of(self.origin.coords.as_slice())
             .union(Exponents::of(self.normal.as_slice()))
             .union(Exponents::of(self.x.coords.as_slice()))
+            .union(Exponents::of(&[self.offset]))
     }
 }
 

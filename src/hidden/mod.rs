@@ -563,7 +563,12 @@ impl<'a> Pass<'a> {
             let (id0, id1) = (ids[i], ids[j]);
             for s in found {
                 segments += 1;
-                let front = s.points.map(|p| clip.is_none_or(|n| n.in_front(&p)));
+                // Which ends are in front of the eye, and whether both are inside the frustum,
+                // decided exactly at the ends (points of the meet line).
+                let sign_at = |k: usize| move |form: &Form| s.meet.sign_at(&eye, &s.ends[k], form);
+                let front = [0, 1]
+                    .map(|k| clip.is_none_or(|n| sign_at(k)(&n.depth()) == Ordering::Greater));
+                let inside = [0, 1].map(|k| clip.is_none_or(|n| n.contains_by(sign_at(k))));
                 if front == [false, false] {
                     // Wholly behind the eye: nothing of it is drawn or bounds what is seen.
                     continue;
@@ -589,7 +594,7 @@ impl<'a> Pass<'a> {
                     back: false,
                     triangles: None,
                     wide: front != [true, true],
-                    clipped: clip.is_some_and(|n| !s.points.iter().all(|p| n.contains(&eye, p))),
+                    clipped: inside != [true, true],
                     leaf: 0,
                     vertices: [0; 2],
                 });

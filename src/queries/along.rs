@@ -21,12 +21,12 @@
 //! The arithmetic for polynomials written once over any [`Ring`] lives here too: [`Filtered`]
 //! (estimates with the kernel's certified bounds) and [`Expanded`] (exact expansions).
 
-use crate::geometry::Point3;
 use crate::geometry::exact::{estimate, expansion_product, expansion_sum, lerp, negated};
 use crate::geometry::kernel::{
     Between, Difference, Estimate, Exponents, Polynomial, Product, Ring, UNIT_ROUNDOFF, rounded,
 };
-use crate::geometry::predicates::{Orient3d, Orientation};
+use crate::geometry::predicates::{Orient3d, Orientation, Side};
+use crate::geometry::{Point3, Vector3};
 use crate::views::{Eye, Picture};
 use num_bigint::{BigInt, Sign};
 use num_rational::BigRational;
@@ -42,6 +42,9 @@ pub(crate) enum Form {
     /// `orient3d(p, q, x, eye)`: the side of the plane through `p`, `q` and the eye, that is,
     /// of the picture of the line `pq`.
     Sight(Point3, Point3),
+    /// `n·(x − eye) − d` for a perspective eye: a plane given relative to the eye (a plane of
+    /// the view's frustum), the same wherever scene and eye are moved together.
+    Frustum(Vector3, f64),
 }
 
 impl Form {
@@ -51,6 +54,15 @@ impl Form {
         match self {
             Form::Plane([p, q, r]) => Orientation::Point(Orient3d([*p, *q, *r, *x])),
             Form::Sight(p, q) => eye.determinant(p, q, x),
+            Form::Frustum(normal, offset) => Orientation::Side(Side {
+                origin: match eye {
+                    Eye::Point(e) => *e,
+                    Eye::Infinity(_) => Point3::origin(),
+                },
+                normal: *normal,
+                offset: *offset,
+                x: *x,
+            }),
         }
     }
 
@@ -60,6 +72,7 @@ impl Form {
         match self {
             Form::Plane(t) => t.contains(x),
             Form::Sight(p, q) => p == x || q == x,
+            Form::Frustum(..) => false,
         }
     }
 
@@ -312,7 +325,7 @@ impl Polynomial for FormAt<'_> {
     }
 
     fn degree(&self) -> u32 {
-        3
+        self.form.at(self.eye, self.x).degree()
     }
 
     fn exponents(&self) -> Exponents {

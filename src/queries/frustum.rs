@@ -44,8 +44,12 @@ use std::cmp::Ordering;
 /// the eye and the picture's edges, and the plane of its eye.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Clip {
-    /// The planes as forms (near, left, right, bottom, top), each with its sign inside.
+    /// The planes as forms relative to the eye (near, left, right, bottom, top), each with its
+    /// sign inside.
     planes: [(Form, Ordering); 5],
+    /// The same planes through points, for the visible-surface pass (see [`Boundary`]), each
+    /// with its sign inside.
+    sides: [(Boundary, Ordering); 5],
     /// The eye.
     eye: Point3,
     /// The view's forward direction: the depth of `x` is `forward·(x − eye)`.
@@ -73,44 +77,17 @@ impl Clip {
             return None;
         };
         let frustum = view.frustum()?;
-        let q = frustum.planes[0].0;
-        let (forward, (right, up)) = (view.forward(), view.right_up());
-        // Moves of about the points' own magnitude (a power of two: exact products), so the
-        // rounding of the moved points tilts the planes as little as doubles allow.
-        let magnitude = q
-            .coords
-            .amax()
-            .max(eye.coords.amax())
-            .max(f64::MIN_POSITIVE);
-        let step = 2f64.powi(magnitude.log2().ceil() as i32);
+        // Each normal points inside: every plane's form is positive there.
+        let planes = frustum
+            .planes
+            .map(|(_, normal, offset)| (Form::Frustum(normal, offset), Ordering::Greater));
         let [h, v] = view.window()?;
-        // Each side plane through the eye and two points of the picture's edge.
-        let side = |across: Vector3, along: Vector3| {
-            let p = eye + (forward + across) * step;
-            Form::Sight(p, p + along * step)
-        };
-        let forms = [
-            Form::Plane([q, q + right * step, q + up * step]),
-            side(-right * h, up),
-            side(right * h, up),
-            side(-up * v, right),
-            side(up * v, right),
-        ];
-        // Inside is where the centre of the picture is, beyond the near plane.
-        let inside = eye + forward * (2.0 * step);
-        let eye_point = Eye::Point(eye);
-        let mut planes = forms.map(|f| (f, Ordering::Equal));
-        for (form, sign) in &mut planes {
-            *sign = form.sign_at(&eye_point, &inside);
-            if *sign == Ordering::Equal {
-                return None;
-            }
-        }
         let grown = 1.0 + 1.0 / (1u64 << 16) as f64;
         Some(Clip {
             planes,
+            sides: boundaries(view, eye)?,
             eye,
-            forward,
+            forward: view.forward(),
             window: [h / v * grown, grown],
         })
     }
@@ -169,10 +146,10 @@ impl Clip {
         self.window
     }
 
-    /// The planes as forms (near, left, right, bottom, top), each with the sign of its form
-    /// strictly inside the frustum.
-    pub(crate) fn sides(&self) -> impl Iterator<Item = (Form, Ordering)> + '_ {
-        self.planes.iter().copied()
+    /// The planes through points (near, left, right, bottom, top) for the visible-surface
+    /// pass, each with the sign of its form strictly inside the frustum.
+    pub(crate) fn sides(&self) -> impl Iterator<Item = (Boundary, Ordering)> + '_ {
+        self.sides.iter().copied()
     }
 
     /// The planes as forms along lines.
@@ -195,19 +172,26 @@ impl Clip {
             .all(|(form, inside)| sign(form) == *inside)
     }
 
+    /// The depth as a form, relative to the eye: positive in front of it (the polynomial of
+    /// [`Clip::in_front`]).
+    pub(crate) fn depth(&self) -> Form {
+        Form::Frustum(self.forward, 0.0)
+    }
+
     /// The depth of `x` as a polynomial: positive in front of the eye (the same form as the
     /// picture's depth, so the same decisions).
-    fn depth(&self, x: &Point3) -> Side {
+    fn depth_at(&self, x: &Point3) -> Side {
         Side {
             origin: self.eye,
             normal: self.forward,
+            offset: 0.0,
             x: *x,
         }
     }
 
     /// Whether `x` lies strictly in front of the eye, exactly.
     pub(crate) fn in_front(&self, x: &Point3) -> bool {
-        self.depth(x).sign() == Ordering::Greater
+        self.depth_at(x).sign() == Ordering::Greater
     }
 }
 
@@ -225,6 +209,72 @@ pub(crate) fn ray_direction(picture: &Picture, front: &Point3, other: &Point3) -
             Product(at(k, front), at(2, other)),
         ))
     })
+}
+
+/// A plane of the frustum through points in doubles, as the visible-surface pass builds the
+/// lines of a face's plane (see `surfaces::vtp`): the near plane through three points, a side
+/// plane through the eye and two points. The points are placed symmetrically about the ones
+/// that define the plane (the near point moved right and left, a point of the picture's edge
+/// moved up and down, or right and left), so that a mirrored or permuted view gives the
+/// mirrored or permuted points; their rounding turns the planes by about 2⁻⁵³ radians from
+/// the exact frustum.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Boundary {
+    /// The plane through three points.
+    Plane([Point3; 3]),
+    /// The plane through two points and the eye.
+    Sight(Point3, Point3),
+}
+
+impl Boundary {
+    /// The plane's form.
+    pub(crate) fn form(&self) -> Form {
+        match *self {
+            Boundary::Plane(t) => Form::Plane(t),
+            Boundary::Sight(p, q) => Form::Sight(p, q),
+        }
+    }
+}
+
+/// The frustum's planes through points (see [`Boundary`]), each with its sign inside; `None`
+/// where a plane has no inside (a degenerate view).
+fn boundaries(view: &View, eye: Point3) -> Option<[(Boundary, Ordering); 5]> {
+    let (forward, (right, up)) = (view.forward(), view.right_up());
+    let near = view.near();
+    let q = eye + forward * near;
+    // Moves of about the points' own magnitude (a power of two: exact products), so the
+    // rounding of the moved points tilts the planes as little as doubles allow.
+    let magnitude = q
+        .coords
+        .amax()
+        .max(eye.coords.amax())
+        .max(near)
+        .max(f64::MIN_POSITIVE);
+    let step = 2f64.powi((magnitude.log2().ceil() as i32).min(1022));
+    let [h, v] = view.window()?;
+    // Each side plane through the eye and two points about a point of the picture's edge.
+    let side = |across: Vector3, along: Vector3| {
+        let p = eye + (forward + across) * step;
+        Boundary::Sight(p - along * step, p + along * step)
+    };
+    let bounds = [
+        Boundary::Plane([q - right * step, q + right * step, q + up * step]),
+        side(-right * h, up),
+        side(right * h, up),
+        side(-up * v, right),
+        side(up * v, right),
+    ];
+    // Inside is where the centre of the picture is, beyond the near plane.
+    let inside = eye + forward * (2.0 * step);
+    let eye_point = Eye::Point(eye);
+    let mut sides = bounds.map(|b| (b, Ordering::Equal));
+    for (bound, sign) in &mut sides {
+        *sign = bound.form().sign_at(&eye_point, &inside);
+        if *sign == Ordering::Equal {
+            return None;
+        }
+    }
+    Some(sides)
 }
 
 /// A line's picture for [`Clip::framed`].
@@ -278,8 +328,8 @@ pub(crate) fn contour_in_front(
         (_, Ordering::Equal) => near.in_front(d),
         _ => {
             let numerator = Difference(
-                Product(near.depth(c), eye.determinant(a, b, d)),
-                Product(near.depth(d), eye.determinant(a, b, c)),
+                Product(near.depth_at(c), eye.determinant(a, b, d)),
+                Product(near.depth_at(d), eye.determinant(a, b, c)),
             );
             let s = numerator.sign();
             s != Ordering::Equal && s == sd

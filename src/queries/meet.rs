@@ -128,6 +128,7 @@ pub(crate) fn reversed(form: &Form) -> Form {
     match *form {
         Form::Plane([p, q, r]) => Form::Plane([p, r, q]),
         Form::Sight(c, d) => Form::Sight(d, c),
+        Form::Frustum(n, d) => Form::Frustum(-n, -d),
     }
 }
 
@@ -236,6 +237,7 @@ impl Meet {
         let form_points = |f: &Form| match f {
             Form::Plane(t) => t.to_vec(),
             Form::Sight(c, d) => vec![*c, *d],
+            Form::Frustum(..) => Vec::new(),
         };
         let own = match p {
             OnLine::Vertex { point, .. } => vec![*point],
@@ -566,6 +568,15 @@ impl Affine<'_> {
                 let anchor = match form {
                     Form::Plane([p, ..]) => p,
                     Form::Sight(c, _) => c,
+                    Form::Frustum(_, offset) => {
+                        // n·(o − eye) − d: the eye is where the plane's offset is measured.
+                        let e = match eye {
+                            Eye::Point(e) => *e,
+                            Eye::Infinity(_) => Point3::origin(),
+                        };
+                        return dot(&gradient::<R>(eye, form), &difference::<R>(o, &e))
+                            - R::from_f64(*offset);
+                    }
                 };
                 dot(&gradient(eye, form), &difference(o, anchor))
             }
@@ -597,6 +608,7 @@ fn gradient<R: Ring>(eye: &Eye, form: &Form) -> [R; 3] {
             Eye::Point(e) => cross(&difference(c, e), &difference(d, c)),
             Eye::Infinity(u) => cross(&difference(d, c), &[0, 1, 2].map(|k| R::from_f64(u[k]))),
         },
+        Form::Frustum(n, _) => [0, 1, 2].map(|k| R::from_f64(n[k])),
     }
 }
 
@@ -634,6 +646,7 @@ fn form_exponents(form: &Form) -> Exponents {
             .iter()
             .fold(Exponents::NONE, |e, p| e.union(point_exponents(p))),
         Form::Sight(c, d) => point_exponents(c).union(point_exponents(d)),
+        Form::Frustum(n, d) => Exponents::of(n.as_slice()).union(Exponents::of(&[*d])),
     }
 }
 

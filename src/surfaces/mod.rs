@@ -592,10 +592,20 @@ impl Target {
         let picture = Picture::of(view);
         let framing = match clip {
             None => Framing::Inside,
-            Some(c) if vertices.iter().all(|v| c.contains(&eye, v)) => Framing::Inside,
             Some(c)
-                if c.sides().any(|(form, inside)| {
-                    vertices.iter().all(|v| form.sign_at(&eye, v) != inside)
+                if c.sides().all(|(bound, inside)| {
+                    vertices
+                        .iter()
+                        .all(|v| bound.form().sign_at(&eye, v) == inside)
+                }) =>
+            {
+                Framing::Inside
+            }
+            Some(c)
+                if c.sides().any(|(bound, inside)| {
+                    vertices
+                        .iter()
+                        .all(|v| bound.form().sign_at(&eye, v) != inside)
                 }) =>
             {
                 Framing::Outside

@@ -36,7 +36,7 @@ use crate::geometry::kernel::{Difference, Polynomial, Product};
 use crate::geometry::predicates::orient3d;
 use crate::mesh::TextureFrame;
 use crate::queries::along::{Form, cut_point, cut_point_on_plane};
-use crate::queries::frustum::Clip;
+use crate::queries::frustum::{Boundary, Clip};
 use crate::views::{Eye, Picture};
 use geo::{Coord, LineString, MultiPolygon, Polygon};
 use std::cell::RefCell;
@@ -589,8 +589,8 @@ impl<'a> Vtp<'a> {
         let mut region: Vec<(u32, Ordering)> = Vec::with_capacity(5);
         for (form, inside) in clip.sides() {
             let kind = match form {
-                Form::Plane(t) => Kind::Plane(t),
-                Form::Sight(a, b) => Kind::Sight(a, b),
+                Boundary::Plane(t) => Kind::Plane(t),
+                Boundary::Sight(a, b) => Kind::Sight(a, b),
             };
             match self.line(kind) {
                 Trace::Line(l, s) => region.push((l, times(inside, s))),

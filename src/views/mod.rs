@@ -20,7 +20,7 @@
 //! assert_eq!(view.to_view(&Point3::new(1.0, 2.0, 3.0)), Point3::new(1.0, 2.0, 3.0));
 //! ```
 
-use crate::geometry::exact::{ldexp, unit_scaled};
+use crate::geometry::exact::{accurate_sum, ldexp, two_product, unit_scaled};
 use crate::geometry::kernel::Exponents;
 use crate::geometry::kernel::Polynomial;
 use crate::geometry::predicates::{
@@ -421,11 +421,11 @@ impl View {
         let [horizontal, vertical] = self.window()?;
         Some(Frustum {
             planes: [
-                (eye + f * self.near(), f),
-                (eye, r + f * horizontal),
-                (eye, f * horizontal - r),
-                (eye, u + f * vertical),
-                (eye, f * vertical - u),
+                (eye, f, self.near()),
+                (eye, r + f * horizontal, 0.0),
+                (eye, f * horizontal - r, 0.0),
+                (eye, u + f * vertical, 0.0),
+                (eye, f * vertical - u, 0.0),
             ],
         })
     }
@@ -672,21 +672,25 @@ impl ViewOptions {
 }
 
 /// The region a perspective view draws when its scene is not wholly in front of the eye: the
-/// points on the inner side of five planes, each given by a point and an inward normal in
-/// doubles (exact input for the predicates): the near plane, then the left, right, bottom and
-/// top planes through the eye at the field of view.
+/// points on the inner side of five planes, each given by the eye, an inward normal and an
+/// offset from the eye along it, in doubles (exact input for the predicates): the near plane,
+/// then the left, right, bottom and top planes through the eye at the field of view. Given
+/// relative to the eye, they are the same planes wherever scene and eye are moved together,
+/// and their normals (sums of the view's frame vectors) mirror and permute with the view.
 ///
 /// ```
 /// use kepler::{geometry::{Point3, Vector3}, views::View};
 /// let v = View::perspective(Point3::new(0.0, 0.0, 5.0), Point3::origin(), Vector3::y(), 40.0).unwrap();
 /// let f = v.frustum().unwrap();
 /// assert_eq!(f.planes[0].1, Vector3::new(0.0, 0.0, -1.0)); // the near plane faces away from the eye
+/// assert_eq!(f.planes[0].2, v.near()); // at the near distance from it
 /// assert!(!f.contains(&Point3::new(0.0, 0.0, 6.0))); // behind the eye
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Frustum {
-    /// Each plane as a point on it and its inward normal: near, left, right, bottom, top.
-    pub planes: [(Point3, Vector3); 5],
+    /// Each plane as the eye, its inward normal `n` and its offset `d` (the plane is
+    /// `n·(x − eye) = d`): near, left, right, bottom, top.
+    pub planes: [(Point3, Vector3, f64); 5],
 }
 
 impl Frustum {
@@ -699,10 +703,11 @@ impl Frustum {
     /// assert_eq!(v.frustum().unwrap().side(0, &Point3::origin()).sign(), Ordering::Greater);
     /// ```
     pub fn side(&self, k: usize, p: &Point3) -> Side {
-        let (origin, normal) = self.planes[k];
+        let (origin, normal, offset) = self.planes[k];
         Side {
             origin,
             normal,
+            offset,
             x: *p,
         }
     }
@@ -742,5 +747,15 @@ fn unit(v: &Vector3) -> Vector3 {
     } else {
         v * 0.5
     };
-    Vector3::from(unit_scaled(v.into())).normalize()
+    let v = Vector3::from(unit_scaled(v.into()));
+    // The length from the exact sum of squares rounded once, so that the frame mirrors and
+    // permutes with its input bit for bit (a sum rounded in order depends on the order).
+    let squares: Vec<f64> = v
+        .iter()
+        .flat_map(|&c| {
+            let (high, low) = two_product(c, c);
+            [high, low]
+        })
+        .collect();
+    v / accurate_sum(&squares).sqrt()
 }
