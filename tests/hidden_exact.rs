@@ -1572,8 +1572,8 @@ fn edges_mesh_draws_the_edges_between_coplanar_polygons() {
 /// end lies behind small boxes in front of it. Every crossing of a small box's silhouette with
 /// a long edge within 2⁷ of its far end has a parameter that rounds to 1, and the two
 /// crossings of one small box often round to one double: the cuts are ordered exactly, and
-/// each piece is decided at a point strictly inside it (a rational one where no double lies
-/// between its cuts). Before, a cut whose parameter rounded to 1 was dropped, and the hidden
+/// each piece is decided at a point strictly inside it (where no double lies between its cuts,
+/// a point between the two exact cut points with positive weights). Before, a cut whose parameter rounded to 1 was dropped, and the hidden
 /// piece under the small box was drawn visible.
 #[test]
 fn cuts_closer_than_the_edge_parameter_resolves() {

@@ -21,14 +21,17 @@
 //! The arithmetic for polynomials written once over any [`Ring`] lives here too: [`Filtered`]
 //! (estimates with the kernel's certified bounds) and [`Expanded`] (exact expansions).
 
-use crate::geometry::exact::{estimate, expansion_product, expansion_sum, lerp, negated};
+use crate::geometry::exact::{
+    estimate, expansion_product, expansion_sum, ldexp, lerp, negated, scale_expansion,
+};
 use crate::geometry::kernel::{
-    Between, Difference, Estimate, Exponents, Polynomial, Product, Ring, UNIT_ROUNDOFF, rounded,
+    Between, Difference, Estimate, Exponents, Polynomial, Product, Ring, UNIT_ROUNDOFF,
+    expansion_sign, rounded,
 };
 use crate::geometry::predicates::{Orient3d, Orientation, Side};
 use crate::geometry::{Point3, Vector3};
 use crate::views::{Eye, Picture};
-use num_bigint::{BigInt, Sign};
+use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero as _};
 use std::cmp::Ordering;
@@ -192,33 +195,74 @@ impl Zero {
         if self.rising { s } else { s.reverse() }
     }
 
-    /// The exact parameter of the zero.
-    fn parameter(&self, eye: &Eye, a: &Point3, b: &Point3) -> BigRational {
-        let at = |x| {
-            FormAt {
-                form: &self.form,
-                eye,
-                x,
-            }
-            .evaluate::<BigRational>()
+    /// The zero's parameter `f(a) / (f(a) − f(b))` rounded once (within 1.5 units in the last
+    /// place).
+    fn rounded(&self, eye: &Eye, a: &Point3, b: &Point3) -> f64 {
+        let at = |x| FormAt {
+            form: &self.form,
+            eye,
+            x,
         };
-        let fa = at(a);
-        let denominator = &fa - at(b);
-        fa / denominator
+        rounded_ratio(&at(a), &Difference(at(a), at(b))).clamp(0.0, 1.0)
+    }
+
+    /// The zero's weight `|f(b) − f(a)|`, approximately (for [`balance`]).
+    fn weight(&self, eye: &Eye, a: &Point3, b: &Point3) -> f64 {
+        let at = |x| FormAt {
+            form: &self.form,
+            eye,
+            x,
+        };
+        Difference(at(b), at(a)).estimate().value.abs()
+    }
+
+    /// The form `H` (given at the ends as `ha`, `hb`) at the zero, times its positive weight:
+    /// `f(b)·H(a) − f(a)·H(b)` for a rising form `f`, the negation for a falling one.
+    fn numerator<'a>(
+        &'a self,
+        eye: &'a Eye,
+        ha: FormAt<'a>,
+        hb: FormAt<'a>,
+    ) -> Difference<Product<FormAt<'a>, FormAt<'a>>, Product<FormAt<'a>, FormAt<'a>>> {
+        let at = |x| FormAt {
+            form: &self.form,
+            eye,
+            x,
+        };
+        let (fa, fb) = (at(ha.x), at(hb.x));
+        if self.rising {
+            Difference(Product(fb, ha), Product(fa, hb))
+        } else {
+            Difference(Product(fa, hb), Product(fb, ha))
+        }
     }
 }
 
 /// A point `X(t) = a + t·(b − a)` strictly inside a piece of an edge `ab` between two cuts,
 /// where the pass decides the piece: `t` a double when one lies strictly between the cuts
 /// (nearly always: the middle of their parameters, checked exactly when their error bounds do
-/// not decide), else the exact middle of the two zeros as a rational. Either way never rounded:
-/// every form is evaluated exactly at it.
+/// not decide; else the middle of their correctly rounded parameters), else a point between
+/// the two exact cut points with positive weights (see [`Sample::Midpoint`]). Either way never
+/// rounded: every form is evaluated exactly at it.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) enum Sample {
     /// At a double parameter.
     At(f64),
-    /// At a rational parameter (no double lies strictly between the cuts).
-    Exactly(BigRational),
+    /// Where no double lies strictly between the cuts `lo` and `hi` (`None`: an end of the
+    /// edge): the point `M = (c1·W1·X1 + c2·W2·X2) / (c1·W1 + c2·W2)` of the two cut points
+    /// `X = (f(b)·a − f(a)·b) / W` (a zero of the form `f`, with its weight `W = f(b) − f(a)`
+    /// made positive; an end has weight 1), for powers of two `c` that bring `c·W` near 1. It
+    /// lies strictly between them, and every form `H` has at `M` the sign of
+    /// `c1·W1·H(X1) + c2·W2·H(X2)`, a polynomial of the input (see [`Blend`]). `t` is its
+    /// parameter, approximately.
+    Midpoint {
+        /// The cuts (`None`: the ends `a`, resp. `b`); boxed, as this variant is rare.
+        ends: Box<[Option<Zero>; 2]>,
+        /// The powers of two `c1`, `c2`.
+        scales: [f64; 2],
+        /// The parameter of the point, within two units in the last place of 1.
+        t: f64,
+    },
 }
 
 impl Sample {
@@ -235,48 +279,211 @@ impl Sample {
         if strictly_between(eye, a, b, [lo, hi], middle) {
             return Sample::At(middle);
         }
-        let exact = |z: Option<&Zero>, end: f64| match z {
-            Some(z) => z.parameter(eye, a, b),
-            None => BigRational::from_float(end).unwrap_or_else(BigRational::zero),
-        };
-        let half = BigRational::new(BigInt::one(), BigInt::from(2));
-        let m = (exact(lo, 0.0) + exact(hi, 1.0)) * half;
-        // The double nearest the middle lies between the cuts whenever any double does.
-        match m.to_f64() {
-            Some(t) if strictly_between(eye, a, b, [lo, hi], t) => Sample::At(t),
-            _ => Sample::Exactly(m),
+        // The parameters rounded correctly: a double strictly between the cuts, if any, is
+        // found by the middle of these or next to it.
+        let (r0, r1) = (
+            lo.map_or(0.0, |z| z.rounded(eye, a, b)),
+            hi.map_or(1.0, |z| z.rounded(eye, a, b)),
+        );
+        let middle = r0 + (r1 - r0) / 2.0;
+        for t in [middle, middle.next_up(), middle.next_down()] {
+            if strictly_between(eye, a, b, [lo, hi], t) {
+                return Sample::At(t);
+            }
+        }
+        let weight = |z: Option<&Zero>| z.map_or(1.0, |z| z.weight(eye, a, b));
+        Sample::Midpoint {
+            ends: Box::new([lo.copied(), hi.copied()]),
+            scales: [balance(weight(lo)), balance(weight(hi))],
+            t: middle.clamp(0.0, 1.0),
         }
     }
 
     /// The point of the edge `ab`, each coordinate rounded once, and a bound on its distance
     /// from the exact point (for finding what lies near it, never for a decision).
     pub(crate) fn point(&self, a: &Point3, b: &Point3) -> (Point3, f64) {
-        let x = match self {
-            Sample::At(t) => Point3::from(std::array::from_fn(|k| lerp(a[k], b[k], *t))),
-            Sample::Exactly(t) => Point3::from(std::array::from_fn(|k| {
-                let [ak, bk] = [a[k], b[k]].map(|v| BigRational::from_float(v).unwrap_or_default());
-                (&ak + t * (bk - &ak)).to_f64().unwrap_or(a[k])
-            })),
-        };
+        let at = |t: f64| Point3::from(std::array::from_fn(|k| lerp(a[k], b[k], t)));
         // Each coordinate within a unit in the last place of the largest.
-        (x, 4.0 * UNIT_ROUNDOFF * x.coords.amax() + f64::MIN_POSITIVE)
+        let rounding = |x: &Point3| 4.0 * UNIT_ROUNDOFF * x.coords.amax() + f64::MIN_POSITIVE;
+        match self {
+            Sample::At(t) => {
+                let x = at(*t);
+                (x, rounding(&x))
+            }
+            Sample::Midpoint { t, .. } => {
+                // The exact point's parameter is within a few units in the last place of 1
+                // of `t` (no double lies between the cuts, each rounded within 1.5 of them).
+                let x = at(*t);
+                let length = (b - a).amax() * 3f64.sqrt();
+                (x, rounding(&x) + 8.0 * UNIT_ROUNDOFF * length)
+            }
+        }
     }
 
     /// The exact sign of `form` at the sample of the edge `ab`.
     pub(crate) fn sign(&self, form: &Form, eye: &Eye, a: &Point3, b: &Point3) -> Ordering {
         match self {
             Sample::At(t) => form.sign_along(eye, a, b, *t),
-            Sample::Exactly(t) => {
-                let at = |x| FormAt { form, eye, x }.evaluate::<BigRational>();
-                let fa = at(a);
-                let value = &fa + t * (at(b) - &fa);
-                match value.numer().sign() {
-                    Sign::Minus => Ordering::Less,
-                    Sign::NoSign => Ordering::Equal,
-                    Sign::Plus => Ordering::Greater,
+            Sample::Midpoint { ends, scales, .. } => {
+                let (ha, hb) = (FormAt { form, eye, x: a }, FormAt { form, eye, x: b });
+                let [lo, hi] = ends
+                    .each_ref()
+                    .map(|end| end.as_ref().map(|z| AtCut::Zero(z.numerator(eye, ha, hb))));
+                Blend {
+                    parts: [lo.unwrap_or(AtCut::End(ha)), hi.unwrap_or(AtCut::End(hb))],
+                    scales: *scales,
                 }
+                .sign()
             }
         }
+    }
+}
+
+/// A form `H` at a bound of a piece of an edge, times the bound's positive weight: at an end,
+/// `H` there; at a cut, `f(b)·H(a) − f(a)·H(b)` for its rising form `f` (see
+/// [`Sample::Midpoint`]).
+#[derive(Debug, Clone, Copy)]
+enum AtCut<'a> {
+    /// At an end of the edge.
+    End(FormAt<'a>),
+    /// At a cut.
+    Zero(Difference<Product<FormAt<'a>, FormAt<'a>>, Product<FormAt<'a>, FormAt<'a>>>),
+}
+
+impl Polynomial for AtCut<'_> {
+    fn estimate(&self) -> Estimate {
+        match self {
+            AtCut::End(p) => p.estimate(),
+            AtCut::Zero(p) => p.estimate(),
+        }
+    }
+
+    fn expansion(&self) -> Vec<f64> {
+        match self {
+            AtCut::End(p) => p.expansion(),
+            AtCut::Zero(p) => p.expansion(),
+        }
+    }
+
+    fn evaluate<R: Ring>(&self) -> R {
+        match self {
+            AtCut::End(p) => p.evaluate(),
+            AtCut::Zero(p) => p.evaluate(),
+        }
+    }
+
+    fn degree(&self) -> u32 {
+        match self {
+            AtCut::End(p) => p.degree(),
+            AtCut::Zero(p) => p.degree(),
+        }
+    }
+
+    fn exponents(&self) -> Exponents {
+        match self {
+            AtCut::End(p) => p.exponents(),
+            AtCut::Zero(p) => p.exponents(),
+        }
+    }
+
+    fn sign(&self) -> Ordering {
+        match self {
+            AtCut::End(p) => p.sign(),
+            AtCut::Zero(p) => p.sign(),
+        }
+    }
+}
+
+/// `c1·N1 + c2·N2` for powers of two `c1`, `c2` and polynomials `N1`, `N2` (a form's
+/// numerators at two points, each times a positive weight): the sign of the form at a point
+/// between the two, with positive weights (see [`Sample::Midpoint`] and
+/// `Meet::sign_between`).
+#[derive(Debug, Clone)]
+pub(crate) struct Blend<P> {
+    /// `N1` and `N2`.
+    pub parts: [P; 2],
+    /// `c1` and `c2`.
+    pub scales: [f64; 2],
+}
+
+impl<P: Polynomial> Blend<P> {
+    /// The scaled parts' expansions, when both are exact.
+    fn expansions(&self) -> Option<[Vec<f64>; 2]> {
+        let mut out = [Vec::new(), Vec::new()];
+        for (k, n) in self.parts.iter().enumerate() {
+            if !n.exponents().exact_for(n.degree()) {
+                return None;
+            }
+            let e = n.expansion();
+            // Scaling by a power of two is exact unless a component leaves the normal range.
+            let c = self.scales[k];
+            if e.iter().any(|&x| !(x * c).is_normal()) {
+                return None;
+            }
+            out[k] = scale_expansion(&e, c);
+        }
+        Some(out)
+    }
+}
+
+impl<P: Polynomial> Polynomial for Blend<P> {
+    fn estimate(&self) -> Estimate {
+        let [a, b] = &self.parts;
+        let scaled = |n: &P, c: f64| Filtered(n.estimate()) * Filtered::from_f64(c);
+        (scaled(a, self.scales[0]) + scaled(b, self.scales[1])).0
+    }
+
+    fn expansion(&self) -> Vec<f64> {
+        let [a, b] = &self.parts;
+        let scaled = |n: &P, c: f64| scale_expansion(&n.expansion(), c);
+        expansion_sum(&scaled(a, self.scales[0]), &scaled(b, self.scales[1]))
+    }
+
+    fn evaluate<R: Ring>(&self) -> R {
+        let [a, b] = &self.parts;
+        R::from_f64(self.scales[0]) * a.evaluate::<R>()
+            + R::from_f64(self.scales[1]) * b.evaluate::<R>()
+    }
+
+    fn degree(&self) -> u32 {
+        self.parts[0].degree().max(self.parts[1].degree()) + 1
+    }
+
+    fn exponents(&self) -> Exponents {
+        let [a, b] = &self.parts;
+        a.exponents()
+            .union(b.exponents())
+            .union(Exponents::of(&self.scales))
+    }
+
+    /// Equal signs at the two points decide; else the filter; else the exact sum (expansions
+    /// of the two parts scaled, or rationals).
+    fn sign(&self) -> Ordering {
+        let [a, b] = &self.parts;
+        let (sa, sb) = (a.sign(), b.sign());
+        if sa == sb || sb == Ordering::Equal {
+            return sa;
+        }
+        if sa == Ordering::Equal {
+            return sb;
+        }
+        if let Some(sign) = self.estimate().sign() {
+            return sign;
+        }
+        match self.expansions() {
+            Some([x, y]) => expansion_sign(&expansion_sum(&x, &y)),
+            None => exact_sign_rational(self),
+        }
+    }
+}
+
+/// The power of two that brings a positive weight near 1 (1 for a weight that is not a
+/// positive normal double).
+pub(crate) fn balance(weight: f64) -> f64 {
+    if weight.is_normal() && weight > 0.0 {
+        ldexp(1.0, -(weight.log2().floor() as i32))
+    } else {
+        1.0
     }
 }
 

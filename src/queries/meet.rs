@@ -59,10 +59,11 @@
 //! so mirroring, permuting axes, scaling by powers of two and (in perspective) translating
 //! scene and eye together give the same bits, transformed.
 
+pub(crate) use super::along::balance;
 use super::along::{
-    Expanded, Filtered, Form, FormAt, cut_point, cut_point_of, exact_sign_rational, rounded_ratio,
+    Blend, Expanded, Filtered, Form, FormAt, cut_point, cut_point_of, exact_sign_rational,
+    rounded_ratio,
 };
-use crate::geometry::exact::{expansion_sum, ldexp, scale_expansion};
 use crate::geometry::kernel::{
     Difference, Estimate, Exponents, Polynomial, Product, Ring, expansion_sign, rounded,
     value_within,
@@ -211,8 +212,8 @@ impl Meet {
         scales: [f64; 2],
         form: &Form,
     ) -> Ordering {
-        Midpoint {
-            numerators: [self.numerator(eye, p, form), self.numerator(eye, q, form)],
+        Blend {
+            parts: [self.numerator(eye, p, form), self.numerator(eye, q, form)],
             scales,
         }
         .sign()
@@ -713,84 +714,6 @@ impl Polynomial for Numerator<'_> {
     }
 }
 
-/// `c1·N1 + c2·N2` for powers of two `c1`, `c2`: a form at the point between two points of a
-/// line (see [`Meet::sign_between`]).
-struct Midpoint<'a> {
-    numerators: [Numerator<'a>; 2],
-    scales: [f64; 2],
-}
-
-impl Midpoint<'_> {
-    /// The scaled numerators' expansions, when both are exact.
-    fn expansions(&self) -> Option<[Vec<f64>; 2]> {
-        let mut out = [Vec::new(), Vec::new()];
-        for (k, n) in self.numerators.iter().enumerate() {
-            if !n.exponents().exact_for(n.degree()) {
-                return None;
-            }
-            let e = n.expansion();
-            // Scaling by a power of two is exact unless a component leaves the normal range.
-            let c = self.scales[k];
-            if e.iter().any(|&x| !(x * c).is_normal()) {
-                return None;
-            }
-            out[k] = scale_expansion(&e, c);
-        }
-        Some(out)
-    }
-}
-
-impl Polynomial for Midpoint<'_> {
-    fn estimate(&self) -> Estimate {
-        let [a, b] = &self.numerators;
-        let scaled = |n: &Numerator, c: f64| Filtered(n.estimate()) * Filtered::from_f64(c);
-        (scaled(a, self.scales[0]) + scaled(b, self.scales[1])).0
-    }
-
-    fn expansion(&self) -> Vec<f64> {
-        let [a, b] = &self.numerators;
-        let scaled = |n: &Numerator, c: f64| scale_expansion(&n.expansion(), c);
-        expansion_sum(&scaled(a, self.scales[0]), &scaled(b, self.scales[1]))
-    }
-
-    fn evaluate<R: Ring>(&self) -> R {
-        let [a, b] = &self.numerators;
-        R::from_f64(self.scales[0]) * a.evaluate::<R>()
-            + R::from_f64(self.scales[1]) * b.evaluate::<R>()
-    }
-
-    fn degree(&self) -> u32 {
-        self.numerators[0].degree().max(self.numerators[1].degree()) + 1
-    }
-
-    fn exponents(&self) -> Exponents {
-        let [a, b] = &self.numerators;
-        a.exponents()
-            .union(b.exponents())
-            .union(Exponents::of(&self.scales))
-    }
-
-    /// Equal signs at the two points decide; else the filter; else the exact sum (expansions
-    /// of the two numerators scaled, or rationals).
-    fn sign(&self) -> Ordering {
-        let [a, b] = &self.numerators;
-        let (sa, sb) = (a.sign(), b.sign());
-        if sa == sb || sb == Ordering::Equal {
-            return sa;
-        }
-        if sa == Ordering::Equal {
-            return sb;
-        }
-        if let Some(sign) = self.estimate().sign() {
-            return sign;
-        }
-        match self.expansions() {
-            Some([x, y]) => expansion_sign(&expansion_sum(&x, &y)),
-            None => exact_sign_rational(self),
-        }
-    }
-}
-
 /// The relative error below which an estimate is taken as accurate enough for an approximate
 /// point or weight: `2⁻⁴²`, below the `2⁻⁴⁰` margins of the visibility queries' box filters.
 const ACCURATE: f64 = 1.0 / (1u64 << 42) as f64;
@@ -798,14 +721,4 @@ const ACCURATE: f64 = 1.0 / (1u64 << 42) as f64;
 /// The value of `p` within `2⁻⁴²` of its magnitude ([`value_within`]).
 fn accurate<P: Polynomial>(p: &P) -> f64 {
     value_within(p, ACCURATE)
-}
-
-/// The power of two that brings a positive weight near 1 (1 for a weight that is not a
-/// positive normal double).
-pub(crate) fn balance(weight: f64) -> f64 {
-    if weight.is_normal() && weight > 0.0 {
-        ldexp(1.0, -(weight.log2().floor() as i32))
-    } else {
-        1.0
-    }
 }
