@@ -251,10 +251,14 @@ fn the_bounds_report_holds_at_every_scale() {
         Mesh::from_polygons(m.vertices().to_vec(), faces).unwrap()
     };
     let mut scene = Scene::new();
-    let ks = [-1074, -1070, -900, -359, -150, 0, 150, 341, 342, 600, 1000, 1022];
+    let ks = [
+        -1074, -1070, -900, -359, -150, 0, 150, 341, 342, 600, 1000, 1022,
+    ];
     for &k in &ks {
         let cube = common::scaled_mesh(&unit, k).unwrap();
-        scene.add_mesh(None, format!("cube{k}"), cube.clone()).unwrap();
+        scene
+            .add_mesh(None, format!("cube{k}"), cube.clone())
+            .unwrap();
         scene
             .add_mesh(None, format!("inverted{k}"), reversed(&cube))
             .unwrap();

@@ -839,8 +839,11 @@ impl Scene {
     /// The scene with the meshes of the subtrees of `roots` scaled by `2^exponent` (the others
     /// as they are): how the bounds report measures each object at its own scale.
     pub(crate) fn scaled_subtrees(&self, exponent: i32, roots: &[ObjectId]) -> Result<Scene> {
-        let inside: std::collections::HashSet<ObjectId> =
-            self.depth_first(roots).into_iter().map(|(o, _)| o).collect();
+        let inside: std::collections::HashSet<ObjectId> = self
+            .depth_first(roots)
+            .into_iter()
+            .map(|(o, _)| o)
+            .collect();
         self.scaled_where(exponent, |id| inside.contains(&id))
     }
 

@@ -135,7 +135,9 @@ impl BoundsReport {
             .map(|&(id, _)| {
                 let vertices = scene.meshes(id).into_iter().flat_map(|m| m.vertices());
                 vertices
-                    .fold(Exponents::NONE, |e, p| e.union(Exponents::of(p.coords.as_slice())))
+                    .fold(Exponents::NONE, |e, p| {
+                        e.union(Exponents::of(p.coords.as_slice()))
+                    })
                     .shift()
             })
             .collect();
