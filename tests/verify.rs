@@ -707,3 +707,46 @@ fn nearly_coplanar_faces() {
         scene_of(meshes)
     });
 }
+
+// Every edge selection; pictures that round to a point.
+
+const SELECTIONS: [EdgeSelection; 3] = [
+    EdgeSelection::Feature,
+    EdgeSelection::All,
+    EdgeSelection::Mesh,
+];
+
+/// A box of side 1e-30 seen along a direction 1e-300 off its vertical edges: their pictures are
+/// not points exactly, but round to one when the drawing is scaled back from the kernel's
+/// working range. The drawing has no segment of zero length, and the checks agree.
+#[test]
+fn pictures_that_round_to_a_point_are_left_out() {
+    for (lo, hi) in [([0.0; 3], [1e-30; 3]), ([-5e-31; 3], [5e-31; 3])] {
+        let scene = scene_of(vec![solids::box_between(lo, hi).unwrap()]);
+        let view = View::orthographic(Vector3::new(1e-300, 0.0, -1.0), Vector3::y()).unwrap();
+        for edges in SELECTIONS {
+            let options = Options {
+                edges,
+                ..Options::default()
+            };
+            passes(&format!("{lo:?}, {edges:?}"), &scene, &view, &options);
+            let t = traced(&scene, &view, &options);
+            // The vertical edges' pictures: not end-on, yet a point at the input's scale.
+            let points = t.pieces.iter().filter(|p| p.ends[0] == p.ends[1]).count();
+            assert!(
+                lo[0] != 0.0 || points >= 2,
+                "{points} pieces of zero length"
+            );
+            assert_eq!(
+                t.drawing.polylines,
+                kepler::hidden::draw(&scene, &view, &options)
+                    .unwrap()
+                    .polylines
+            );
+            for l in &t.drawing.polylines {
+                assert!(l.points.len() >= 2, "{l:?}");
+                assert!(l.points.windows(2).all(|w| w[0] != w[1]), "{l:?}");
+            }
+        }
+    }
+}

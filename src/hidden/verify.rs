@@ -26,10 +26,14 @@
 //!    must be drawn whole: pieces of that class on that edge (matched by object and exact input
 //!    end points, never by rounded pictures) whose parameter ranges tile `[0, 1]`. Edges seen
 //!    end-on, edges between two faces seen edge-on and edges of more than two triangles are
-//!    not checked.
-//! 3. **The drawing.** Its segments are exactly the pieces' pictures (of nonzero length; with
-//!    their class and visibility; hidden ones only when the drawing keeps them): each piece
-//!    checked is one that is drawn.
+//!    not checked. A piece here is a traced one, drawn or not: one whose picture is a point
+//!    (see 3) still covers its part of the edge.
+//! 3. **The drawing.** Its segments are exactly the pieces' pictures as drawn (with their class
+//!    and visibility; hidden ones only when the drawing keeps them), each piece's ends as
+//!    [`draw_traced`] gives them, at the input's scale: each piece checked is one that is
+//!    drawn, except a piece whose ends are equal, which the drawing never holds (a piece of
+//!    zero length, or one whose picture rounds to a single point when the drawing is scaled
+//!    back from the kernel's working range: see [`Drawing::scaled`]).
 //!
 //! ```
 //! use kepler::{scene::Scene, views::View};
@@ -743,6 +747,9 @@ fn drawing(options: &Options, traced: &Traced, report: &mut Verification) {
         (class, visible, if p <= q { [p, q] } else { [q, p] })
     };
     let mut count: HashMap<(EdgeClass, bool, [[u64; 2]; 2]), i64> = HashMap::new();
+    // A piece whose ends are equal, as traced at the input's scale (of zero length, or
+    // rounded to one point when scaled back: `draw_traced` scales them as `Drawing::scaled`
+    // scales the drawing), is not drawn.
     for p in &traced.pieces {
         if p.ends[0] != p.ends[1] && (p.visible || options.hidden) {
             *count
