@@ -750,3 +750,90 @@ fn pictures_that_round_to_a_point_are_left_out() {
         }
     }
 }
+
+/// The faces of `solids::box_between`'s box, vertex `k` taking the maximum along axis `i`
+/// when bit `i` of `k` is set.
+const BOX_FACES: [[u32; 4]; 6] = [
+    [0, 4, 6, 2],
+    [1, 3, 7, 5],
+    [0, 1, 5, 4],
+    [2, 6, 7, 3],
+    [0, 2, 3, 1],
+    [4, 5, 7, 6],
+];
+
+fn box_vertices(lo: [f64; 3], hi: [f64; 3]) -> Vec<Point3> {
+    (0..8)
+        .map(|k| {
+            let c = |i: usize| if k & (1 << i) != 0 { hi[i] } else { lo[i] };
+            Point3::new(c(0), c(1), c(2))
+        })
+        .collect()
+}
+
+/// A quad that is not exactly planar (the top of a perturbed box), split along a diagonal that
+/// is a silhouette from the eye: every selection draws the outline whole, `--edges mesh` too.
+#[test]
+fn a_split_diagonal_seen_as_a_silhouette_is_drawn_with_mesh_edges() {
+    let p = Point3::new;
+    let quad = Mesh::from_polygons(
+        vec![
+            p(-1.0, -1.0, 1.25),
+            p(1.0, -1.0, 1.001),
+            p(1.0, 1.0, 1.0),
+            p(-1.0, 1.0, 1.001),
+        ],
+        vec![vec![0, 1, 2, 3]],
+    )
+    .unwrap();
+    assert_eq!(quad.split_polygons(), 1);
+    let scene = scene_of(vec![quad]);
+    let view =
+        View::perspective(p(7.25, -0.5, 0.75), p(0.5, 0.5, 0.5), Vector3::z(), 70.0).unwrap();
+    for edges in SELECTIONS {
+        let options = Options {
+            edges,
+            ..Options::default()
+        };
+        let report = passes(&format!("{edges:?}"), &scene, &view, &options);
+        assert_eq!(report.silhouettes, 1, "{edges:?}: {report}");
+        let t = traced(&scene, &view, &options);
+        assert!(
+            t.drawing.length(EdgeClass::Silhouette, true) > 0.0,
+            "{edges:?}: the fold is not drawn"
+        );
+    }
+}
+
+/// Boxes with a corner moved off the planes of its faces (three faces not exactly planar,
+/// split into triangles), in every selection.
+#[test]
+fn boxes_with_faces_not_exactly_planar_pass_in_every_selection() {
+    for seed in 0..CASES {
+        let mut rng = Rng(seed * 3_571 + 5);
+        let lo = [0; 3].map(|_| rng.int(-4, 3));
+        let hi = [0, 1, 2].map(|k| lo[k] + rng.int(1, 3));
+        let mut v = box_vertices(lo, hi);
+        let corner = rng.below(8);
+        v[corner] += rng.vector(0.25);
+        let faces = BOX_FACES.iter().map(|f| f.to_vec()).collect();
+        let scene = scene_of(vec![
+            Mesh::from_polygons(v, faces).unwrap(),
+            grid_box(&mut rng),
+        ]);
+        for (k, view) in views(&mut rng).iter().enumerate() {
+            for edges in SELECTIONS {
+                let options = Options {
+                    edges,
+                    ..Options::default()
+                };
+                passes(
+                    &format!("seed {seed}, view {k}, {edges:?}"),
+                    &scene,
+                    view,
+                    &options,
+                );
+            }
+        }
+    }
+}

@@ -69,7 +69,8 @@ fn key(p: u32, q: u32) -> u64 {
 /// `crease_cos` is `-cos` of the crease angle (an edge is a crease when the cosine of the
 /// angle between its faces exceeds it). Coplanar (except polygon edges for
 /// [`EdgeSelection::Mesh`], drawn as smooth edges), end-on and unselected edges are left out
-/// and counted.
+/// and counted. [`EdgeSelection::Mesh`] selects the polygon edges and the diagonals of split
+/// polygons that are silhouettes or boundaries (the outline is drawn whole).
 pub(crate) fn classify(
     mesh: &Mesh,
     eye: &Eye,
@@ -143,7 +144,11 @@ pub(crate) fn classify(
             let drawn = match selection {
                 EdgeSelection::Feature => class != EdgeClass::Smooth,
                 EdgeSelection::All => class != EdgeClass::Smooth || polygon_edge,
-                EdgeSelection::Mesh => polygon_edge,
+                // A diagonal of a split polygon where the surface folds out of sight (or
+                // ends) is part of the outline: without it the outline has a gap.
+                EdgeSelection::Mesh => {
+                    polygon_edge || matches!(class, EdgeClass::Silhouette | EdgeClass::Boundary)
+                }
             };
             let edge = MeshEdge {
                 a,
