@@ -837,3 +837,134 @@ fn boxes_with_faces_not_exactly_planar_pass_in_every_selection() {
         }
     }
 }
+
+/// The unit cube with its front face split at the middle of its bottom edge, and an open
+/// mesh of three triangles, one side of which is covered by the other two.
+#[test]
+fn t_junctions_of_a_cube_and_of_an_open_mesh_pass() {
+    let p = Point3::new;
+    let mut v = box_vertices([0.0; 3], [1.0; 3]);
+    v.push(p(0.5, 0.0, 0.0));
+    let faces = vec![
+        vec![0, 4, 6, 2],
+        vec![1, 3, 7, 5],
+        vec![0, 8, 5, 4],
+        vec![8, 1, 5],
+        vec![2, 6, 7, 3],
+        vec![0, 2, 3, 1],
+        vec![4, 5, 7, 6],
+    ];
+    let cube = scene_of(vec![Mesh::from_polygons(v, faces).unwrap()]);
+    let open = scene_of(vec![
+        Mesh::from_polygons(
+            vec![
+                p(0.0, 0.0, 0.0),
+                p(2.0, 0.0, 0.0),
+                p(1.0, 1.0, 0.0),
+                p(1.0, 0.0, 0.0),
+                p(1.0, -1.0, 1.0),
+            ],
+            vec![vec![0, 1, 2], vec![0, 4, 3], vec![3, 4, 1]],
+        )
+        .unwrap(),
+    ]);
+    let views = [
+        View::orthographic(Vector3::new(-1.0, -2.0, -3.0), Vector3::z()).unwrap(),
+        View::orthographic(Vector3::new(0.0, 0.0, -1.0), Vector3::y()).unwrap(),
+        View::orthographic(Vector3::new(0.0, 1.0, 0.0), Vector3::z()).unwrap(),
+        View::perspective(p(3.0, -4.0, 2.0), p(0.5, 0.5, 0.5), Vector3::z(), 50.0).unwrap(),
+    ];
+    for (name, scene) in [("cube", &cube), ("open", &open)] {
+        for (k, view) in views.iter().enumerate() {
+            for edges in SELECTIONS {
+                let options = Options {
+                    edges,
+                    ..Options::default()
+                };
+                let report = passes(
+                    &format!("{name}, view {k}, {edges:?}"),
+                    scene,
+                    view,
+                    &options,
+                );
+                if name == "open" && k == 1 {
+                    // From above: the rim, four boundary pieces (the covered side is not).
+                    assert_eq!(report.boundaries, 4, "{report}");
+                }
+            }
+        }
+    }
+    // A piece of the rim dropped, or drawn as a crease, is caught.
+    let view = &views[1];
+    let options = Options::default();
+    let good = traced(&open, view, &options);
+    let rim: Vec<usize> = (0..good.pieces.len())
+        .filter(|&i| good.pieces[i].class == EdgeClass::Boundary)
+        .collect();
+    assert_eq!(rim.len(), 4);
+    for &i in &rim {
+        let mut bad = good.clone();
+        bad.pieces.remove(i);
+        assert!(has(&verify(&open, view, &options, &bad), Check::Boundary));
+        let mut bad = good.clone();
+        bad.pieces[i].class = EdgeClass::Crease;
+        assert!(has(&verify(&open, view, &options, &bad), Check::Boundary));
+    }
+    // Looking along y, the bottom face is seen edge-on: the cube's edge v0–v1, cut at v8 and
+    // joined, is a silhouette, drawn as one line whose pieces cover the sign test's v0–v8 and
+    // v8–v1 (at t = 1/2 of the line, exactly). Each corrupted, the check finds out, exactly at
+    // v8.
+    let view = &views[2];
+    let good = traced(&cube, view, &options);
+    let (v0, v1) = (Point3::origin(), Point3::new(1.0, 0.0, 0.0));
+    let long: Vec<usize> = (0..good.pieces.len())
+        .filter(|&i| good.pieces[i].line == [v0, v1])
+        .collect();
+    assert_eq!(long.len(), 1);
+    let i = long[0];
+    assert_eq!(
+        (good.pieces[i].class, good.pieces[i].t),
+        (EdgeClass::Silhouette, [0.0, 1.0])
+    );
+    let silhouette = |bad: &Traced| {
+        let report = verify(&cube, view, &options, bad);
+        let edges: Vec<String> = report
+            .described
+            .iter()
+            .filter(|d| d.check == Check::Silhouette)
+            .map(|d| d.line.clone())
+            .collect();
+        edges
+    };
+    assert!(silhouette(&good).is_empty());
+    let mut bad = good.clone();
+    bad.pieces.remove(i);
+    assert_eq!(silhouette(&bad), ["edge v0–v8", "edge v1–v8"]);
+    let mut bad = good.clone();
+    bad.pieces[i].class = EdgeClass::Crease;
+    assert_eq!(silhouette(&bad), ["edge v0–v8", "edge v1–v8"]);
+    for (end, wrong) in [
+        (0.5, vec!["edge v1–v8"]),
+        (0.5f64.next_down(), vec!["edge v0–v8", "edge v1–v8"]),
+        (0.5f64.next_up(), vec!["edge v1–v8"]),
+        (0.25, vec!["edge v0–v8", "edge v1–v8"]),
+    ] {
+        let mut bad = good.clone();
+        bad.pieces[i].t[1] = end;
+        assert_eq!(silhouette(&bad), wrong, "the piece ending at {end}");
+    }
+    // The line cut at v8 into two pieces: still whole; with a gap or an overlap, not.
+    let cut = |ends: [f64; 2]| {
+        let mut bad = good.clone();
+        let mut second = bad.pieces[i].clone();
+        bad.pieces[i].t[1] = ends[0];
+        second.t[0] = ends[1];
+        bad.pieces.insert(i + 1, second);
+        silhouette(&bad)
+    };
+    assert!(cut([0.5, 0.5]).is_empty());
+    assert!(cut([0.375, 0.375]).is_empty());
+    assert_eq!(cut([0.375, 0.625]), ["edge v0–v8", "edge v1–v8"]);
+    assert_eq!(cut([0.625, 0.375]), ["edge v0–v8", "edge v1–v8"]);
+    assert_eq!(cut([0.5f64.next_down(), 0.5]), ["edge v0–v8"]);
+}
