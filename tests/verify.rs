@@ -838,6 +838,101 @@ fn boxes_with_faces_not_exactly_planar_pass_in_every_selection() {
     }
 }
 
+/// The faces that replace the quad `[a, b, c, d]` split at the vertices `xs` inserted in order
+/// along its side `ab`: the quad's other sides stay whole.
+fn split_quad(rng: &mut Rng, [a, b, c, d]: [u32; 4], xs: &[u32]) -> Vec<Vec<u32>> {
+    match *xs {
+        [x] if rng.below(2) == 0 => vec![vec![a, x, c, d], vec![x, b, c]],
+        [x] => vec![vec![a, x, d], vec![x, b, c, d]],
+        [x, y] => vec![vec![a, x, d], vec![x, y, c, d], vec![y, b, c]],
+        _ => vec![vec![a, b, c, d]],
+    }
+}
+
+/// A box on the integer grid, and the same box with one or two vertices inserted exactly at
+/// dyadic points of a random edge, one of the edge's faces split there (the other face's side
+/// then has T-junctions); sometimes the other face split too, at another dyadic point (each
+/// face's side then has a T-junction where the other's is split: the pieces alternate).
+fn box_with_t_junctions(rng: &mut Rng) -> (Mesh, Mesh) {
+    let lo = [0; 3].map(|_| rng.int(-4, 3));
+    let hi = [0, 1, 2].map(|k| lo[k] + rng.int(1, 3));
+    let mut vertices = box_vertices(lo, hi);
+    let faces: Vec<Vec<u32>> = BOX_FACES.iter().map(|f| f.to_vec()).collect();
+    let plain = Mesh::from_polygons(vertices.clone(), faces.clone()).unwrap();
+    // The quad `f` from its side `s`, and the edge's other quad from the same edge.
+    let quad = |f: usize, s: usize| [0, 1, 2, 3].map(|k| faces[f][(s + k) % 4]);
+    let (f, s) = (rng.below(6), rng.below(4));
+    let [a, b, c, d] = quad(f, s);
+    let (g, r) = (0..6)
+        .flat_map(|g| (0..4).map(move |r| (g, r)))
+        .find(|&(g, r)| g != f && quad(g, r)[..2] == [b, a])
+        .unwrap();
+    let (pa, pb) = (vertices[a as usize], vertices[b as usize]);
+    let at = |m: usize| pa + (pb - pa) * (m as f64 / 8.0);
+    // Eighths along the edge from a: one or two for f, and maybe one for g.
+    let mut eighths = vec![1 + rng.below(7)];
+    if rng.below(2) == 0 {
+        let m = 1 + rng.below(7);
+        if m != eighths[0] {
+            eighths.push(m);
+            eighths.sort_unstable();
+        }
+    }
+    let other = (rng.below(2) == 0)
+        .then(|| 1 + rng.below(7))
+        .filter(|m| !eighths.contains(m));
+    let first = vertices.len() as u32;
+    vertices.extend(eighths.iter().map(|&m| at(m)));
+    let xs: Vec<u32> = (first..vertices.len() as u32).collect();
+    let mut split: Vec<Vec<u32>> = Vec::new();
+    for (h, face) in faces.iter().enumerate() {
+        if h == f {
+            split.extend(split_quad(rng, [a, b, c, d], &xs));
+        } else if h == g
+            && let Some(m) = other
+        {
+            vertices.push(at(m));
+            let y = vertices.len() as u32 - 1;
+            split.extend(split_quad(rng, quad(g, r), &[y]));
+        } else {
+            split.push(face.clone());
+        }
+    }
+    let junctions = Mesh::from_polygons(vertices, split).unwrap();
+    assert!(junctions.t_junctions() > 0 && junctions.is_solid());
+    (plain, junctions)
+}
+
+#[test]
+fn boxes_with_t_junctions_draw_as_without_them_and_pass() {
+    for seed in 0..CASES {
+        let mut rng = Rng(seed * 6_151 + 17);
+        let (plain, junctions) = box_with_t_junctions(&mut rng);
+        let (plain, junctions) = (scene_of(vec![plain]), scene_of(vec![junctions]));
+        for (k, view) in views(&mut rng).iter().enumerate() {
+            for edges in SELECTIONS {
+                let options = Options {
+                    edges,
+                    ..Options::default()
+                };
+                let name = format!("seed {seed}, view {k}, {edges:?}");
+                passes(&name, &plain, view, &options);
+                passes(&name, &junctions, view, &options);
+                let [p, j] = [&plain, &junctions].map(|s| {
+                    let mut d = traced(s, view, &options).drawing.polylines;
+                    // The split face's own edges are drawn with --edges mesh only, as smooth
+                    // edges (between coplanar faces).
+                    if edges == EdgeSelection::Mesh {
+                        d.retain(|l| l.class != EdgeClass::Smooth);
+                    }
+                    d
+                });
+                assert_eq!(p, j, "{name}: the drawing differs from the plain box's");
+            }
+        }
+    }
+}
+
 /// The unit cube with its front face split at the middle of its bottom edge, and an open
 /// mesh of three triangles, one side of which is covered by the other two.
 #[test]
@@ -967,4 +1062,42 @@ fn t_junctions_of_a_cube_and_of_an_open_mesh_pass() {
     assert_eq!(cut([0.375, 0.625]), ["edge v0–v8", "edge v1–v8"]);
     assert_eq!(cut([0.625, 0.375]), ["edge v0–v8", "edge v1–v8"]);
     assert_eq!(cut([0.5f64.next_down(), 0.5]), ["edge v0–v8"]);
+}
+
+/// A box whose faces are given as two triangles each (as in an STL file) draws as the box in
+/// every view, also where faces are seen edge-on (the diagonals join coplanar faces: no edge).
+#[test]
+fn coplanar_triangles_seen_edge_on_draw_as_their_polygon() {
+    for seed in 0..4 {
+        let mut rng = Rng(seed * 911 + 3);
+        let lo = [0; 3].map(|_| rng.int(-4, 3));
+        let hi = [0, 1, 2].map(|k| lo[k] + rng.int(1, 3));
+        let v = box_vertices(lo, hi);
+        let quads: Vec<Vec<u32>> = BOX_FACES.iter().map(|f| f.to_vec()).collect();
+        let triangles: Vec<Vec<u32>> = BOX_FACES
+            .iter()
+            .flat_map(|q| [vec![q[0], q[1], q[2]], vec![q[0], q[2], q[3]]])
+            .collect();
+        let quads = scene_of(vec![Mesh::from_polygons(v.clone(), quads).unwrap()]);
+        let triangles = scene_of(vec![Mesh::from_polygons(v, triangles).unwrap()]);
+        for (k, view) in views(&mut rng).iter().enumerate() {
+            for edges in SELECTIONS {
+                let options = Options {
+                    edges,
+                    ..Options::default()
+                };
+                let name = format!("seed {seed}, view {k}, {edges:?}");
+                passes(&name, &triangles, view, &options);
+                let [q, t] = [&quads, &triangles].map(|s| {
+                    let mut d = traced(s, view, &options).drawing.polylines;
+                    // --edges mesh draws the triangles' diagonals, as smooth edges.
+                    if edges == EdgeSelection::Mesh {
+                        d.retain(|l| l.class != EdgeClass::Smooth);
+                    }
+                    d
+                });
+                assert_eq!(q, t, "{name}");
+            }
+        }
+    }
 }
