@@ -834,7 +834,11 @@ fn check(oracle: &Oracle, drawing: &Drawing, options: &Options, name: &str) -> R
     for l in &oracle.lines {
         let required = match (l.kind, options.edges) {
             (Kind::Intersection, _) => true,
-            (Kind::Edge, EdgeSelection::Mesh) => l.polygon_edge,
+            // A split polygon's diagonal on the outline too: the outline is drawn whole.
+            (Kind::Edge, EdgeSelection::Mesh) => {
+                l.polygon_edge
+                    || matches!(l.class, Some(EdgeClass::Silhouette | EdgeClass::Boundary))
+            }
             (Kind::Edge, EdgeSelection::All) if l.polygon_edge => true,
             (Kind::Edge, EdgeSelection::All | EdgeSelection::Feature) => matches!(
                 l.class,

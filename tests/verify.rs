@@ -707,3 +707,397 @@ fn nearly_coplanar_faces() {
         scene_of(meshes)
     });
 }
+
+// Every edge selection; pictures that round to a point.
+
+const SELECTIONS: [EdgeSelection; 3] = [
+    EdgeSelection::Feature,
+    EdgeSelection::All,
+    EdgeSelection::Mesh,
+];
+
+/// A box of side 1e-30 seen along a direction 1e-300 off its vertical edges: their pictures are
+/// not points exactly, but round to one when the drawing is scaled back from the kernel's
+/// working range. The drawing has no segment of zero length, and the checks agree.
+#[test]
+fn pictures_that_round_to_a_point_are_left_out() {
+    for (lo, hi) in [([0.0; 3], [1e-30; 3]), ([-5e-31; 3], [5e-31; 3])] {
+        let scene = scene_of(vec![solids::box_between(lo, hi).unwrap()]);
+        let view = View::orthographic(Vector3::new(1e-300, 0.0, -1.0), Vector3::y()).unwrap();
+        for edges in SELECTIONS {
+            let options = Options {
+                edges,
+                ..Options::default()
+            };
+            passes(&format!("{lo:?}, {edges:?}"), &scene, &view, &options);
+            let t = traced(&scene, &view, &options);
+            // The vertical edges' pictures: not end-on, yet a point at the input's scale.
+            let points = t.pieces.iter().filter(|p| p.ends[0] == p.ends[1]).count();
+            assert!(
+                lo[0] != 0.0 || points >= 2,
+                "{points} pieces of zero length"
+            );
+            assert_eq!(
+                t.drawing.polylines,
+                kepler::hidden::draw(&scene, &view, &options)
+                    .unwrap()
+                    .polylines
+            );
+            for l in &t.drawing.polylines {
+                assert!(l.points.len() >= 2, "{l:?}");
+                assert!(l.points.windows(2).all(|w| w[0] != w[1]), "{l:?}");
+            }
+        }
+    }
+}
+
+/// The faces of `solids::box_between`'s box, vertex `k` taking the maximum along axis `i`
+/// when bit `i` of `k` is set.
+const BOX_FACES: [[u32; 4]; 6] = [
+    [0, 4, 6, 2],
+    [1, 3, 7, 5],
+    [0, 1, 5, 4],
+    [2, 6, 7, 3],
+    [0, 2, 3, 1],
+    [4, 5, 7, 6],
+];
+
+fn box_vertices(lo: [f64; 3], hi: [f64; 3]) -> Vec<Point3> {
+    (0..8)
+        .map(|k| {
+            let c = |i: usize| if k & (1 << i) != 0 { hi[i] } else { lo[i] };
+            Point3::new(c(0), c(1), c(2))
+        })
+        .collect()
+}
+
+/// A quad that is not exactly planar (the top of a perturbed box), split along a diagonal that
+/// is a silhouette from the eye: every selection draws the outline whole, `--edges mesh` too.
+#[test]
+fn a_split_diagonal_seen_as_a_silhouette_is_drawn_with_mesh_edges() {
+    let p = Point3::new;
+    let quad = Mesh::from_polygons(
+        vec![
+            p(-1.0, -1.0, 1.25),
+            p(1.0, -1.0, 1.001),
+            p(1.0, 1.0, 1.0),
+            p(-1.0, 1.0, 1.001),
+        ],
+        vec![vec![0, 1, 2, 3]],
+    )
+    .unwrap();
+    assert_eq!(quad.split_polygons(), 1);
+    let scene = scene_of(vec![quad]);
+    let view =
+        View::perspective(p(7.25, -0.5, 0.75), p(0.5, 0.5, 0.5), Vector3::z(), 70.0).unwrap();
+    for edges in SELECTIONS {
+        let options = Options {
+            edges,
+            ..Options::default()
+        };
+        let report = passes(&format!("{edges:?}"), &scene, &view, &options);
+        assert_eq!(report.silhouettes, 1, "{edges:?}: {report}");
+        let t = traced(&scene, &view, &options);
+        assert!(
+            t.drawing.length(EdgeClass::Silhouette, true) > 0.0,
+            "{edges:?}: the fold is not drawn"
+        );
+    }
+}
+
+/// Boxes with a corner moved off the planes of its faces (three faces not exactly planar,
+/// split into triangles), in every selection.
+#[test]
+fn boxes_with_faces_not_exactly_planar_pass_in_every_selection() {
+    for seed in 0..CASES {
+        let mut rng = Rng(seed * 3_571 + 5);
+        let lo = [0; 3].map(|_| rng.int(-4, 3));
+        let hi = [0, 1, 2].map(|k| lo[k] + rng.int(1, 3));
+        let mut v = box_vertices(lo, hi);
+        let corner = rng.below(8);
+        v[corner] += rng.vector(0.25);
+        let faces = BOX_FACES.iter().map(|f| f.to_vec()).collect();
+        let scene = scene_of(vec![
+            Mesh::from_polygons(v, faces).unwrap(),
+            grid_box(&mut rng),
+        ]);
+        for (k, view) in views(&mut rng).iter().enumerate() {
+            for edges in SELECTIONS {
+                let options = Options {
+                    edges,
+                    ..Options::default()
+                };
+                passes(
+                    &format!("seed {seed}, view {k}, {edges:?}"),
+                    &scene,
+                    view,
+                    &options,
+                );
+            }
+        }
+    }
+}
+
+/// The faces that replace the quad `[a, b, c, d]` split at the vertices `xs` inserted in order
+/// along its side `ab`: the quad's other sides stay whole.
+fn split_quad(rng: &mut Rng, [a, b, c, d]: [u32; 4], xs: &[u32]) -> Vec<Vec<u32>> {
+    match *xs {
+        [x] if rng.below(2) == 0 => vec![vec![a, x, c, d], vec![x, b, c]],
+        [x] => vec![vec![a, x, d], vec![x, b, c, d]],
+        [x, y] => vec![vec![a, x, d], vec![x, y, c, d], vec![y, b, c]],
+        _ => vec![vec![a, b, c, d]],
+    }
+}
+
+/// A box on the integer grid, and the same box with one or two vertices inserted exactly at
+/// dyadic points of a random edge, one of the edge's faces split there (the other face's side
+/// then has T-junctions); sometimes the other face split too, at another dyadic point (each
+/// face's side then has a T-junction where the other's is split: the pieces alternate).
+fn box_with_t_junctions(rng: &mut Rng) -> (Mesh, Mesh) {
+    let lo = [0; 3].map(|_| rng.int(-4, 3));
+    let hi = [0, 1, 2].map(|k| lo[k] + rng.int(1, 3));
+    let mut vertices = box_vertices(lo, hi);
+    let faces: Vec<Vec<u32>> = BOX_FACES.iter().map(|f| f.to_vec()).collect();
+    let plain = Mesh::from_polygons(vertices.clone(), faces.clone()).unwrap();
+    // The quad `f` from its side `s`, and the edge's other quad from the same edge.
+    let quad = |f: usize, s: usize| [0, 1, 2, 3].map(|k| faces[f][(s + k) % 4]);
+    let (f, s) = (rng.below(6), rng.below(4));
+    let [a, b, c, d] = quad(f, s);
+    let (g, r) = (0..6)
+        .flat_map(|g| (0..4).map(move |r| (g, r)))
+        .find(|&(g, r)| g != f && quad(g, r)[..2] == [b, a])
+        .unwrap();
+    let (pa, pb) = (vertices[a as usize], vertices[b as usize]);
+    let at = |m: usize| pa + (pb - pa) * (m as f64 / 8.0);
+    // Eighths along the edge from a: one or two for f, and maybe one for g.
+    let mut eighths = vec![1 + rng.below(7)];
+    if rng.below(2) == 0 {
+        let m = 1 + rng.below(7);
+        if m != eighths[0] {
+            eighths.push(m);
+            eighths.sort_unstable();
+        }
+    }
+    let other = (rng.below(2) == 0)
+        .then(|| 1 + rng.below(7))
+        .filter(|m| !eighths.contains(m));
+    let first = vertices.len() as u32;
+    vertices.extend(eighths.iter().map(|&m| at(m)));
+    let xs: Vec<u32> = (first..vertices.len() as u32).collect();
+    let mut split: Vec<Vec<u32>> = Vec::new();
+    for (h, face) in faces.iter().enumerate() {
+        if h == f {
+            split.extend(split_quad(rng, [a, b, c, d], &xs));
+        } else if h == g
+            && let Some(m) = other
+        {
+            vertices.push(at(m));
+            let y = vertices.len() as u32 - 1;
+            split.extend(split_quad(rng, quad(g, r), &[y]));
+        } else {
+            split.push(face.clone());
+        }
+    }
+    let junctions = Mesh::from_polygons(vertices, split).unwrap();
+    assert!(junctions.t_junctions() > 0 && junctions.is_solid());
+    (plain, junctions)
+}
+
+#[test]
+fn boxes_with_t_junctions_draw_as_without_them_and_pass() {
+    for seed in 0..CASES {
+        let mut rng = Rng(seed * 6_151 + 17);
+        let (plain, junctions) = box_with_t_junctions(&mut rng);
+        let (plain, junctions) = (scene_of(vec![plain]), scene_of(vec![junctions]));
+        for (k, view) in views(&mut rng).iter().enumerate() {
+            for edges in SELECTIONS {
+                let options = Options {
+                    edges,
+                    ..Options::default()
+                };
+                let name = format!("seed {seed}, view {k}, {edges:?}");
+                passes(&name, &plain, view, &options);
+                passes(&name, &junctions, view, &options);
+                let [p, j] = [&plain, &junctions].map(|s| {
+                    let mut d = traced(s, view, &options).drawing.polylines;
+                    // The split face's own edges are drawn with --edges mesh only, as smooth
+                    // edges (between coplanar faces).
+                    if edges == EdgeSelection::Mesh {
+                        d.retain(|l| l.class != EdgeClass::Smooth);
+                    }
+                    d
+                });
+                assert_eq!(p, j, "{name}: the drawing differs from the plain box's");
+            }
+        }
+    }
+}
+
+/// The unit cube with its front face split at the middle of its bottom edge, and an open
+/// mesh of three triangles, one side of which is covered by the other two.
+#[test]
+fn t_junctions_of_a_cube_and_of_an_open_mesh_pass() {
+    let p = Point3::new;
+    let mut v = box_vertices([0.0; 3], [1.0; 3]);
+    v.push(p(0.5, 0.0, 0.0));
+    let faces = vec![
+        vec![0, 4, 6, 2],
+        vec![1, 3, 7, 5],
+        vec![0, 8, 5, 4],
+        vec![8, 1, 5],
+        vec![2, 6, 7, 3],
+        vec![0, 2, 3, 1],
+        vec![4, 5, 7, 6],
+    ];
+    let cube = scene_of(vec![Mesh::from_polygons(v, faces).unwrap()]);
+    let open = scene_of(vec![
+        Mesh::from_polygons(
+            vec![
+                p(0.0, 0.0, 0.0),
+                p(2.0, 0.0, 0.0),
+                p(1.0, 1.0, 0.0),
+                p(1.0, 0.0, 0.0),
+                p(1.0, -1.0, 1.0),
+            ],
+            vec![vec![0, 1, 2], vec![0, 4, 3], vec![3, 4, 1]],
+        )
+        .unwrap(),
+    ]);
+    let views = [
+        View::orthographic(Vector3::new(-1.0, -2.0, -3.0), Vector3::z()).unwrap(),
+        View::orthographic(Vector3::new(0.0, 0.0, -1.0), Vector3::y()).unwrap(),
+        View::orthographic(Vector3::new(0.0, 1.0, 0.0), Vector3::z()).unwrap(),
+        View::perspective(p(3.0, -4.0, 2.0), p(0.5, 0.5, 0.5), Vector3::z(), 50.0).unwrap(),
+    ];
+    for (name, scene) in [("cube", &cube), ("open", &open)] {
+        for (k, view) in views.iter().enumerate() {
+            for edges in SELECTIONS {
+                let options = Options {
+                    edges,
+                    ..Options::default()
+                };
+                let report = passes(
+                    &format!("{name}, view {k}, {edges:?}"),
+                    scene,
+                    view,
+                    &options,
+                );
+                if name == "open" && k == 1 {
+                    // From above: the rim, four boundary pieces (the covered side is not).
+                    assert_eq!(report.boundaries, 4, "{report}");
+                }
+            }
+        }
+    }
+    // A piece of the rim dropped, or drawn as a crease, is caught.
+    let view = &views[1];
+    let options = Options::default();
+    let good = traced(&open, view, &options);
+    let rim: Vec<usize> = (0..good.pieces.len())
+        .filter(|&i| good.pieces[i].class == EdgeClass::Boundary)
+        .collect();
+    assert_eq!(rim.len(), 4);
+    for &i in &rim {
+        let mut bad = good.clone();
+        bad.pieces.remove(i);
+        assert!(has(&verify(&open, view, &options, &bad), Check::Boundary));
+        let mut bad = good.clone();
+        bad.pieces[i].class = EdgeClass::Crease;
+        assert!(has(&verify(&open, view, &options, &bad), Check::Boundary));
+    }
+    // Looking along y, the bottom face is seen edge-on: the cube's edge v0–v1, cut at v8 and
+    // joined, is a silhouette, drawn as one line whose pieces cover the sign test's v0–v8 and
+    // v8–v1 (at t = 1/2 of the line, exactly). Each corrupted, the check finds out, exactly at
+    // v8.
+    let view = &views[2];
+    let good = traced(&cube, view, &options);
+    let (v0, v1) = (Point3::origin(), Point3::new(1.0, 0.0, 0.0));
+    let long: Vec<usize> = (0..good.pieces.len())
+        .filter(|&i| good.pieces[i].line == [v0, v1])
+        .collect();
+    assert_eq!(long.len(), 1);
+    let i = long[0];
+    assert_eq!(
+        (good.pieces[i].class, good.pieces[i].t),
+        (EdgeClass::Silhouette, [0.0, 1.0])
+    );
+    let silhouette = |bad: &Traced| {
+        let report = verify(&cube, view, &options, bad);
+        let edges: Vec<String> = report
+            .described
+            .iter()
+            .filter(|d| d.check == Check::Silhouette)
+            .map(|d| d.line.clone())
+            .collect();
+        edges
+    };
+    assert!(silhouette(&good).is_empty());
+    let mut bad = good.clone();
+    bad.pieces.remove(i);
+    assert_eq!(silhouette(&bad), ["edge v0–v8", "edge v1–v8"]);
+    let mut bad = good.clone();
+    bad.pieces[i].class = EdgeClass::Crease;
+    assert_eq!(silhouette(&bad), ["edge v0–v8", "edge v1–v8"]);
+    for (end, wrong) in [
+        (0.5, vec!["edge v1–v8"]),
+        (0.5f64.next_down(), vec!["edge v0–v8", "edge v1–v8"]),
+        (0.5f64.next_up(), vec!["edge v1–v8"]),
+        (0.25, vec!["edge v0–v8", "edge v1–v8"]),
+    ] {
+        let mut bad = good.clone();
+        bad.pieces[i].t[1] = end;
+        assert_eq!(silhouette(&bad), wrong, "the piece ending at {end}");
+    }
+    // The line cut at v8 into two pieces: still whole; with a gap or an overlap, not.
+    let cut = |ends: [f64; 2]| {
+        let mut bad = good.clone();
+        let mut second = bad.pieces[i].clone();
+        bad.pieces[i].t[1] = ends[0];
+        second.t[0] = ends[1];
+        bad.pieces.insert(i + 1, second);
+        silhouette(&bad)
+    };
+    assert!(cut([0.5, 0.5]).is_empty());
+    assert!(cut([0.375, 0.375]).is_empty());
+    assert_eq!(cut([0.375, 0.625]), ["edge v0–v8", "edge v1–v8"]);
+    assert_eq!(cut([0.625, 0.375]), ["edge v0–v8", "edge v1–v8"]);
+    assert_eq!(cut([0.5f64.next_down(), 0.5]), ["edge v0–v8"]);
+}
+
+/// A box whose faces are given as two triangles each (as in an STL file) draws as the box in
+/// every view, also where faces are seen edge-on (the diagonals join coplanar faces: no edge).
+#[test]
+fn coplanar_triangles_seen_edge_on_draw_as_their_polygon() {
+    for seed in 0..4 {
+        let mut rng = Rng(seed * 911 + 3);
+        let lo = [0; 3].map(|_| rng.int(-4, 3));
+        let hi = [0, 1, 2].map(|k| lo[k] + rng.int(1, 3));
+        let v = box_vertices(lo, hi);
+        let quads: Vec<Vec<u32>> = BOX_FACES.iter().map(|f| f.to_vec()).collect();
+        let triangles: Vec<Vec<u32>> = BOX_FACES
+            .iter()
+            .flat_map(|q| [vec![q[0], q[1], q[2]], vec![q[0], q[2], q[3]]])
+            .collect();
+        let quads = scene_of(vec![Mesh::from_polygons(v.clone(), quads).unwrap()]);
+        let triangles = scene_of(vec![Mesh::from_polygons(v, triangles).unwrap()]);
+        for (k, view) in views(&mut rng).iter().enumerate() {
+            for edges in SELECTIONS {
+                let options = Options {
+                    edges,
+                    ..Options::default()
+                };
+                let name = format!("seed {seed}, view {k}, {edges:?}");
+                passes(&name, &triangles, view, &options);
+                let [q, t] = [&quads, &triangles].map(|s| {
+                    let mut d = traced(s, view, &options).drawing.polylines;
+                    // --edges mesh draws the triangles' diagonals, as smooth edges.
+                    if edges == EdgeSelection::Mesh {
+                        d.retain(|l| l.class != EdgeClass::Smooth);
+                    }
+                    d
+                });
+                assert_eq!(q, t, "{name}");
+            }
+        }
+    }
+}

@@ -111,20 +111,34 @@ pub struct Drawing {
 
 impl Drawing {
     /// The drawing with every point multiplied by `2^exponent` (exactly, unless a coordinate
-    /// overflows or leaves the normal range).
+    /// overflows or leaves the normal range). A segment whose ends become equal (its picture
+    /// below the smallest subnormal, say) is left out, as the pass leaves out pieces of zero
+    /// length: consecutive equal points are taken once, and a polyline left with a single point
+    /// is dropped. So the drawing never holds a segment of zero length.
     ///
     /// ```
     /// use kepler::hidden::{Drawing, EdgeClass, Polyline};
     /// let p = Polyline { class: EdgeClass::Boundary, visible: true, points: vec![[0.0, 0.0], [1.0, 3.0]] };
     /// let d = Drawing { polylines: vec![p], stages: Vec::new() }.scaled(-1);
     /// assert_eq!(d.polylines[0].points[1], [0.5, 1.5]);
+    /// // 2^-1074 is the smallest subnormal: half of it rounds to 0.
+    /// let tiny = f64::from_bits(1);
+    /// let p = |points| Polyline { class: EdgeClass::Silhouette, visible: true, points };
+    /// let d = Drawing {
+    ///     polylines: vec![p(vec![[0.0, 0.0], [tiny, 0.0]]), p(vec![[0.0, 0.0], [tiny, 0.0], [4.0, 0.0]])],
+    ///     stages: Vec::new(),
+    /// };
+    /// assert_eq!(d.scaled(-1).polylines, vec![p(vec![[0.0, 0.0], [2.0, 0.0]])]);
     /// ```
     pub fn scaled(mut self, exponent: i32) -> Drawing {
         for p in &mut self.polylines {
             for q in &mut p.points {
                 *q = q.map(|x| ldexp(x, exponent));
             }
+            // Equal as numbers (`-0.0 == 0.0`), as the pass compares a piece's ends.
+            p.points.dedup_by(|q, r| q == r);
         }
+        self.polylines.retain(|p| p.points.len() >= 2);
         self
     }
 

@@ -69,7 +69,8 @@ fn key(p: u32, q: u32) -> u64 {
 /// `crease_cos` is `-cos` of the crease angle (an edge is a crease when the cosine of the
 /// angle between its faces exceeds it). Coplanar (except polygon edges for
 /// [`EdgeSelection::Mesh`], drawn as smooth edges), end-on and unselected edges are left out
-/// and counted.
+/// and counted. [`EdgeSelection::Mesh`] selects the polygon edges and the diagonals of split
+/// polygons that are silhouettes or boundaries (the outline is drawn whole).
 pub(crate) fn classify(
     mesh: &Mesh,
     eye: &Eye,
@@ -143,7 +144,11 @@ pub(crate) fn classify(
             let drawn = match selection {
                 EdgeSelection::Feature => class != EdgeClass::Smooth,
                 EdgeSelection::All => class != EdgeClass::Smooth || polygon_edge,
-                EdgeSelection::Mesh => polygon_edge,
+                // A diagonal of a split polygon where the surface folds out of sight (or
+                // ends) is part of the outline: without it the outline has a gap.
+                EdgeSelection::Mesh => {
+                    polygon_edge || matches!(class, EdgeClass::Silhouette | EdgeClass::Boundary)
+                }
             };
             let edge = MeshEdge {
                 a,
@@ -297,6 +302,14 @@ fn join_pieces(mesh: &Mesh, eye: &Eye, groups: &[&[Side]], decided: &mut [Result
     }
 }
 
+/// Whether `c1` and `c2`, lying in one plane with the line `ab`, are on either side of it.
+fn on_either_side(a: &Point3, b: &Point3, c1: &Point3, c2: &Point3) -> bool {
+    let side = |k: usize, c: &Point3| orient2d(project(a, k), project(b, k), project(c, k));
+    (0..3)
+        .find(|&k| side(k, c1) != Ordering::Equal)
+        .is_some_and(|k| side(k, c1) == side(k, c2).reverse())
+}
+
 /// Whether `c1` and `c2` lie in one plane with the line `ab` and on the same side of it.
 fn same_half_plane(a: &Point3, b: &Point3, c1: &Point3, c2: &Point3) -> bool {
     if orient3d(a, b, c1, c2) != Ordering::Equal {
@@ -328,7 +341,9 @@ fn class_of_many<'a>(
 }
 
 /// The class of the edge `ab` of two faces whose third vertices are `c1` and `c2`, or `None`
-/// for an edge between two coplanar faces on either side of it.
+/// for an edge between two coplanar faces on either side of it, in every view (seen edge-on,
+/// such faces are one flat face seen edge-on: its outline is drawn, not the edge, as for a
+/// face that is not split).
 fn class_of(
     a: &Point3,
     b: &Point3,
@@ -337,18 +352,17 @@ fn class_of(
     crease_cos: f64,
 ) -> Option<EdgeClass> {
     let (s1, s2) = (eye.orient3d(a, b, c1), eye.orient3d(a, b, c2));
+    let coplanar = || orient3d(a, b, c1, c2) == Ordering::Equal;
+    if s1 == Ordering::Equal && s2 == Ordering::Equal && coplanar() && on_either_side(a, b, c1, c2)
+    {
+        return None;
+    }
     if s1 == Ordering::Equal || s2 == Ordering::Equal || s1 == s2 {
         return Some(EdgeClass::Silhouette);
     }
-    if orient3d(a, b, c1, c2) == Ordering::Equal {
+    if coplanar() {
         // Coplanar, and (their picture sides differing) on either side of the edge.
-        let k = (0..3)
-            .find(|&k| orient2d(project(a, k), project(b, k), project(c1, k)) != Ordering::Equal);
-        let opposite = k.is_some_and(|k| {
-            let side = |c: &Point3| orient2d(project(a, k), project(b, k), project(c, k));
-            side(c1) == side(c2).reverse()
-        });
-        if opposite {
+        if on_either_side(a, b, c1, c2) {
             return None;
         }
         return Some(EdgeClass::Crease);

@@ -139,9 +139,11 @@ pub enum EdgeSelection {
     #[cfg_attr(feature = "cli", value(help = None::<&str>))]
     All,
     /// Every edge of the input polygons, even between coplanar faces, with its hidden parts
-    /// removed (the wireframe of a polygon mesh): no diagonals of triangulated or split
-    /// polygons, no edges of dropped degenerate faces. Edges between coplanar faces are drawn
-    /// as smooth edges.
+    /// removed (the wireframe of a polygon mesh): no diagonals of triangulated polygons, no
+    /// edges of dropped degenerate faces. Edges between coplanar faces are drawn as smooth
+    /// edges. A diagonal along which a polygon that is not exactly planar was split is drawn
+    /// only where it is a silhouette (or a boundary), so that the outline is whole; its other
+    /// diagonals (creases, smooth or flat) are not.
     #[cfg_attr(feature = "cli", value(help = None::<&str>))]
     Mesh,
 }

@@ -11,7 +11,7 @@
 //!    hierarchy ([`VisibilityIndex`], its CBOXes, INBOXes and R-trees of triangles, not the
 //!    pass's picture grid of occluders) must give the piece's visibility. The sample point
 //!    `X(t) = a + t·(b − a)` is never rounded: each face test is an affine form at `X(t)`,
-//!    `(1 − t)·O(a) + t·O(b)`, decided exactly ([`Between`](crate::geometry::kernel::Between)).
+//!    `(1 − t)·O(a) + t·O(b)`, decided exactly ([`Between`]).
 //!    A face hides the point when the point lies strictly behind its plane and the line of
 //!    sight meets the closed face (the drawing's rule: see [`crate::hidden`]). Where the line
 //!    of sight passes exactly through an edge of such a face (a piece right behind a contour),
@@ -26,10 +26,26 @@
 //!    must be drawn whole: pieces of that class on that edge (matched by object and exact input
 //!    end points, never by rounded pictures) whose parameter ranges tile `[0, 1]`. Edges seen
 //!    end-on, edges between two faces seen edge-on and edges of more than two triangles are
-//!    not checked.
-//! 3. **The drawing.** Its segments are exactly the pieces' pictures (of nonzero length; with
-//!    their class and visibility; hidden ones only when the drawing keeps them): each piece
-//!    checked is one that is drawn.
+//!    not checked. A piece here is a traced one, drawn or not: one whose picture is a point
+//!    (see 3) still covers its part of the edge.
+//!
+//!    A side with vertices of the mesh lying exactly inside it (a T-junction) is cut there
+//!    first, as the pass cuts it (see [`Mesh::t_junctions`]): each piece between consecutive
+//!    vertices on the side is an edge of the sign test, between the triangles of every side or
+//!    piece of a side that covers it. The pass draws consecutive pieces of such a side between
+//!    the same two surfaces as one line, so a contour piece is matched with the line of the
+//!    drawing that runs along it (sides with T-junctions that share a piece make one chain of
+//!    vertices in order along their line; a line of the drawing runs between two of them): its
+//!    pieces over the contour piece must be of its class and tile the part of the line's
+//!    parameter range between the contour piece's ends. Those ends' parameters are not doubles:
+//!    the pieces' ends are compared with them exactly (the sign of `X(t) − w` along a
+//!    coordinate of the line).
+//! 3. **The drawing.** Its segments are exactly the pieces' pictures as drawn (with their class
+//!    and visibility; hidden ones only when the drawing keeps them), each piece's ends as
+//!    [`draw_traced`] gives them, at the input's scale: each piece checked is one that is
+//!    drawn, except a piece whose ends are equal, which the drawing never holds (a piece of
+//!    zero length, or one whose picture rounds to a single point when the drawing is scaled
+//!    back from the kernel's working range: see [`Drawing::scaled`]).
 //!
 //! ```
 //! use kepler::{scene::Scene, views::View};
@@ -49,8 +65,10 @@
 use super::{
     DrawError, Drawing, EdgeClass, Options, Pass, Piece, Result, chained, decided, scaled_back,
 };
-use crate::geometry::Point3;
 use crate::geometry::exact::ldexp;
+use crate::geometry::kernel::{Between, Polynomial};
+use crate::geometry::predicates::Side;
+use crate::geometry::{Point3, Vector3};
 use crate::mesh::Mesh;
 use crate::queries::along::{Form, Sample};
 use crate::queries::frustum::pictured;
@@ -568,9 +586,13 @@ fn describe(scene: &Scene, p: &TracedPiece) -> String {
 /// The bits of an unordered pair of points, to match an edge with the pieces on it.
 type EdgeKey = [[u64; 3]; 2];
 
+/// The bits of a point's coordinates (`-0.0` and `0.0` made equal).
+fn point_key(p: &Point3) -> [u64; 3] {
+    [p.x, p.y, p.z].map(|v| (v + 0.0).to_bits())
+}
+
 fn edge_key(a: &Point3, b: &Point3) -> EdgeKey {
-    let bits = |p: &Point3| [p.x, p.y, p.z].map(|v| (v + 0.0).to_bits());
-    let (x, y) = (bits(a), bits(b));
+    let (x, y) = (point_key(a), point_key(b));
     if x <= y { [x, y] } else { [y, x] }
 }
 
@@ -580,27 +602,34 @@ fn contours(scene: &Scene, view: &View, traced: &Traced, report: &mut Verificati
     // A view that clips draws contours only inside its frustum: those are checked.
     let clip = pictured(scene, view).ok().and_then(|(_, clip)| clip);
     let mut on: HashMap<(ObjectId, EdgeKey), Vec<usize>> = HashMap::new();
+    // The lines of each object whose mesh has T-junctions: one may run along several pieces
+    // of a side.
+    let mut lines_of: HashMap<ObjectId, Vec<EdgeKey>> = HashMap::new();
+    let has_junctions =
+        |object: ObjectId| scene[object].mesh().is_some_and(|m| m.t_junctions() > 0);
     for (i, p) in traced.pieces.iter().enumerate() {
         if let Source::Edge { object } = p.source {
-            on.entry((object, edge_key(&p.line[0], &p.line[1])))
-                .or_default()
-                .push(i);
+            let key = edge_key(&p.line[0], &p.line[1]);
+            let pieces = on.entry((object, key)).or_default();
+            if pieces.is_empty() && has_junctions(object) {
+                lines_of.entry(object).or_default().push(key);
+            }
+            pieces.push(i);
         }
     }
     let meshes = scene.mesh_objects(scene.roots());
-    let found: Vec<(ObjectId, Vec<Contour>, usize)> = meshes
+    let found: Vec<(ObjectId, Contours)> = meshes
         .par_iter()
-        .map(|&(id, mesh)| {
-            let (contours, unchecked) = contour_edges(mesh, eye);
-            (id, contours, unchecked)
-        })
+        .map(|&(id, mesh)| (id, contour_edges(mesh, eye)))
         .collect();
-    for (object, contours, unchecked) in found {
-        report.unchecked_edges += unchecked;
+    for (object, found) in found {
+        report.unchecked_edges += found.unchecked;
         let Some(mesh) = scene[object].mesh() else {
             continue;
         };
-        for c in contours {
+        let lines = lines_of.get(&object).map(Vec::as_slice).unwrap_or_default();
+        let cover = found.chains.covering(mesh, lines);
+        for c in found.contours {
             let (a, b) = (
                 mesh.vertices()[c.vertices[0] as usize],
                 mesh.vertices()[c.vertices[1] as usize],
@@ -619,11 +648,39 @@ fn contours(scene: &Scene, view: &View, traced: &Traced, report: &mut Verificati
                     (Check::Silhouette, EdgeClass::Silhouette)
                 }
             };
-            let pieces = on
-                .get(&(object, edge_key(&a, &b)))
-                .map(Vec::as_slice)
-                .unwrap_or_default();
-            if let Err((at, found)) = whole(traced, pieces, class) {
+            let pieces = |key: &EdgeKey| {
+                on.get(&(object, *key))
+                    .map(Vec::as_slice)
+                    .unwrap_or_default()
+            };
+            let drawn = match c.chain {
+                None => whole(traced, pieces(&edge_key(&a, &b)), class),
+                Some(chain) => {
+                    let mut drawn = Ok(());
+                    for (w, lines) in found.chains.between(chain, c.vertices, &cover) {
+                        let ends = w.map(|v| mesh.vertices()[v as usize]);
+                        let part = match lines {
+                            [] => Err(("t = [0e0, 1]".to_string(), "nothing".to_string())),
+                            [line] => tiled_between(traced, pieces(line), class, ends),
+                            more => Err((
+                                "its line".to_string(),
+                                format!("pieces of {} lines covering it", more.len()),
+                            )),
+                        };
+                        if let Err((at, found)) = part {
+                            let at = if w == c.vertices {
+                                at
+                            } else {
+                                format!("its piece v{}–v{}, {at}", w[0], w[1])
+                            };
+                            drawn = Err((at, found));
+                            break;
+                        }
+                    }
+                    drawn
+                }
+            };
+            if let Err((at, found)) = drawn {
                 report.disagree(Disagreement {
                     check,
                     object: scene.path(object),
@@ -667,37 +724,319 @@ fn whole(traced: &Traced, on: &[usize], class: EdgeClass) -> Result<(), (String,
     Ok(())
 }
 
-/// A silhouette or boundary edge found by the sign test.
+/// Whether the pieces `on` a line of the drawing (an edge cut at T-junctions and joined, whose
+/// ends are input vertices collinear with `part`), those over the segment `part` all of
+/// `class`, tile the line's parameter range over `part`; else where they do not and what is
+/// there. The ends of `part` are input vertices on the line, at parameters that are not
+/// doubles: each piece's ends are compared with them exactly.
+fn tiled_between(
+    traced: &Traced,
+    on: &[usize],
+    class: EdgeClass,
+    part: [Point3; 2],
+) -> Result<(), (String, String)> {
+    let nothing = || ("t = [0e0, 1]".to_string(), "nothing".to_string());
+    let Some(first) = on.first().map(|&i| &traced.pieces[i]) else {
+        return Err(nothing());
+    };
+    let [a, b] = first.line;
+    let Some(k) = (0..3).find(|&k| a[k] != b[k]) else {
+        return Err(nothing());
+    };
+    let rising = a[k] < b[k];
+    // The parameter `t` compared with the parameter of the point `w` of the line, exactly:
+    // the sign of `X(t)ₖ − wₖ` along the coordinate `k`, which the line runs along.
+    let compare = |t: f64, w: &Point3| -> Ordering {
+        if w == &a || w == &b {
+            let end = if w == &a { 0.0 } else { 1.0 };
+            return t.partial_cmp(&end).unwrap_or(Ordering::Equal);
+        }
+        let mut normal = Vector3::zeros();
+        normal[k] = 1.0;
+        let side = |x: Point3| Side {
+            origin: *w,
+            normal,
+            x,
+        };
+        let sign = Between(side(a), side(b), t).sign();
+        if rising { sign } else { sign.reverse() }
+    };
+    // The ends of `part` in the order of the line's parameter.
+    let [lo, hi] = if (part[0][k] < part[1][k]) == rising {
+        part
+    } else {
+        [part[1], part[0]]
+    };
+    let mut over: Vec<&TracedPiece> = on
+        .iter()
+        .map(|&i| &traced.pieces[i])
+        .filter(|p| compare(p.t[0], &hi) == Ordering::Less)
+        .filter(|p| compare(p.t[1], &lo) == Ordering::Greater)
+        .collect();
+    if let Some(p) = over.iter().find(|p| p.class != class) {
+        return Err((
+            format!("t = [{:e}, {:e}] of its line", p.t[0], p.t[1]),
+            format!("a {} piece", p.class.name()),
+        ));
+    }
+    over.sort_by(|x, y| x.t[0].total_cmp(&y.t[0]));
+    let (Some(start), Some(end)) = (over.first(), over.last()) else {
+        return Err(nothing());
+    };
+    if compare(start.t[0], &lo) == Ordering::Greater {
+        return Err((
+            format!("t < {:e} of its line", start.t[0]),
+            "nothing".to_string(),
+        ));
+    }
+    for w in over.windows(2) {
+        let (reached, next) = (w[0].t[1], w[1].t[0]);
+        if next != reached {
+            let what = if next > reached {
+                "nothing"
+            } else {
+                "overlapping pieces"
+            };
+            return Err((format!("t = {reached:e} of its line"), what.to_string()));
+        }
+    }
+    if compare(end.t[1], &hi) == Ordering::Less {
+        return Err((
+            format!("t > {:e} of its line", end.t[1]),
+            "nothing".to_string(),
+        ));
+    }
+    Ok(())
+}
+
+/// A silhouette or boundary edge found by the sign test: a side of a triangle, or a piece of
+/// one between consecutive vertices lying on it (at T-junctions).
 struct Contour {
     vertices: [u32; 2],
     class: EdgeClass,
+    /// The chain (see [`Chains`]) it is a piece of, for a piece of a side with T-junctions.
+    chain: Option<usize>,
 }
 
-/// The silhouette and boundary edges of `mesh` by the sign test (see the module
-/// documentation), and the number of edges it does not decide.
-fn contour_edges(mesh: &Mesh, eye: &Eye) -> (Vec<Contour>, usize) {
-    // Each triangle's side: the edge (lower, higher vertex), the triangle, and whether the
-    // triangle runs along the edge from lower to higher.
-    let mut sides: Vec<([u32; 2], usize, bool)> = mesh
-        .triangles()
-        .iter()
-        .enumerate()
-        .flat_map(|(t, tri)| {
-            (0..3).map(move |k| {
-                let (p, q) = (tri[k], tri[(k + 1) % 3]);
-                ([p.min(q), p.max(q)], t, p < q)
+/// What the sign test found in a mesh.
+struct Contours {
+    /// The silhouette and boundary edges.
+    contours: Vec<Contour>,
+    /// The sides with T-junctions the contours lie on.
+    chains: Chains,
+    /// The number of edges it does not decide.
+    unchecked: usize,
+}
+
+/// The sides of a mesh's triangles that have T-junctions, joined into chains where they share
+/// a piece (so lie on one line): each chain's vertices in order along the line. A line of the
+/// drawing along a side with T-junctions (its pieces joined, as the pass joins them) runs
+/// between two vertices of one chain.
+#[derive(Debug, Default)]
+struct Chains {
+    /// Each chain's vertices, in order along it.
+    points: Vec<Vec<u32>>,
+    /// For each vertex on a chain, the chains it lies on and its position on each.
+    at: HashMap<u32, Vec<(usize, usize)>>,
+}
+
+/// For each chain, for each segment between consecutive vertices of it, the lines of the
+/// drawing (by their ends) that run along it.
+type Cover = Vec<Vec<Vec<EdgeKey>>>;
+
+impl Chains {
+    /// The chains of the sides `long` (each its vertices in order along it), of which those
+    /// with an index of one root in `parent` (a union-find forest) share pieces; and the chain
+    /// of each side.
+    fn new(vertices: &[Point3], long: &[Vec<u32>], parent: &mut [usize]) -> (Chains, Vec<usize>) {
+        let mut chains = Chains::default();
+        let mut of_root: HashMap<usize, usize> = HashMap::new();
+        let mut chain_of = Vec::with_capacity(long.len());
+        for (id, side) in long.iter().enumerate() {
+            let r = root(parent, id);
+            let c = *of_root.entry(r).or_insert_with(|| {
+                chains.points.push(Vec::new());
+                chains.points.len() - 1
+            });
+            chains.points[c].extend(side);
+            chain_of.push(c);
+        }
+        let point = |v: u32| vertices.get(v as usize).copied().unwrap_or_default();
+        for (c, points) in chains.points.iter_mut().enumerate() {
+            // Exactly collinear, so in order along a coordinate in which two of them differ
+            // (the first two: consecutive on a side).
+            let (p, q) = (points.first(), points.get(1));
+            let (p, q) = (
+                point(p.copied().unwrap_or(0)),
+                point(q.copied().unwrap_or(0)),
+            );
+            let k = (0..3).find(|&k| p[k] != q[k]).unwrap_or(0);
+            points.sort_by(|&x, &y| point(x)[k].total_cmp(&point(y)[k]).then(x.cmp(&y)));
+            points.dedup();
+            for (i, &w) in points.iter().enumerate() {
+                chains.at.entry(w).or_default().push((c, i));
+            }
+        }
+        (chains, chain_of)
+    }
+
+    /// The position of vertex `v` on chain `c`.
+    fn position(&self, c: usize, v: u32) -> Option<usize> {
+        let on = self.at.get(&v)?;
+        on.iter().find(|x| x.0 == c).map(|x| x.1)
+    }
+
+    /// Which of the `lines` of the drawing (by their ends: vertices of `mesh`) run along which
+    /// segments of the chains.
+    fn covering(&self, mesh: &Mesh, lines: &[EdgeKey]) -> Cover {
+        let mut cover: Cover = self
+            .points
+            .iter()
+            .map(|p| vec![Vec::new(); p.len().saturating_sub(1)])
+            .collect();
+        if self.points.is_empty() {
+            return cover;
+        }
+        let vertex: HashMap<[u64; 3], u32> = self
+            .at
+            .keys()
+            .filter_map(|&v| Some((point_key(mesh.vertices().get(v as usize)?), v)))
+            .collect();
+        for key in lines {
+            let (Some(&a), Some(&b)) = (vertex.get(&key[0]), vertex.get(&key[1])) else {
+                continue;
+            };
+            for &(c, i) in self.at.get(&a).into_iter().flatten() {
+                if let Some(j) = self.position(c, b) {
+                    for segment in cover[c].iter_mut().take(i.max(j)).skip(i.min(j)) {
+                        segment.push(*key);
+                    }
+                }
+            }
+        }
+        cover
+    }
+
+    /// The segments of chain `c` between consecutive vertices that make up the piece between
+    /// vertices `ends`, each with the lines of the drawing that run along it.
+    fn between<'a>(
+        &self,
+        c: usize,
+        ends: [u32; 2],
+        cover: &'a Cover,
+    ) -> Vec<([u32; 2], &'a [EdgeKey])> {
+        let (Some(i), Some(j), Some(points), Some(lines)) = (
+            self.position(c, ends[0]),
+            self.position(c, ends[1]),
+            self.points.get(c),
+            cover.get(c),
+        ) else {
+            return vec![(ends, &[])];
+        };
+        (i.min(j)..i.max(j))
+            .map(|k| {
+                let w = [points[k], points[k + 1]];
+                let w = if w == [ends[1], ends[0]] { ends } else { w };
+                (w, lines.get(k).map(Vec::as_slice).unwrap_or_default())
             })
-        })
-        .collect();
+            .collect()
+    }
+}
+
+/// The root of `g` in the union-find forest `parent`, halving the path.
+fn root(parent: &mut [usize], mut g: usize) -> usize {
+    while parent[g] != g {
+        parent[g] = parent[parent[g]];
+        g = parent[g];
+    }
+    g
+}
+
+/// A side of a triangle, or a piece of one between consecutive vertices lying on it (at
+/// T-junctions): the edge (lower, higher vertex), the triangle, whether the triangle runs along
+/// the edge from lower to higher, and the index of the side with T-junctions it is a piece of
+/// ([`WHOLE`] for a whole side).
+type SidePiece = ([u32; 2], usize, bool, usize);
+
+/// The [`SidePiece`] of a whole side.
+const WHOLE: usize = usize::MAX;
+
+/// A mesh's face sides with T-junctions, by face and (lower, higher) end: each side's first
+/// vertex and the vertices inside it, in order from there.
+type Junctions<'a> = HashMap<(usize, [u32; 2]), (u32, &'a [u32])>;
+
+/// The silhouette and boundary edges of `mesh` by the sign test (see the module
+/// documentation), and the number of edges it does not decide. A side with vertices of the
+/// mesh lying exactly inside it (a T-junction) is cut there, as the pass cuts it
+/// ([`Mesh::side_junctions`]): the pieces between consecutive vertices on it are matched, across
+/// triangles, with the sides or pieces that cover them, and each is tested as an edge.
+fn contour_edges(mesh: &Mesh, eye: &Eye) -> Contours {
+    let ordered = |p: u32, q: u32| [p.min(q), p.max(q)];
+    // Each face's sides with T-junctions: the side's first vertex and those inside it, in
+    // order from there.
+    let mut junctions: Junctions = HashMap::new();
+    if mesh.t_junctions() > 0 {
+        for (f, face) in mesh.faces().iter().enumerate() {
+            let v = face.vertices();
+            for i in 0..v.len() {
+                if let Some(inner) = mesh.side_junctions(f, i) {
+                    junctions.insert((f, ordered(v[i], v[(i + 1) % v.len()])), (v[i], inner));
+                }
+            }
+        }
+    }
+    // Each triangle's sides, cut at T-junctions; each side with them (its vertices in order).
+    let triangles = mesh.triangles();
+    let mut long: Vec<Vec<u32>> = Vec::new();
+    let mut sides: Vec<SidePiece> = Vec::with_capacity(3 * triangles.len());
+    for (f, face) in mesh.faces().iter().enumerate() {
+        for t in face.triangle_range() {
+            let Some(tri) = triangles.get(t) else {
+                continue;
+            };
+            for k in 0..3 {
+                let (p, q) = (tri[k], tri[(k + 1) % 3]);
+                let Some(&(from, inner)) = junctions.get(&(f, ordered(p, q))) else {
+                    sides.push((ordered(p, q), t, p < q, WHOLE));
+                    continue;
+                };
+                let to = if from == p { q } else { p };
+                let mut on: Vec<u32> = std::iter::once(from)
+                    .chain(inner.iter().copied())
+                    .chain(std::iter::once(to))
+                    .collect();
+                // In the triangle's direction, from p to q.
+                if from != p {
+                    on.reverse();
+                }
+                for w in on.windows(2) {
+                    sides.push((ordered(w[0], w[1]), t, w[0] < w[1], long.len()));
+                }
+                long.push(on);
+            }
+        }
+    }
     sides.sort_unstable();
+    let groups: Vec<&[SidePiece]> = sides.chunk_by(|x, y| x.0 == y.0).collect();
+    // Sides with T-junctions that share a piece lie on one line: one chain.
+    let mut parent: Vec<usize> = (0..long.len()).collect();
+    for group in &groups {
+        let mut ids = group.iter().map(|s| s.3).filter(|&id| id != WHOLE);
+        if let Some(first) = ids.next() {
+            for id in ids {
+                let (r1, r2) = (root(&mut parent, first), root(&mut parent, id));
+                parent[r2] = r1;
+            }
+        }
+    }
     let vertices = mesh.vertices();
     let mut contours = Vec::new();
     let mut unchecked = 0;
-    for group in sides.chunk_by(|x, y| x.0 == y.0) {
+    for group in groups {
         let edge = group[0].0;
         let (a, b) = (&vertices[edge[0] as usize], &vertices[edge[1] as usize]);
         // The triangle's side of the eye, as if it ran from lower to higher.
-        let facing = |&(_, t, forward): &([u32; 2], usize, bool)| {
+        let facing = |&(_, t, forward, _): &SidePiece| {
             let [p, q, r] = mesh.triangle(t);
             let s = eye.orient3d(&p, &q, &r);
             if forward { s } else { s.reverse() }
@@ -728,11 +1067,21 @@ fn contour_edges(mesh: &Mesh, eye: &Eye) -> (Vec<Contour>, usize) {
             Some(class) => contours.push(Contour {
                 vertices: edge,
                 class,
+                // For now the side with T-junctions it is a piece of.
+                chain: group.iter().find(|s| s.3 != WHOLE).map(|s| s.3),
             }),
             None => unchecked += 1,
         }
     }
-    (contours, unchecked)
+    let (chains, chain_of) = Chains::new(vertices, &long, &mut parent);
+    for c in &mut contours {
+        c.chain = c.chain.and_then(|id| chain_of.get(id).copied());
+    }
+    Contours {
+        contours,
+        chains,
+        unchecked,
+    }
 }
 
 /// Check 3: the drawing's segments are the pieces'.
@@ -743,6 +1092,9 @@ fn drawing(options: &Options, traced: &Traced, report: &mut Verification) {
         (class, visible, if p <= q { [p, q] } else { [q, p] })
     };
     let mut count: HashMap<(EdgeClass, bool, [[u64; 2]; 2]), i64> = HashMap::new();
+    // A piece whose ends are equal, as traced at the input's scale (of zero length, or
+    // rounded to one point when scaled back: `draw_traced` scales them as `Drawing::scaled`
+    // scales the drawing), is not drawn.
     for p in &traced.pieces {
         if p.ends[0] != p.ends[1] && (p.visible || options.hidden) {
             *count
