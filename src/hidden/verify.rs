@@ -756,6 +756,7 @@ fn tiled_between(
         let side = |x: Point3| Side {
             origin: *w,
             normal,
+            offset: 0.0,
             x,
         };
         let sign = Between(side(a), side(b), t).sign();
