@@ -550,9 +550,9 @@ impl<'a> Pass<'a> {
         let pairs = overlapping_cboxes(self.scene, &ids);
         let apart = ids.len() * (ids.len() + 1) / 2 - pairs.len();
         let leaves = &self.leaves;
-        let found: Vec<Vec<intersections::Segment>> = pairs
+        let found: Vec<(Vec<intersections::Segment>, Vec<[usize; 3]>)> = pairs
             .par_iter()
-            .map(|&(i, j)| intersections::between(leaves[i].mesh, leaves[j].mesh, i == j, &eye))
+            .map(|&(i, j)| intersections::meetings(leaves[i].mesh, leaves[j].mesh, i == j, &eye))
             .collect();
         let mut segments = 0usize;
         let mut self_intersecting = Vec::new();
@@ -561,8 +561,19 @@ impl<'a> Pass<'a> {
         // The lines to cut, and each intersection line's triangles (by its index in `meets`).
         let mut crossings: Vec<usize> = Vec::new();
         let mut owned: Vec<Vec<(ObjectId, usize)>> = Vec::new();
-        for (&(i, j), found) in pairs.iter().zip(found) {
+        for (&(i, j), (found, contacts)) in pairs.iter().zip(found) {
             let (id0, id1) = (ids[i], ids[j]);
+            // A triangle that crosses another's plane: an edge of it may pass through the other
+            // even where their faces only touch (an edge entering a solid exactly across an
+            // edge of its surface), so the other is its partner for piercings.
+            for [k, t, u] in contacts {
+                let (x, y) = if k == 0 {
+                    ((id0, t), (id1, u))
+                } else {
+                    ((id1, t), (id0, u))
+                };
+                partners.entry(x).or_default().push(y);
+            }
             for s in found {
                 segments += 1;
                 // Which ends are in front of the eye, and whether both are inside the frustum,
@@ -881,15 +892,21 @@ impl<'a> Pass<'a> {
         self.stage("occluders", clock, done, skipped);
 
         let clock = Instant::now();
-        let cuts = &mut self.cuts;
-        cuts.par_sort_unstable_by(|x, y| x.0.cmp(&y.0).then(x.1.zero.t.total_cmp(&y.1.zero.t)));
+        let cuts = &self.cuts;
         let lines = &self.lines;
+        // The cuts grouped by line (a counting sort of their indices: the cuts stay in place).
         let mut first_cut = vec![0usize; lines.len() + 1];
         for &(l, _) in cuts.iter() {
             first_cut[l + 1] += 1;
         }
         for l in 0..lines.len() {
             first_cut[l + 1] += first_cut[l];
+        }
+        let mut by_line = vec![0u32; cuts.len()];
+        let mut next = first_cut.clone();
+        for (k, &(l, _)) in cuts.iter().enumerate() {
+            by_line[next[l]] = k as u32;
+            next[l] += 1;
         }
         let done = AtomicU64::new(0);
         let total = lines.len() as u64;
@@ -902,10 +919,11 @@ impl<'a> Pass<'a> {
                 if n.is_multiple_of(1024) || n == total {
                     progress(n, total);
                 }
-                let line_cuts: Vec<Cut> = cuts[first_cut[l]..first_cut[l + 1]]
+                let mut line_cuts: Vec<&Cut> = by_line[first_cut[l]..first_cut[l + 1]]
                     .iter()
-                    .map(|c| c.1)
+                    .map(|&k| &cuts[k as usize].1)
                     .collect();
+                line_cuts.sort_unstable_by(|x, y| x.zero.t.total_cmp(&y.zero.t));
                 match lines[l].meet {
                     Some(m) => line_pieces(
                         &occluders,
@@ -1153,7 +1171,7 @@ fn pieces(
     picture: &Picture,
     clip: Option<Clip>,
     (line, l): (usize, &Line),
-    cuts: &[Cut],
+    cuts: &[&Cut],
 ) -> (Vec<Piece>, Counters) {
     let mut counters = Counters::default();
     if l.back && !l.clipped {
@@ -1172,15 +1190,15 @@ fn pieces(
     let mut sorted = cuts.to_vec();
     for i in 1..sorted.len() {
         let mut j = i;
-        while j > 0 && order(&sorted[j], &sorted[j - 1]) == Ordering::Less {
+        while j > 0 && order(sorted[j], sorted[j - 1]) == Ordering::Less {
             sorted.swap(j, j - 1);
             j -= 1;
         }
     }
-    let mut bounds: Vec<Cut> = Vec::with_capacity(sorted.len());
+    let mut bounds: Vec<&Cut> = Vec::with_capacity(sorted.len());
     for c in sorted {
         match bounds.last_mut() {
-            Some(last) if order(last, &c) == Ordering::Equal => {
+            Some(last) if order(last, c) == Ordering::Equal => {
                 if c.key < last.key {
                     *last = c;
                 }
@@ -1190,7 +1208,7 @@ fn pieces(
     }
     let mut runs = Runs::new(l, line);
     for k in 0..=bounds.len() {
-        let lo = k.checked_sub(1).map(|k| &bounds[k]);
+        let lo = k.checked_sub(1).map(|k| bounds[k]);
         let sample = Sample::between(
             eye,
             a,
@@ -1231,10 +1249,10 @@ fn line_pieces(
     picture: &Picture,
     clip: Option<Clip>,
     (line, l, m): (usize, &Line, &MeetLine),
-    cuts: &[Cut],
+    cuts: &[&Cut],
 ) -> (Vec<Piece>, Counters) {
     let meet = &m.meet;
-    let mut inner: Vec<(OnLine, &Cut)> = cuts.iter().map(|c| (c.point(), c)).collect();
+    let mut inner: Vec<(OnLine, &Cut)> = cuts.iter().map(|&c| (c.point(), c)).collect();
     // Stable: the cuts come roughly sorted already.
     inner.sort_by(|x, y| meet.compare(eye, &x.0, &y.0).then(x.1.key.cmp(&y.1.key)));
     inner.dedup_by(|b, a| meet.compare(eye, &a.0, &b.0) == Ordering::Equal);

@@ -69,15 +69,57 @@ struct Piece {
 /// The intersection segments of the faces of `m0` with those of `m1` (`same` when they are
 /// one mesh: then each pair once, and triangles sharing a vertex or a face are not compared).
 pub(crate) fn between(m0: &Mesh, m1: &Mesh, same: bool, eye: &Eye) -> Vec<Segment> {
-    let crossing: Vec<(usize, usize, Sides)> = candidate_pairs(m0, m1, same)
+    meetings(m0, m1, same, eye).0
+}
+
+/// [`between`], and the pairs of triangles `(t, u)` (in meshes `k` and `1 − k`, as
+/// `[k, t, u]`) where a side of `t` crosses `u`'s plane strictly and passes through the closed
+/// triangle `u`: an edge piercing a face, also where the faces along the edge only touch `u`
+/// (an edge that enters a solid exactly across an edge of its surface, making no intersection
+/// segment).
+pub(crate) fn meetings(
+    m0: &Mesh,
+    m1: &Mesh,
+    same: bool,
+    eye: &Eye,
+) -> (Vec<Segment>, Vec<[usize; 3]>) {
+    // The pairs that pierce each other, and those where a face's side passes through the
+    // other triangle (partners for piercings even where they make no segment).
+    type Found = (Vec<(usize, usize, Sides)>, Vec<[usize; 3]>);
+    let (crossing, contacts): Found = candidate_pairs(m0, m1, same)
         .par_iter()
-        .filter_map(|&(i, j)| {
-            let (i, j) = (i as usize, j as usize);
-            pierce(m0, i, m1, j).map(|sides| (i, j, sides))
-        })
-        .collect();
+        .fold(
+            || (Vec::new(), Vec::new()),
+            |(mut crossing, mut contacts): Found, &(i, j)| {
+                let (i, j) = (i as usize, j as usize);
+                if let Some([s0, s1]) = sides(m0, i, m1, j) {
+                    if crosses(&s0, m0, i) && crosses(&s1, m1, j) {
+                        crossing.push((i, j, [s0, s1]));
+                    }
+                    // (Also for a pair that pierces: it may meet in one point, no segment.)
+                    if straddles(&s0) || straddles(&s1) {
+                        let (t0, t1) = (m0.triangle(i), m1.triangle(j));
+                        if edge_through(&t0, &s0, m0, i, &t1) {
+                            contacts.push([0, i, j]);
+                        }
+                        if edge_through(&t1, &s1, m1, j, &t0) {
+                            contacts.push([1, j, i]);
+                        }
+                    }
+                }
+                (crossing, contacts)
+            },
+        )
+        .reduce(
+            || (Vec::new(), Vec::new()),
+            |(mut a, mut b), (c, d)| {
+                a.extend(c);
+                b.extend(d);
+                (a, b)
+            },
+        );
     if crossing.is_empty() {
-        return Vec::new();
+        return (Vec::new(), contacts);
     }
     // The plane of each face met, once.
     let planes = |m: &Mesh, side: usize| -> HashMap<usize, (PlaneKey, [Point3; 3])> {
@@ -111,10 +153,11 @@ pub(crate) fn between(m0: &Mesh, m1: &Mesh, same: bool, eye: &Eye) -> Vec<Segmen
         .collect();
     pieces.par_sort_unstable_by(|x, y| x.keys.cmp(&y.keys).then(x.triangles.cmp(&y.triangles)));
     let groups: Vec<&[Piece]> = pieces.chunk_by(|x, y| x.keys == y.keys).collect();
-    groups
+    let segments = groups
         .par_iter()
         .flat_map_iter(|group| merged(group, eye))
-        .collect()
+        .collect();
+    (segments, contacts)
 }
 
 /// The pieces of one pair of planes, merged where they touch end to end.
@@ -346,16 +389,19 @@ fn face_sides(mesh: &Mesh, t: usize) -> [bool; 3] {
 /// The sides of each triangle's vertices against the other's plane.
 type Sides = [[Ordering; 3]; 2];
 
-/// The sides of each triangle's vertices against the other's plane, when each crosses the
-/// other's plane (see [`crosses`]): only then may they pierce each other.
-fn pierce(m0: &Mesh, i: usize, m1: &Mesh, j: usize) -> Option<Sides> {
+/// The sides of each triangle's vertices against the other's plane, unless the first lies
+/// strictly on one side of the second's (then they do not meet). They pierce each other only
+/// when each crosses the other's plane (see [`crosses`]).
+fn sides(m0: &Mesh, i: usize, m1: &Mesh, j: usize) -> Option<Sides> {
     let (t0, t1) = (m0.triangle(i), m1.triangle(j));
     let s0 = t0.map(|p| orient3d(&t1[0], &t1[1], &t1[2], &p));
-    if !crosses(&s0, m0, i) {
+    // Wholly on one side of the other's plane, the triangles do not meet; on it (coplanar),
+    // neither crosses the other's plane.
+    if s0[0] == s0[1] && s0[1] == s0[2] {
         return None;
     }
     let s1 = t1.map(|p| orient3d(&t0[0], &t0[1], &t0[2], &p));
-    crosses(&s1, m1, j).then_some([s0, s1])
+    Some([s0, s1])
 }
 
 /// Whether triangle `t` of `mesh`, with the sides `s` of its vertices, crosses the other's
@@ -450,6 +496,31 @@ fn against(s: [Ordering; 3], plane: &[Point3; 3], t: &[Point3; 3]) -> [Ordering;
 /// Whether the triangle has vertices strictly on both sides of the other's plane. Without,
 /// the triangles are apart, coplanar, or only touch (a face resting on another meets it along
 /// an edge that is drawn already): no intersection line.
+/// Whether a side of triangle `t` (triangle `index` of `mesh`) that is a side of its face (the
+/// vertices' sides `s` of `u`'s plane) crosses `u`'s plane strictly and passes through the
+/// closed triangle `u`, decided exactly.
+fn edge_through(
+    t: &[Point3; 3],
+    s: &[Ordering; 3],
+    mesh: &Mesh,
+    index: usize,
+    u: &[Point3; 3],
+) -> bool {
+    if !straddles(s) {
+        return false;
+    }
+    let edges = face_sides(mesh, index);
+    (0..3).filter(|&k| edges[k]).any(|k| {
+        let (a, b) = (&t[k], &t[(k + 1) % 3]);
+        let crossing =
+            s[k] != Ordering::Equal && s[(k + 1) % 3] != Ordering::Equal && s[k] != s[(k + 1) % 3];
+        crossing && {
+            let sides = [0, 1, 2].map(|m| orient3d(a, b, &u[m], &u[(m + 1) % 3]));
+            !(sides.contains(&Ordering::Greater) && sides.contains(&Ordering::Less))
+        }
+    })
+}
+
 fn straddles(s: &[Ordering; 3]) -> bool {
     s.contains(&Ordering::Greater) && s.contains(&Ordering::Less)
 }
