@@ -16,8 +16,10 @@
 //!    sight meets the closed face (the drawing's rule: see [`crate::hidden`]). Where the line
 //!    of sight passes exactly through an edge of such a face (a piece right behind a contour),
 //!    [`crate::queries::visp`]'s symbolic perturbation may answer otherwise: those samples are
-//!    counted (`grazing`). Pieces of intersection lines are not checked yet: their 3-D ends are
-//!    rounded points, not on the exact line (counted as `unchecked`).
+//!    counted (`grazing`). On an intersection line, each sample is where a plane `x_k = c`
+//!    (a double `c` along the coordinate in which the piece runs furthest) cuts the exact line
+//!    the two faces' planes meet on, a point defined from the input; each face test is the
+//!    exact sign of a plane's form there, and the faces the line lies on do not hide it.
 //! 2. **Silhouettes and boundaries.** A second, simple method finds them: an edge between two
 //!    triangles of different faces, one turned towards the eye and one away (each triangle's
 //!    side of the eye by [`Eye::orient3d`], taken along the edge's direction in that triangle,
@@ -72,6 +74,7 @@ use crate::geometry::{Point3, Vector3};
 use crate::mesh::Mesh;
 use crate::queries::along::{Form, Sample};
 use crate::queries::frustum::pictured;
+use crate::queries::meet::{Meet, OnLine};
 use crate::queries::range::in_working_range;
 use crate::queries::visp::{Visibility, VisibilityIndex};
 use crate::scene::{ObjectId, Scene};
@@ -145,6 +148,8 @@ pub struct TracedPiece {
     pub t: [f64; 2],
     /// The pictures of the piece's ends, as drawn.
     pub ends: [[f64; 2]; 2],
+    /// For an intersection line: the exact line it lies on (its `line` ends are rounded).
+    pub(crate) meet: Option<Meet>,
 }
 
 /// A drawing with its pieces traced to their 3-D lines (see [`draw_traced`]).
@@ -196,6 +201,9 @@ pub fn draw_traced(
         .map(|p| TracedPiece {
             line: p.line.map(|q| q.map(|c| ldexp(c, -shift))),
             ends: p.ends.map(|e| e.map(|c| ldexp(c, pictures))),
+            meet: p.meet.map(|m| Meet {
+                planes: m.planes.map(|t| t.map(|q| q.map(|c| ldexp(c, -shift)))),
+            }),
             ..p
         })
         .collect();
@@ -233,6 +241,7 @@ fn traced(pass: Pass, pieces: Vec<Piece>, options: &Options) -> Traced {
                 visible: p.visible,
                 t: p.t,
                 ends: p.ends,
+                meet: line.meet.map(|m| pass.meets[m].meet),
             })
         })
         .collect();
@@ -386,7 +395,7 @@ impl fmt::Display for Verification {
         )?;
         writeln!(
             f,
-            "verify: not checked: {} intersection-line pieces (their lines are not yet exact), \
+            "verify: not checked: {} intersection-line pieces (without their exact line), \
              {} samples within {NEAR_END_ULPS} ulps of a piece's end, {} edges end-on, between \
              faces edge-on or of more than two triangles",
             self.unchecked_intersections, self.near_ends, self.unchecked_edges
@@ -447,13 +456,17 @@ fn visibility(scene: &Scene, view: &View, traced: &Traced, report: &mut Verifica
         .pieces
         .par_iter()
         .enumerate()
-        .filter(|(_, p)| matches!(p.source, Source::Edge { .. }))
-        .map(|(i, p)| (i, samples(&index, eye, p)))
+        .map(|(i, p)| match (p.source, &p.meet) {
+            (Source::Intersection { faces }, Some(meet)) => {
+                (i, line_samples(scene, &index, eye, p, meet, faces))
+            }
+            _ => (i, samples(&index, eye, p)),
+        })
         .collect();
     report.unchecked_intersections = traced
         .pieces
         .iter()
-        .filter(|p| matches!(p.source, Source::Intersection { .. }))
+        .filter(|p| matches!(p.source, Source::Intersection { .. }) && p.meet.is_none())
         .count();
     for (i, sampled) in found {
         let p = &traced.pieces[i];
@@ -513,6 +526,104 @@ fn samples(index: &VisibilityIndex, eye: &Eye, p: &TracedPiece) -> Vec<Sampled> 
             }
         })
         .collect()
+}
+
+/// VISP at the samples of one piece of an intersection line (on the exact line `meet`, of the
+/// faces `faces`): each sample is where a plane `x_k = c` across the line (a double `c` of the
+/// coordinate along which the piece runs furthest, at the fractions [`SAMPLES`] of the piece's
+/// rounded span) cuts it, a point of the line defined from the input and never rounded; every
+/// face test is the exact sign of a plane's form there ([`Meet::sign_at`]). The faces the line
+/// lies on do not hide it. Samples within 2⁻³⁰ of the piece's span of its ends are not taken
+/// (the piece's ends are known here only as rounded points).
+fn line_samples(
+    scene: &Scene,
+    index: &VisibilityIndex,
+    eye: &Eye,
+    p: &TracedPiece,
+    meet: &Meet,
+    faces: [(ObjectId, usize); 2],
+) -> Vec<Sampled> {
+    let [a, b] = &p.line;
+    let k = (0..3)
+        .max_by(|&i, &j| (b[i] - a[i]).abs().total_cmp(&(b[j] - a[j]).abs()))
+        .unwrap_or(0);
+    let [lo, hi] = p.t.map(|t| a[k] + t * (b[k] - a[k]));
+    let margin = (hi - lo).abs() / (1u64 << 30) as f64;
+    // The triangles of the faces the line lies on, which do not hide it.
+    let own: Vec<[Point3; 3]> = faces
+        .iter()
+        .filter_map(|&(o, f)| {
+            let mesh = scene[o].mesh()?;
+            let face = mesh.faces().get(f)?;
+            Some(
+                face.triangle_range()
+                    .map(|t| mesh.triangle(t))
+                    .collect::<Vec<_>>(),
+            )
+        })
+        .flatten()
+        .collect();
+    SAMPLES
+        .iter()
+        .map(|&f| {
+            let c = lo + (hi - lo) * f;
+            // The sample's parameter along the rounded line, for the report.
+            let t = p.t[0] + (p.t[1] - p.t[0]) * f;
+            if !((c - lo).abs() > margin && (hi - c).abs() > margin) {
+                return Sampled::NearEnd;
+            }
+            let mut corner = [0.0; 3];
+            corner[k] = c;
+            let (p0, mut p1, mut p2) = (
+                Point3::from(corner),
+                Point3::from(corner),
+                Point3::from(corner),
+            );
+            p1[(k + 1) % 3] = 1.0;
+            p2[(k + 2) % 3] = 1.0;
+            let across = Form::Plane([p0, p1, p2]);
+            if meet.slope_sign(eye, &across) == Ordering::Equal {
+                return Sampled::NearEnd;
+            }
+            let at = OnLine::Cut(meet.increasing(eye, across));
+            let sign = |form: &Form| meet.sign_at(eye, &at, form);
+            let near = meet.approximate(eye, &at);
+            let radius = meet.magnitude(&at).max(near.coords.amax()) / (1u64 << 39) as f64;
+            let grazed = Cell::new(false);
+            let hides = |tri: &[Point3; 3], strict: bool| {
+                if own.contains(tri) {
+                    return false;
+                }
+                let (hides, grazes) = hides_by(eye, tri, &sign);
+                grazed.set(grazed.get() || grazes);
+                hides && !(strict && grazes)
+            };
+            let (closed, _) = index.visp_by((&near, radius), |tri| hides(tri, false));
+            let visibility = if closed == Visibility::Visible || !grazed.get() {
+                closed
+            } else {
+                let (open, _) = index.visp_by((&near, radius), |tri| hides(tri, true));
+                if open == Visibility::Visible {
+                    // The answer rests on lines of sight through faces' edges only.
+                    return sampled(p, t, closed, true);
+                }
+                closed
+            };
+            sampled(p, t, visibility, false)
+        })
+        .collect()
+}
+
+/// Whether the triangle `tri` hides a point given by the exact sign of any form there, and
+/// whether its line of sight passes exactly through an edge of the triangle (see [`hides_at`]).
+fn hides_by(eye: &Eye, tri: &[Point3; 3], sign: &impl Fn(&Form) -> Ordering) -> (bool, bool) {
+    let facing = eye.orient3d(&tri[0], &tri[1], &tri[2]);
+    if facing == Ordering::Equal || sign(&Form::Plane(*tri)) != facing.reverse() {
+        return (false, false);
+    }
+    let sides = [0, 1, 2].map(|i| sign(&Form::Sight(tri[i], tri[(i + 1) % 3])));
+    let inside = !(sides.contains(&Ordering::Greater) && sides.contains(&Ordering::Less));
+    (inside, inside && sides.contains(&Ordering::Equal))
 }
 
 /// A sample's outcome: VISP found `visibility` at `t`.

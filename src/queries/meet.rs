@@ -148,6 +148,12 @@ impl Meet {
         }
     }
 
+    /// The exact sign of the slope of a form along the line: `Equal` when the form's plane is
+    /// parallel to the line (it does not cross it).
+    pub(crate) fn slope_sign(&self, eye: &Eye, form: &Form) -> Ordering {
+        self.slope(eye, form).sign()
+    }
+
     /// The slope `D(Π) = det[gA, gB, gΠ]` of a form along the line, as a polynomial.
     fn slope<'a>(&'a self, eye: &'a Eye, form: &'a Form) -> Along<'a> {
         Along {
