@@ -319,8 +319,9 @@ pub struct FaceReport {
 /// A perspective eye inside the scene (some vertex not strictly in front of it) sees only
 /// what lies inside the view's frustum ([`View::frustum`], at the aspect of
 /// [`View::with_clipping`]), as the hidden-line pass draws: each face's visible polygons are
-/// VTP(F) cut exactly by the frustum's five planes, so every vertex lies in the picture's
-/// window. Everything in front of the eye still hides what lies behind it. A face is then
+/// VTP(F) cut exactly by the frustum's five planes (through points in doubles placed
+/// symmetrically about the frustum's: see `queries/frustum.rs`), so every vertex lies in the
+/// picture's window up to the rounding of those points (a few units in the last place). Everything in front of the eye still hides what lies behind it. A face is then
 /// VISIBLE only when all of it is seen (inside the frustum, nothing hiding any of it), HIDDEN
 /// when nothing of it is seen (behind the eye, wholly outside the frustum, or hidden), MIXED
 /// otherwise, a face cut by the edge of the picture included.
