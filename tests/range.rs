@@ -209,8 +209,13 @@ fn extreme_view_directions_draw() {
 }
 
 /// Every face's status and visible polygons, in a comparable form: picture polygons scaled by
-/// `2^k` (bit for bit), and texture polygons (in scene units) likewise.
-fn scaled_surfaces(scene: &Scene, view: &View, k: i32, picture_scales: bool) -> Vec<String> {
+/// `2^k` when `picture_scales` (bit for bit), and texture polygons (in scene units) by `2^k`.
+fn surfaces_scaled(
+    reports: &[kepler::surfaces::FaceReport],
+    scene: &Scene,
+    k: i32,
+    picture_scales: bool,
+) -> Vec<String> {
     use geo::MapCoords;
     let scale = |p: &geo::MultiPolygon<f64>, k: i32| {
         p.map_coords(|c| geo::Coord {
@@ -218,8 +223,7 @@ fn scaled_surfaces(scene: &Scene, view: &View, k: i32, picture_scales: bool) -> 
             y: ldexp(c.y, k),
         })
     };
-    visible_surfaces(scene, view)
-        .unwrap_or_else(|e| panic!("{e}"))
+    reports
         .iter()
         .map(|r| {
             let polygons = scale(&r.visible.polygons, if picture_scales { k } else { 0 });
@@ -261,12 +265,14 @@ fn visible_surfaces_scale_bit_for_bit() {
         .unwrap(),
     ];
     for (v, view) in views.iter().enumerate() {
-        let base = scaled_surfaces(&scene, view, 0, false);
+        let base = visible_surfaces(&scene, view).unwrap_or_else(|e| panic!("{e}"));
         for k in [-600, -280, -150, 150, 280, 600] {
             let scaled = scaled_scene(&scene, k);
-            let got = scaled_surfaces(&scaled, &view.scaled(k), 0, false);
-            let want: Vec<String> = scaled_surfaces(&scene, view, k, !view.is_perspective());
-            assert_eq!(got.len(), base.len(), "view {v}, 2^{k}");
+            let reports =
+                visible_surfaces(&scaled, &view.scaled(k)).unwrap_or_else(|e| panic!("{e}"));
+            let got = surfaces_scaled(&reports, &scaled, 0, false);
+            let want = surfaces_scaled(&base, &scene, k, !view.is_perspective());
+            assert_eq!(got.len(), want.len(), "view {v}, 2^{k}");
             for (g, w) in got.iter().zip(&want) {
                 assert_eq!(g, w, "view {v}, scaled by 2^{k}");
             }
