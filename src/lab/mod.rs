@@ -31,4 +31,6 @@ pub mod boxtree;
 pub mod culling;
 pub mod oriented;
 pub mod projected_area;
+pub mod report;
+pub mod stiff;
 pub mod tribox_hierarchy;

@@ -1,0 +1,1 @@
+//! Error measures of a drawing against the exact one.
