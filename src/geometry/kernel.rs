@@ -63,6 +63,8 @@ use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 use std::cmp::Ordering;
 use std::ops::{Add, Mul, Neg, Sub};
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicU8, AtomicU64, Ordering::Relaxed};
 
 /// The unit roundoff of `f64`, `u = 2⁻⁵³`: half the gap between 1 and the next double, the
 /// largest relative error of one rounding to nearest.
@@ -135,8 +137,20 @@ impl Estimate {
     /// assert_eq!(Estimate::exact(0.0).sign(), None);
     /// assert_eq!(Estimate { value: f64::NAN, bound: 0.0 }.sign(), None);
     /// ```
+    ///
+    /// Under an [`Arithmetic`] other than [`Arithmetic::Exact`] (set by [`with_arithmetic`]
+    /// for the error report), the rounded value decides instead: see there.
     #[inline]
     pub fn sign(&self) -> Option<Ordering> {
+        if MODE.load(Relaxed) != EXACT {
+            return self.sign_in_mode();
+        }
+        self.certified_sign()
+    }
+
+    /// [`sign`](Self::sign) in the exact arithmetic: the certified sign or `None`.
+    #[inline]
+    fn certified_sign(&self) -> Option<Ordering> {
         if self.value > self.bound && self.value.is_finite() {
             Some(Ordering::Greater)
         } else if self.value < -self.bound && self.value.is_finite() {
@@ -144,6 +158,34 @@ impl Estimate {
         } else {
             None
         }
+    }
+
+    /// [`sign`](Self::sign) under the process's [`Arithmetic`] when it is not exact: counted,
+    /// or decided by the rounded value alone. A NaN or infinite value decides nothing (the
+    /// caller's exact path does).
+    #[cold]
+    #[inline(never)]
+    fn sign_in_mode(&self) -> Option<Ordering> {
+        let mode = MODE.load(Relaxed);
+        if mode == COUNTED {
+            let sign = self.certified_sign();
+            FILTER_CALLS.fetch_add(1, Relaxed);
+            if sign.is_none() {
+                FILTER_MISSES.fetch_add(1, Relaxed);
+            }
+            return sign;
+        }
+        if !self.value.is_finite() {
+            return None;
+        }
+        if mode == TOLERANCE {
+            // The bound is a few units of roundoff times the magnitude of the terms.
+            let magnitude = self.bound / UNIT_ROUNDOFF;
+            if self.value.abs() <= f64::from_bits(TOLERANCE_BITS.load(Relaxed)) * magnitude {
+                return Some(Ordering::Equal);
+            }
+        }
+        self.value.partial_cmp(&0.0)
     }
 
     /// The product: `|x̂ŷ − xy| ≤ |x̂|·e_y + |ŷ|·e_x + e_x·e_y`, plus the rounding of the product
@@ -768,5 +810,213 @@ impl Kernel for Exact {
     #[inline]
     fn sign<P: Polynomial + ?Sized>(&self, p: &P) -> Ordering {
         p.sign()
+    }
+}
+
+/// The arithmetic that decides the engine's signs and builds its points: exact, or one of the
+/// cheaper ones that the error report (`kepler report`, issue 15) measures against it. Every
+/// filter of the kernel ([`Estimate::sign`]) and every constructed point of a drawing
+/// (`queries/along.rs`) consults it, so the engine's algorithms run unchanged and only the
+/// arithmetic differs.
+///
+/// ```
+/// use kepler::geometry::kernel::{Arithmetic, Estimate, with_arithmetic};
+/// use std::cmp::Ordering;
+/// let tiny = Estimate { value: 1e-20, bound: 1e-18 };
+/// assert_eq!(tiny.sign(), None); // exact: the expansion must decide
+/// assert_eq!(with_arithmetic(Arithmetic::Float, || tiny.sign()), Some(Ordering::Greater));
+/// let tolerance = Arithmetic::Tolerance(1e-6);
+/// assert_eq!(with_arithmetic(tolerance, || tiny.sign()), Some(Ordering::Equal));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Arithmetic {
+    /// The engine's: every sign certified or decided exactly, every point rounded once from
+    /// exact values.
+    Exact,
+    /// Plain `f64`: a sign is the sign of the rounded value (zero when it is zero), a point
+    /// is the same formula evaluated in `f64`, as an engine without exact predicates computes
+    /// them.
+    Float,
+    /// `f64` with a tolerance, as most CAD and plotting engines decide: a value within `ε`
+    /// times the magnitude of its terms is zero (the magnitude is read off the estimate's
+    /// bound, a few roundoffs of it); points as [`Float`](Self::Float).
+    Tolerance(f64),
+    /// Single precision for the points, as GPU and game engines build them: each constructed
+    /// coordinate evaluated in `f32`. Signs as [`Float`](Self::Float) (the report also rounds
+    /// the scene's coordinates to `f32`; the `f64` signs make this a lower bound on a pure
+    /// `f32` engine's error).
+    Single,
+}
+
+const EXACT: u8 = 0;
+const COUNTED: u8 = 1;
+const FLOAT: u8 = 2;
+const TOLERANCE: u8 = 3;
+const SINGLE: u8 = 4;
+
+/// The process's arithmetic (one of the constants above) and the tolerance's bits.
+static MODE: AtomicU8 = AtomicU8::new(EXACT);
+static TOLERANCE_BITS: AtomicU64 = AtomicU64::new(0);
+/// Filter calls and misses counted by [`count_filters`].
+static FILTER_CALLS: AtomicU64 = AtomicU64::new(0);
+static FILTER_MISSES: AtomicU64 = AtomicU64::new(0);
+/// Held while an arithmetic other than the plain exact one is in force.
+static SWITCH: Mutex<()> = Mutex::new(());
+
+/// The arithmetic in force (see [`with_arithmetic`]); [`Arithmetic::Exact`] while filters are
+/// being counted.
+///
+/// ```
+/// use kepler::geometry::kernel::{Arithmetic, arithmetic};
+/// assert_eq!(arithmetic(), Arithmetic::Exact);
+/// ```
+pub fn arithmetic() -> Arithmetic {
+    match MODE.load(Relaxed) {
+        FLOAT => Arithmetic::Float,
+        TOLERANCE => Arithmetic::Tolerance(f64::from_bits(TOLERANCE_BITS.load(Relaxed))),
+        SINGLE => Arithmetic::Single,
+        _ => Arithmetic::Exact,
+    }
+}
+
+/// Puts the mode back to exact when dropped, also when the work panics.
+struct Restore;
+
+impl Drop for Restore {
+    fn drop(&mut self) {
+        MODE.store(EXACT, Relaxed);
+    }
+}
+
+/// Runs `f` with `arithmetic` deciding every sign and building every point of the engine, in
+/// every thread, then restores the exact arithmetic (also if `f` panics). The setting is
+/// process-wide (the engine's worker threads must see it): calls are serialised, and the
+/// engine must not be used outside them meanwhile. This is the error report's tool; the
+/// engine never calls it.
+///
+/// ```
+/// use kepler::geometry::kernel::{Arithmetic, arithmetic, with_arithmetic};
+/// assert_eq!(with_arithmetic(Arithmetic::Single, arithmetic), Arithmetic::Single);
+/// assert_eq!(arithmetic(), Arithmetic::Exact);
+/// ```
+pub fn with_arithmetic<T>(arithmetic: Arithmetic, f: impl FnOnce() -> T) -> T {
+    let _lock = SWITCH
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner());
+    let _restore = Restore;
+    let mode = match arithmetic {
+        Arithmetic::Exact => EXACT,
+        Arithmetic::Float => FLOAT,
+        Arithmetic::Tolerance(e) => {
+            TOLERANCE_BITS.store(e.to_bits(), Relaxed);
+            TOLERANCE
+        }
+        Arithmetic::Single => SINGLE,
+    };
+    MODE.store(mode, Relaxed);
+    f()
+}
+
+/// How often the kernel's filters ran and how often they could not decide, so that the exact
+/// (slow) path ran: see [`count_filters`].
+///
+/// ```
+/// let c = kepler::geometry::kernel::FilterCounts { calls: 200, misses: 3 };
+/// assert_eq!(c.share(), 0.015);
+/// ```
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct FilterCounts {
+    /// Filter calls ([`Estimate::sign`]).
+    pub calls: u64,
+    /// Calls whose estimate could not certify a sign.
+    pub misses: u64,
+}
+
+impl FilterCounts {
+    /// The share of calls that needed the exact path (0 without calls).
+    pub fn share(&self) -> f64 {
+        if self.calls == 0 {
+            0.0
+        } else {
+            self.misses as f64 / self.calls as f64
+        }
+    }
+}
+
+/// Runs `f` in the exact arithmetic, counting the kernel's filter calls and misses in every
+/// thread (slower than plain exact runs: each call updates shared counters). Serialised with
+/// [`with_arithmetic`].
+///
+/// ```
+/// use kepler::geometry::kernel::count_filters;
+/// use kepler::geometry::{Point3, predicates::orient3d};
+/// let p = |x, y, z| Point3::new(x, y, z);
+/// let ((), counts) = count_filters(|| {
+///     orient3d(&p(0.0, 0.0, 0.0), &p(1.0, 0.0, 0.0), &p(0.0, 1.0, 0.0), &p(0.0, 0.0, 1.0));
+///     orient3d(&p(0.0, 0.0, 0.0), &p(1.0, 0.0, 0.0), &p(0.0, 1.0, 0.0), &p(0.3, 0.3, 0.0));
+/// });
+/// assert_eq!((counts.calls, counts.misses), (2, 1));
+/// ```
+pub fn count_filters<T>(f: impl FnOnce() -> T) -> (T, FilterCounts) {
+    let _lock = SWITCH
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner());
+    let _restore = Restore;
+    FILTER_CALLS.store(0, Relaxed);
+    FILTER_MISSES.store(0, Relaxed);
+    MODE.store(COUNTED, Relaxed);
+    let result = f();
+    let counts = FilterCounts {
+        calls: FILTER_CALLS.load(Relaxed),
+        misses: FILTER_MISSES.load(Relaxed),
+    };
+    (result, counts)
+}
+
+/// Whether the engine builds its points exactly (each coordinate the exact value rounded
+/// once): so unless a cheaper [`Arithmetic`] is in force.
+///
+/// ```
+/// assert!(kepler::geometry::kernel::builds_exactly());
+/// ```
+#[inline]
+pub fn builds_exactly() -> bool {
+    !matches!(MODE.load(Relaxed), FLOAT | TOLERANCE | SINGLE)
+}
+
+/// `n / d` as the cheaper [`Arithmetic`] in force builds it: both evaluated by the same formula
+/// in `f64` (in `f32` for [`Arithmetic::Single`]) and divided. The engine calls it only when
+/// [`builds_exactly`] is false.
+///
+/// ```
+/// use kepler::geometry::kernel::{Arithmetic, plain_ratio, with_arithmetic};
+/// use kepler::geometry::predicates::Orient2d;
+/// let n = Orient2d([[0.0, 0.0], [1.0, 0.0], [0.0, 0.1]]);
+/// let d = Orient2d([[0.0, 0.0], [1.0, 0.0], [0.0, 0.3]]);
+/// assert_eq!(with_arithmetic(Arithmetic::Float, || plain_ratio(&n, &d)), 0.1 / 0.3);
+/// assert_eq!(with_arithmetic(Arithmetic::Single, || plain_ratio(&n, &d)), (0.1f32 / 0.3f32) as f64);
+/// ```
+pub fn plain_ratio<N: Polynomial + ?Sized, D: Polynomial + ?Sized>(n: &N, d: &D) -> f64 {
+    if MODE.load(Relaxed) == SINGLE {
+        f64::from(n.evaluate::<f32>() / d.evaluate::<f32>())
+    } else {
+        n.evaluate::<f64>() / d.evaluate::<f64>()
+    }
+}
+
+/// `Σ row[i]·(p[i] − origin[i])` as the cheaper [`Arithmetic`] in force evaluates it (a
+/// coordinate of a picture): in `f64`, or `f32` for [`Arithmetic::Single`].
+///
+/// ```
+/// use kepler::geometry::kernel::plain_dot;
+/// assert_eq!(plain_dot(&[1.0, 2.0, 0.0], &[3.0, 4.0, 5.0], &[1.0, 1.0, 1.0]), 8.0);
+/// ```
+pub fn plain_dot(row: &[f64; 3], p: &[f64; 3], origin: &[f64; 3]) -> f64 {
+    if MODE.load(Relaxed) == SINGLE {
+        let term = |i: usize| row[i] as f32 * (p[i] as f32 - origin[i] as f32);
+        f64::from(term(0) + term(1) + term(2))
+    } else {
+        let term = |i: usize| row[i] * (p[i] - origin[i]);
+        term(0) + term(1) + term(2)
     }
 }

@@ -466,7 +466,7 @@ impl SegmentGrid {
 #[inline]
 fn apart(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
     let side = |p: [f64; 2]| Orient2d([a, b, p]).estimate().sign();
-    matches!((side(c), side(d)), (Some(s), Some(t)) if s == t)
+    matches!((side(c), side(d)), (Some(s), Some(t)) if s == t && s != Ordering::Equal)
 }
 
 /// The bounding box of all endpoints and the largest coordinate magnitude.

@@ -68,6 +68,7 @@ pub mod verify;
 
 pub use drawing::{Drawing, EdgeClass, Polyline, StageReport};
 
+use crate::geometry::exact::ldexp;
 use crate::geometry::kernel::Polynomial;
 use crate::geometry::predicates::{collinear, orient3d};
 use crate::geometry::{Aabb, Point3};
@@ -302,6 +303,63 @@ pub fn draw_with_progress(
         Ok(chained(pass, pieces, options))
     })?;
     Ok(scaled_back(drawing, view, shift))
+}
+
+/// A line of a drawing before its visibility is decided (stages 1 and 2): an edge of the
+/// scene or a segment of an intersection line, in scene coordinates.
+///
+/// ```
+/// use kepler::{scene::Scene, views::View, hidden::{EdgeClass, Options, strokes}};
+/// let mut scene = Scene::new();
+/// scene.add_mesh(None, "cube", kepler::solids::cube(2.0).unwrap()).unwrap();
+/// let lines = strokes(&scene, &View::standard(), &Options::default()).unwrap();
+/// // Seen from above: the eight edges of the top and bottom squares are silhouettes, the four
+/// // vertical ones are seen end-on and left out.
+/// assert_eq!(lines.len(), 8);
+/// assert!(lines.iter().all(|s| s.class == EdgeClass::Silhouette));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Stroke {
+    /// The line's ends.
+    pub ends: [Point3; 2],
+    /// Its class.
+    pub class: EdgeClass,
+}
+
+/// The lines that [`draw`] would split into visible and hidden pieces, before any visibility
+/// is decided: the classified edges and the intersection segments. For measuring other ways of
+/// deciding visibility (sampling each line, a z-buffer) on exactly the lines the engine draws.
+/// An intersection segment's ends are rounded (each within a few units in the last place).
+///
+/// ```
+/// use kepler::{geometry::Vector3, scene::Scene, views::View, hidden::{Options, strokes}};
+/// let mut scene = Scene::new();
+/// scene.add_mesh(None, "cube", kepler::solids::cube(2.0).unwrap()).unwrap();
+/// let view = View::orthographic(Vector3::new(-1.0, -2.0, -3.0), Vector3::z()).unwrap();
+/// assert_eq!(strokes(&scene, &view, &Options::default()).unwrap().len(), 12);
+/// ```
+pub fn strokes(scene: &Scene, view: &View, options: &Options) -> Result<Vec<Stroke>> {
+    let (strokes, shift) = in_working_range::<_, DrawError>(scene, view, |scene, view| {
+        let mut pass = Pass::new(scene, view)?;
+        pass.edges(options);
+        pass.intersections();
+        Ok(pass
+            .lines
+            .iter()
+            .map(|l| Stroke {
+                ends: [l.a, l.b],
+                class: l.class,
+            })
+            .collect::<Vec<_>>())
+    })?;
+    let back = |p: &Point3| p.map(|x| ldexp(x, -shift));
+    Ok(strokes
+        .into_iter()
+        .map(|s| Stroke {
+            ends: s.ends.map(|p| back(&p)),
+            class: s.class,
+        })
+        .collect())
 }
 
 /// A drawing made in the working range by `2^shift` brought back to the view's scale: a

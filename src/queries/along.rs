@@ -26,7 +26,7 @@ use crate::geometry::exact::{
 };
 use crate::geometry::kernel::{
     Between, Difference, Estimate, Exponents, Polynomial, Product, Ring, UNIT_ROUNDOFF,
-    expansion_sign, rounded,
+    builds_exactly, expansion_sign, plain_ratio, rounded,
 };
 use crate::geometry::predicates::{Orient3d, Orientation, Side};
 use crate::geometry::{Point3, Vector3};
@@ -596,6 +596,10 @@ pub(crate) fn cut_point_of<P: Polynomial + Copy>(
 ) -> [f64; 2] {
     let form = |k, x| PictureAt { picture, k, x };
     let combine = |k| Difference(Product(oa, form(k, b)), Product(ob, form(k, a)));
+    if !builds_exactly() {
+        let depth = combine(2);
+        return [0, 1].map(|k| plain_ratio(&combine(k), &depth));
+    }
     let exact = |k| {
         let c = combine(k);
         c.exponents().exact_for(c.degree())
@@ -786,6 +790,9 @@ pub(crate) fn exact_sign_rational<P: Polynomial>(p: &P) -> Ordering {
 /// inputs' exponents do not allow exact expansions, the same rule from rationals, each value
 /// rounded at its own scale so that nothing overflows on the way.
 pub(crate) fn rounded_ratio<N: Polynomial, D: Polynomial>(n: &N, d: &D) -> f64 {
+    if !builds_exactly() {
+        return plain_ratio(n, d);
+    }
     if n.exponents().exact_for(n.degree()) && d.exponents().exact_for(d.degree()) {
         return estimate(&n.expansion()) / estimate(&d.expansion());
     }

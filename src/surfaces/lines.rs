@@ -333,8 +333,8 @@ impl Polynomial for Alignment<'_> {
 pub(super) fn coincide(frame: &Frame, a: &Line, b: &Line) -> bool {
     let turn = Turn { frame, a, b };
     let numerators = [0, 1, 2].map(|k| Numerator { frame, a, b, k });
-    if turn.estimate().sign().is_some() || numerators.iter().any(|n| n.estimate().sign().is_some())
-    {
+    let nonzero = |e: Estimate| e.sign().is_some_and(|s| s != Ordering::Equal);
+    if nonzero(turn.estimate()) || numerators.iter().any(|n| nonzero(n.estimate())) {
         return false;
     }
     turn.sign() == Ordering::Equal && numerators.iter().all(|n| n.sign() == Ordering::Equal)

@@ -504,6 +504,19 @@ impl View {
         &self.eye
     }
 
+    /// A perspective view's vertical field of view in degrees (`None` for an orthographic
+    /// view).
+    ///
+    /// ```
+    /// use kepler::{geometry::{Point3, Vector3}, views::View};
+    /// let v = View::perspective(Point3::new(0.0, -10.0, 0.0), Point3::origin(), Vector3::z(), 40.0).unwrap();
+    /// assert_eq!(v.fov(), Some(40.0));
+    /// assert_eq!(View::standard().fov(), None);
+    /// ```
+    pub fn fov(&self) -> Option<f64> {
+        self.fov
+    }
+
     /// Whether the view is a perspective one.
     ///
     /// ```

@@ -3,6 +3,7 @@
 
 use super::{Eye, View, ViewError};
 use crate::geometry::exact::{accurate_sum, expansion, two_product, two_sum};
+use crate::geometry::kernel::{builds_exactly, plain_dot};
 use crate::geometry::{Point3, Vector3};
 use crate::mesh::Mesh;
 use crate::scene::{ObjectId, Scene};
@@ -121,6 +122,14 @@ impl Picture {
     /// Form `k` at `p`, rounded once.
     #[inline]
     fn rounded(&self, k: usize, p: &Point3) -> f64 {
+        if !builds_exactly() {
+            let row = &self.rows[k];
+            return plain_dot(
+                &[row.x, row.y, row.z],
+                &[p.x, p.y, p.z],
+                &[self.origin.x, self.origin.y, self.origin.z],
+            );
+        }
         let (terms, n) = self.terms(k, p);
         accurate_sum(&terms[..n])
     }
