@@ -337,3 +337,106 @@ fn eyes_at_the_ends_of_the_range_draw() {
     let d = checked("subnormal eye", &small, &small_view);
     assert!(plain(&d) == plain(&draw(&scene, &unit, &Options::default()).unwrap()));
 }
+
+/// Two boxes, each `[lo, hi]`, scaled by `2^k`, as a scene.
+fn boxes(pairs: &[([f64; 3], [f64; 3])], k: i32) -> Scene {
+    let mut scene = Scene::new();
+    for (i, (lo, hi)) in pairs.iter().enumerate() {
+        let (lo, hi) = (lo.map(|x| ldexp(x, k)), hi.map(|x| ldexp(x, k)));
+        let mesh = kepler::solids::box_between(lo, hi).unwrap();
+        scene.add_mesh(None, format!("b{i}"), mesh).unwrap();
+    }
+    scene
+}
+
+/// The polylines of `d` whose points all lie within `bound` of the origin.
+fn near_origin(d: &Drawing, bound: f64) -> Vec<(kepler::hidden::EdgeClass, bool, Vec<[f64; 2]>)> {
+    d.polylines
+        .iter()
+        .filter(|p| {
+            p.points
+                .iter()
+                .all(|q| q[0].abs() < bound && q[1].abs() < bound)
+        })
+        .map(|p| (p.class, p.visible, p.points.clone()))
+        .collect()
+}
+
+/// A scene whose objects span more than the working window: a small box beside one at 1e200
+/// (or 1e300) keeps its creases (the crease test once underflowed in the scaled scene and
+/// called them smooth) and its picture (the scaling once pushed 4e-50 into the subnormals and
+/// moved it in the fourth digit), and `verify` agrees.
+#[test]
+fn objects_far_apart_in_scale_keep_their_drawing() {
+    use kepler::hidden::verify::{draw_traced, verify};
+    let view = View::orthographic(Vector3::new(-1.0, -2.0, -3.0), Vector3::z()).unwrap();
+    for (side, far) in [(4.0, 1e200), (4.0, 1e300), (4e-50, 1e300), (4e-100, 1e300)] {
+        let small = ([0.0; 3], [side; 3]);
+        let alone = boxes(&[small], 0);
+        let both = boxes(&[small, ([far, 0.0, 0.0], [2.0 * far, far, far])], 0);
+        for edges in [EdgeSelection::Feature, EdgeSelection::All] {
+            let options = Options {
+                edges,
+                ..Options::default()
+            };
+            let traced = draw_traced(&both, &view, &options, &|_, _| {}).unwrap();
+            let report = verify(&both, &view, &options, &traced);
+            assert_eq!(report.disagreements, 0, "side {side}, far {far}:\n{report}");
+            let expected = near_origin(&draw(&alone, &view, &options).unwrap(), 1e10 * side);
+            let found = near_origin(&traced.drawing, 1e10 * side);
+            assert_eq!(
+                found.len(),
+                expected.len(),
+                "side {side}, far {far}, {edges:?}"
+            );
+            for (f, e) in found.iter().zip(&expected) {
+                assert_eq!((f.0, f.1), (e.0, e.1), "side {side}, far {far}");
+                for (p, q) in f.2.iter().zip(&e.2) {
+                    for k in 0..2 {
+                        let ulp = ldexp(1.0, q[k].abs().log2().floor() as i32 - 52);
+                        assert!(
+                            (p[k] - q[k]).abs() <= 4.0 * ulp.max(f64::from_bits(1)),
+                            "side {side}, far {far}: {p:?} vs {q:?}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// `verify` checks a drawing in the working range, as it was made: interpenetrating boxes
+/// scaled by `2^±300` (intersection-line samples were once computed out of range and
+/// disagreed) and by `2^±600`, in both projections.
+#[test]
+fn verify_agrees_at_every_scale() {
+    use kepler::hidden::verify::{draw_traced, verify};
+    let pairs = [
+        ([0.0; 3], [2.0, 2.0, 2.0]),
+        ([1.0, 0.5, 1.5], [3.0, 1.5, 2.5]),
+    ];
+    let options = Options {
+        edges: EdgeSelection::All,
+        ..Options::default()
+    };
+    for k in [-600, -300, 0, 300, 600] {
+        let scene = boxes(&pairs, k);
+        let s = |x: f64| ldexp(x, k);
+        let views = [
+            View::orthographic(Vector3::new(0.0, 2.0, -2.0), Vector3::z()).unwrap(),
+            View::perspective(
+                Point3::new(s(-4.5), s(-7.0), s(-9.25)),
+                Point3::new(s(1.5), s(1.0), s(1.5)),
+                Vector3::z(),
+                30.0,
+            )
+            .unwrap(),
+        ];
+        for view in views {
+            let traced = draw_traced(&scene, &view, &options, &|_, _| {}).unwrap();
+            let report = verify(&scene, &view, &options, &traced);
+            assert_eq!(report.disagreements, 0, "2^{k}:\n{report}");
+            assert!(report.checks() > 50, "2^{k}: {report}");
+        }
+    }
+}

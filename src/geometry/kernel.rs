@@ -558,23 +558,33 @@ impl Exponents {
     /// The power of two `k` by which to scale inputs with these exponents so that they lie in
     /// [`WINDOW`](Self::WINDOW): 0 when they already do (or none is nonzero); otherwise the
     /// shift that brings the largest exponent to the window's top, so that nothing overflows
-    /// and as little as possible falls below the window. Scaling by `2^k` is exact, so every
-    /// sign and every rounded construction of the scaled inputs is that of the inputs, scaled.
+    /// and as little as possible falls below the window; but never so far down that a normal
+    /// input becomes subnormal (or a subnormal one loses more bits), nor so far up that one
+    /// overflows. So scaling by `2^k` is always exact, and every sign and every rounded
+    /// construction of the scaled inputs is that of the inputs, scaled. (Inputs spanning more
+    /// than the window keep values above it; the kernel decides their signs in rationals.)
     ///
     /// ```
     /// use kepler::geometry::kernel::Exponents;
     /// assert_eq!(Exponents::of(&[1e-3, 1e6]).shift(), 0);
     /// assert_eq!(Exponents::of(&[1e-300]).shift(), 100 - (-997));
     /// assert_eq!(Exponents::of(&[1e300, 1.0]).shift(), 100 - 996);
+    /// // 4e-50 (2^-165 and a bit) must stay normal: scaled by 2^-857, not 2^-896.
+    /// assert_eq!(Exponents::of(&[1e300, 4e-50]).shift(), -1022 + 165);
     /// ```
     pub fn shift(self) -> i32 {
         if self.min > self.max
             || (self.min >= Exponents::WINDOW.min && self.max <= Exponents::WINDOW.max)
         {
+            return 0;
+        }
+        let lowest = if self.min < -1022 {
             0
         } else {
-            Exponents::WINDOW.max - self.max
-        }
+            -1022 - self.min
+        };
+        let highest = 1023 - self.max;
+        (Exponents::WINDOW.max - self.max).clamp(lowest.min(highest), highest)
     }
 
     /// Whether Shewchuk's expansion arithmetic evaluates a polynomial of `degree` in inputs

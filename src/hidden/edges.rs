@@ -17,6 +17,8 @@
 //! junction.
 
 use super::{EdgeClass, EdgeSelection};
+use crate::geometry::exact::ldexp;
+use crate::geometry::kernel::Exponents;
 use crate::geometry::predicates::{orient2d, orient3d, project};
 use crate::geometry::{Point3, Vector3};
 use crate::mesh::Mesh;
@@ -367,13 +369,25 @@ fn class_of(
         }
         return Some(EdgeClass::Crease);
     }
-    // The angle between the faces: between the components of c1 - a and c2 - a across the edge.
-    let e = b - a;
-    let across = |c: &Point3| -> Vector3 {
-        let v = c - a;
-        v - e * (v.dot(&e) / e.dot(&e))
+    // The angle between the faces: between the components of c1 - a and c2 - a across the
+    // edge, from the differences scaled by a power of two (exactly) so that their products
+    // neither underflow nor overflow: the same class at every scale.
+    let (e, v1, v2) = (b - a, c1 - a, c2 - a);
+    let largest = [e, v1, v2]
+        .iter()
+        .flat_map(|v| v.iter())
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    let k = Exponents::of(&[largest]).max;
+    let unit = |v: Vector3| {
+        if largest.is_finite() && largest > 0.0 {
+            v.map(|x| ldexp(x, -k))
+        } else {
+            v
+        }
     };
-    let (u1, u2) = (across(c1), across(c2));
+    let (e, v1, v2) = (unit(e), unit(v1), unit(v2));
+    let across = |v: Vector3| -> Vector3 { v - e * (v.dot(&e) / e.dot(&e)) };
+    let (u1, u2) = (across(v1), across(v2));
     let cos = u1.dot(&u2) / (u1.norm() * u2.norm());
     Some(if cos > crease_cos {
         EdgeClass::Crease

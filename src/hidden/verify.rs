@@ -190,27 +190,36 @@ pub fn draw_traced(
         let (pass, pieces) = decided(scene, view, options, progress)?;
         Ok(traced(pass, pieces, options))
     })?;
-    if shift == 0 {
-        return Ok(traced);
+    // Back to the input's scale, exactly.
+    Ok(traced.scaled(-shift, view))
+}
+
+impl Traced {
+    /// The traced drawing of the scene scaled by `2^shift`, from this one: lines always,
+    /// pictures when they scale (orthographic views). Exact while nothing overflows or
+    /// underflows.
+    fn scaled(self, shift: i32, view: &View) -> Traced {
+        if shift == 0 {
+            return self;
+        }
+        let pictures = if view.is_perspective() { 0 } else { shift };
+        let pieces = self
+            .pieces
+            .into_iter()
+            .map(|p| TracedPiece {
+                line: p.line.map(|q| q.map(|c| ldexp(c, shift))),
+                ends: p.ends.map(|e| e.map(|c| ldexp(c, pictures))),
+                meet: p.meet.map(|m| Meet {
+                    planes: m.planes.map(|t| t.map(|q| q.map(|c| ldexp(c, shift)))),
+                }),
+                ..p
+            })
+            .collect();
+        Traced {
+            drawing: scaled_back(self.drawing, view, -shift),
+            pieces,
+        }
     }
-    // Back to the input's scale, exactly: lines always, pictures when they scale.
-    let pictures = if view.is_perspective() { 0 } else { -shift };
-    let pieces = traced
-        .pieces
-        .into_iter()
-        .map(|p| TracedPiece {
-            line: p.line.map(|q| q.map(|c| ldexp(c, -shift))),
-            ends: p.ends.map(|e| e.map(|c| ldexp(c, pictures))),
-            meet: p.meet.map(|m| Meet {
-                planes: m.planes.map(|t| t.map(|q| q.map(|c| ldexp(c, -shift)))),
-            }),
-            ..p
-        })
-        .collect();
-    Ok(Traced {
-        drawing: scaled_back(traced.drawing, view, shift),
-        pieces,
-    })
 }
 
 /// The drawing of a pass and its pieces, each traced to its line.
@@ -432,6 +441,20 @@ impl fmt::Display for Verification {
 /// assert!(verify(&scene, &view, &options, &traced).disagreements > 0);
 /// ```
 pub fn verify(scene: &Scene, view: &View, options: &Options, traced: &Traced) -> Verification {
+    // In the kernel's working range, as the drawing was made: the checks' own arithmetic
+    // (sample points, pictures, the VISP filters) then neither overflows nor underflows.
+    let shift = scene.exponents().union(view.exponents()).shift();
+    if shift != 0
+        && let Ok(scaled) = scene.scaled(shift)
+    {
+        let traced = traced.clone().scaled(shift, view);
+        return verify_in_range(&scaled, &view.scaled(shift), options, &traced);
+    }
+    verify_in_range(scene, view, options, traced)
+}
+
+/// [`verify`] on a scene in the working range.
+fn verify_in_range(scene: &Scene, view: &View, options: &Options, traced: &Traced) -> Verification {
     let clock = Instant::now();
     let mut report = Verification::default();
     visibility(scene, view, traced, &mut report);
