@@ -111,10 +111,14 @@ impl Variant {
     ///     let d = v.draw(&scene, &view, &Options::default()).unwrap();
     ///     d.length(kepler::hidden::EdgeClass::Crease, true)
     /// };
-    /// // A cube in a general view: every variant draws its three visible creases.
-    /// for v in Variant::all(true) {
-    ///     assert!((creases(v) - creases(Variant::Exact)).abs() < 1e-6, "{}", v.name());
+    /// // A cube in a general view: the arithmetic and sampled variants draw its three visible
+    /// // creases whole; the z-buffer loses a little of them near the corners.
+    /// let exact = creases(Variant::Exact);
+    /// for v in [Variant::Float, Variant::Tolerance(1e-9), Variant::Sampled(256)] {
+    ///     assert!((creases(v) - exact).abs() < 1e-6, "{}", v.name());
     /// }
+    /// assert!((creases(Variant::Single) - exact).abs() < 1e-6 * exact);
+    /// assert!((creases(Variant::Raster(256)) - exact).abs() < 0.05 * exact);
     /// ```
     pub fn draw(&self, scene: &Scene, view: &View, options: &Options) -> Result<Drawing, Error> {
         let options = Options {
