@@ -7,4 +7,5 @@
 
 pub mod chart;
 pub mod measure;
+pub mod reference;
 pub mod variants;

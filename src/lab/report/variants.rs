@@ -169,7 +169,7 @@ fn single_scene(scene: &Scene) -> Result<Scene, Error> {
     for (id, mesh) in scene.mesh_objects(scene.roots()) {
         let vertices = mesh.vertices().iter().map(|p| p.map(single)).collect();
         let mesh = Mesh::from_polygons(vertices, mesh.polygons())?;
-        rounded.add_mesh(None, &scene.path(id), mesh)?;
+        rounded.add_mesh(None, scene.path(id), mesh)?;
     }
     Ok(rounded)
 }
