@@ -1376,3 +1376,38 @@ fn an_unknown_scene_key_of_a_megabyte_is_not_echoed_whole() {
         &e[..e.len().min(400)]
     );
 }
+
+/// `kepler gen`: a stiff scene written as OBJ files and a scene file with its camera, which
+/// `render --verify` draws and checks; `--list`; a stiffness outside the family's range.
+#[test]
+fn gen_writes_a_stiff_scene_that_renders_and_lists_the_families() {
+    let list = ok(&["gen", "--list"]);
+    assert_eq!(list.lines().count(), 11, "{list}");
+    assert!(
+        list.contains("edge-on") && list.contains("tilt 10^-k"),
+        "{list}"
+    );
+    let dir = temp_path("gen");
+    let out = ok(&[
+        "gen", "--family", "tilt", "--k", "12", "--seed", "3", "-o", &dir,
+    ]);
+    let toml = format!("{dir}/tilt-k12-seed3.toml");
+    assert_eq!(out, format!("{toml}\n"));
+    let text = std::fs::read_to_string(&toml).expect("the scene file");
+    assert!(text.contains("[camera]") && text.contains("tilt-k12-seed3-plate.obj"));
+    let o = kepler(&["render", &toml, "-o", &temp_path("gen.svg"), "--verify"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains(", 0 disagreements"), "{}", stderr(&o));
+    // Negative stiffness; every value of the list without --k.
+    let out = ok(&["gen", "--family", "scale", "--k", "-280", "-o", &dir]);
+    assert!(out.ends_with("scale-k-280-seed0.toml\n"), "{out}");
+    let out = ok(&["gen", "--family", "sliver", "--seed", "2", "-o", &dir]);
+    assert_eq!(out.lines().count(), 7, "{out}");
+    let e = fails(&["gen", "--family", "tilt", "--k", "17", "-o", &dir]);
+    assert_eq!(
+        e,
+        "tilt: k = 17 is outside 1..=16 (tilt 10^-k (k = 16: coplanar))"
+    );
+    let o = kepler(&["gen", "--family", "wobble"]);
+    assert!(!o.status.success() && stderr(&o).contains("unknown family (one of tilt,"));
+}

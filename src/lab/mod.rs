@@ -19,6 +19,10 @@
 //!   principal-component nodes and the projected-area comparison.
 //! - [`projected_area`]: Schmalstieg and Tobler (1999) on oriented boxes and triboxes, beside
 //!   the engine's axis-aligned [`crate::views::projected_area`].
+//! - [`stiff`]: stiff and extreme scenes (issue 15), ten families each with a stiffness `k`
+//!   and a seed (near-coplanar faces, slivers, huge offsets and scales, edge-on faces, fans,
+//!   nested, touching, tangent and inside-out solids), to measure how drawings go wrong
+//!   where floating point decides; `kepler gen` writes them as scene files.
 //!
 //! ```
 //! use kepler::lab::oriented::OrientedBox;

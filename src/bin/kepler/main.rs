@@ -5,6 +5,7 @@ mod args;
 mod bounds;
 mod boxtree;
 mod cull;
+mod r#gen;
 mod include;
 mod output;
 mod render;
@@ -38,6 +39,7 @@ enum Command {
     Boxtree(boxtree::Args),
     Triboxes(triboxes::Args),
     Visp(visp::Args),
+    Gen(r#gen::Args),
 }
 
 fn main() -> ExitCode {
@@ -52,6 +54,7 @@ fn main() -> ExitCode {
         Command::Boxtree(args) => boxtree::run(args),
         Command::Triboxes(args) => triboxes::run(args),
         Command::Visp(args) => visp::run(args),
+        Command::Gen(args) => r#gen::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
