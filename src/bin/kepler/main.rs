@@ -9,6 +9,7 @@ mod r#gen;
 mod include;
 mod output;
 mod render;
+mod report;
 mod segx;
 mod surfaces;
 mod triboxes;
@@ -40,6 +41,7 @@ enum Command {
     Triboxes(triboxes::Args),
     Visp(visp::Args),
     Gen(r#gen::Args),
+    Report(report::Args),
 }
 
 fn main() -> ExitCode {
@@ -55,6 +57,7 @@ fn main() -> ExitCode {
         Command::Triboxes(args) => triboxes::run(args),
         Command::Visp(args) => visp::run(args),
         Command::Gen(args) => r#gen::run(args),
+        Command::Report(args) => report::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

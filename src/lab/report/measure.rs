@@ -216,22 +216,32 @@ pub fn compare(exact: &Drawing, variant: &Drawing, tolerance: f64) -> ErrorFigur
         } else {
             (&cover.hidden, &cover.visible)
         };
-        let misclassified = scaled(
-            length,
-            other.iter().map(|&(lo, hi)| gaps(lo, hi, same)).sum(),
+        let misclassified = resolved(
+            scaled(
+                length,
+                other.iter().map(|&(lo, hi)| gaps(lo, hi, same)).sum(),
+            ),
+            tolerance,
         );
         if s.visible {
             figures.visible_as_hidden += misclassified;
         } else {
             figures.hidden_as_visible += misclassified;
         }
-        figures.missing += scaled(length, gaps(0.0, 1.0, &cover.any()));
+        figures.missing += resolved(scaled(length, gaps(0.0, 1.0, &cover.any())), tolerance);
     }
     for s in &variant_segments {
         let cover = Cover::of(s, &exact_segments, &exact_tree, tolerance);
-        figures.extra += scaled(s.length(), gaps(0.0, 1.0, &cover.any()));
+        figures.extra += resolved(scaled(s.length(), gaps(0.0, 1.0, &cover.any())), tolerance);
     }
     figures
+}
+
+/// A length of one segment as the comparison resolves it: none when it is no longer than the
+/// tolerance (the rounding of the covering intervals leaves such slivers where lines meet
+/// exactly; a part that short is below what the comparison tells apart).
+fn resolved(length: f64, tolerance: f64) -> f64 {
+    if length <= tolerance { 0.0 } else { length }
 }
 
 /// The length of a part `fraction` of a segment of length `length`: 0 for no part, even of
@@ -573,9 +583,8 @@ fn wrong_ends(a: &Drawing, b: &Drawing, tolerance: f64) -> usize {
                 }
             }
         }
-        for v in 0..2 {
-            wrong += counts[0][v].abs_diff(counts[1][v]) as usize;
-        }
+        let [a, b] = counts;
+        wrong += (a[0].abs_diff(b[0]) + a[1].abs_diff(b[1])) as usize;
     }
     wrong
 }
