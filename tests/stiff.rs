@@ -4,12 +4,13 @@
 //! seeds give different scenes, the same seed the same one; `write` and `scene::file::load`
 //! round-trip to the same meshes, camera and drawing.
 
-use kepler::geometry::Point3;
+use kepler::geometry::{Point3, Vector3};
 use kepler::hidden::verify::{Traced, draw_traced, verify};
 use kepler::hidden::{EdgeClass, EdgeSelection, Options, draw};
 use kepler::lab::stiff::{Family, StiffError, StiffScene, generate, write};
 use kepler::mesh::Mesh;
 use kepler::scene::{Scene, file};
+use kepler::views::View;
 use std::cmp::Ordering;
 
 const SEEDS: [u64; 3] = [0, 1, 2];
@@ -55,7 +56,7 @@ fn pierces(s: &StiffScene) -> bool {
 }
 
 /// Where `verify` is known to be wrong: the scale family beyond 2^200 (see
-/// `verify_checks_intersection_lines_of_scenes_scaled_beyond_2_to_the_200`).
+/// `verify_checks_intersection_lines_of_scenes_of_extreme_scale`).
 fn verify_overflows(s: &StiffScene) -> bool {
     s.family == Family::Scale && s.parameter > 200
 }
@@ -103,17 +104,28 @@ fn every_family_draws_and_verifies_at_its_quick_parameters_and_three_seeds() {
     }
 }
 
-/// The scale family beyond about 2^204 (orthographic; 2^255 in perspective): `verify`
-/// samples intersection lines on their exact lines at the input's scale, not in the working
-/// range the drawing is made in, and finds pieces that are visible (as in the unscaled scene)
-/// hidden. The drawing is right (see the test above).
+/// The scale family beyond about 2^204 (in its orthographic views; 2^255 in perspective), and
+/// below about 2^-270 seen along an axis: `verify` samples intersection lines on their exact
+/// lines at the input's scale, not in the working range the drawing is made in, and finds
+/// pieces visible in the unscaled scene (and drawn visible, rightly) hidden. The drawing is
+/// right (see the test above).
 #[test]
-#[ignore = "verify disagrees on intersection lines of scenes scaled beyond 2^204 (issue 15)"]
-fn verify_checks_intersection_lines_of_scenes_scaled_beyond_2_to_the_200() {
+#[ignore = "verify disagrees on intersection lines of scenes scaled past 2^204 or 2^-270 (issue 15)"]
+fn verify_checks_intersection_lines_of_scenes_of_extreme_scale() {
+    let down = View::orthographic(Vector3::new(0.0, 0.0, -1.0), Vector3::y()).unwrap();
     for seed in [0, 1] {
         let s = scene(Family::Scale, 280, seed);
         let report = verify(&s.scene, &s.view, &options(), &traced(&s));
         assert_eq!(report.disagreements, 0, "{}:\n{report}", s.name());
+        let s = scene(Family::Scale, -280, seed);
+        let t = draw_traced(&s.scene, &down, &options(), &|_, _| {}).unwrap();
+        let report = verify(&s.scene, &down, &options(), &t);
+        assert_eq!(
+            report.disagreements,
+            0,
+            "{}, from above:\n{report}",
+            s.name()
+        );
     }
 }
 
@@ -281,7 +293,7 @@ fn write_and_load_round_trip_to_the_same_scene_and_drawing() {
             let loaded = file::load(&path).unwrap_or_else(|e| panic!("{}: {e}", s.name()));
             assert_eq!(meshes(&loaded), meshes(&s.scene), "{}", s.name());
             assert_eq!(loaded.camera(), s.scene.camera(), "{}", s.name());
-            let view = kepler::views::View::from_camera(loaded.camera().unwrap()).unwrap();
+            let view = View::from_camera(loaded.camera().unwrap()).unwrap();
             assert_eq!(view, s.view, "{}", s.name());
             if matches!(family, Family::Tilt | Family::Scale | Family::EdgeOn) {
                 let [a, b] = [&s.scene, &loaded]

@@ -8,8 +8,8 @@
 //! computer, not just to the accuracy of a pixel"; these families are the scenes where only an
 //! exact engine gets there. Each is a small scene of a few objects, tens to a few hundred
 //! triangles (the fan excepted), with an integer stiffness `k`: small `k` is mild, and the end
-//! of the range is as extreme as doubles allow. The seed moves, sizes and turns the objects,
-//! so that many different scenes of one stiffness can be drawn and checked.
+//! of the range is as extreme as doubles allow. The seed moves and sizes the objects and picks
+//! the view, so that many different scenes of one stiffness can be drawn and checked.
 //!
 //! - **tilt**: faces coplanar up to a tilt of `10^-k` (`k = 16`: exactly coplanar), a plate
 //!   sunk into a block with its top crossing the block's top, and a block against the front
@@ -49,9 +49,10 @@
 //! two nearest `10^-k` (so `10^-15` is `2^-50`), within a few units of the origin so that each
 //! sum of them is a double. So a plane meant to be tilted by `10^-k` is, faces meant to touch
 //! do, and every quad is exactly planar. Generic views look along directions like
-//! `(-0.3, 1, -0.45)`, which no difference of two dyadic vertices is parallel to; the edge-on
-//! family looks along an exact direction on purpose; nested, touching and the fan are seen in
-//! perspective, and the scale family on odd seeds.
+//! `(-0.3, 1, -0.45)`, not dyadic, so that no edge of these scenes is seen end-on and no
+//! vertex exactly behind another by chance; the edge-on family looks along an exact direction
+//! on purpose; nested, touching and the fan are seen in perspective, and the scale family on
+//! odd seeds.
 //!
 //! [`write()`] saves a scene as OBJ files and a scene file with its camera, which
 //! [`crate::scene::file::load`] reads back to the same meshes: `kepler gen` on the command
