@@ -324,6 +324,9 @@ pub struct Stroke {
     pub ends: [Point3; 2],
     /// Its class.
     pub class: EdgeClass,
+    /// For a segment of an intersection line: a triangle of each of the two faces it lies on
+    /// (the line is where their planes meet, exactly).
+    pub planes: Option<[[Point3; 3]; 2]>,
 }
 
 /// The lines that [`draw`] would split into visible and hidden pieces, before any visibility
@@ -349,6 +352,7 @@ pub fn strokes(scene: &Scene, view: &View, options: &Options) -> Result<Vec<Stro
             .map(|l| Stroke {
                 ends: [l.a, l.b],
                 class: l.class,
+                planes: l.meet.map(|m| pass.meets[m].meet.planes),
             })
             .collect::<Vec<_>>())
     })?;
@@ -358,6 +362,7 @@ pub fn strokes(scene: &Scene, view: &View, options: &Options) -> Result<Vec<Stro
         .map(|s| Stroke {
             ends: s.ends.map(|p| back(&p)),
             class: s.class,
+            planes: s.planes.map(|t| t.map(|q| q.map(|p| back(&p)))),
         })
         .collect())
 }

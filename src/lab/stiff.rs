@@ -215,7 +215,7 @@ impl Family {
     /// ```
     /// use kepler::lab::stiff::Family;
     /// assert_eq!(Family::Tilt.parameters(true), [1, 8, 16]);
-    /// assert_eq!(Family::Fan.parameters(false).last(), Some(&12));
+    /// assert_eq!(Family::Fan.parameters(false).last(), Some(&11));
     /// ```
     pub fn parameters(self, quick: bool) -> Vec<i32> {
         let (quick_values, full): (&[i32], &[i32]) = match self {
@@ -226,8 +226,10 @@ impl Family {
                 &[-280, 0, 280],
                 &[-300, -200, -100, -30, 0, 30, 100, 200, 300],
             ),
-            // At 2^12 triangles a scene takes minutes to draw and verify.
-            Family::Fan => (&[2, 6, 9], &[2, 4, 6, 8, 10, 11, 12]),
+            // At 2^12 triangles a scene takes 13 s to draw and 25 s to verify (the fan's
+            // triangles all meet at the apex: the intersection pass is quadratic there), so
+            // the report stops at 2^11; `kepler gen` makes k = 12.
+            Family::Fan => (&[2, 6, 9], &[2, 4, 6, 8, 10, 11]),
             Family::EdgeOn
             | Family::Nested
             | Family::Touching

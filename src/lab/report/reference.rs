@@ -74,17 +74,17 @@
 //! the face's plane, so whether a neighbouring face hides the segment would be decided by the
 //! rounding (a random scene of icosahedra, whose faces are nearly edge-on from `(1, 2, −3)`,
 //! showed both). So, for an intersection segment only:
-//! - the planes it lies on are the triangles' planes that pass within `2⁻⁴⁰·M` of both of its
-//!   ends (`M` the scene's largest coordinate; measured as `|n·(p − c₀)| ≤ 2⁻⁴⁰·M·|n|₁`, which
-//!   bounds `n·(p − p*)` for an exact point `p*` that far from `p` in each coordinate);
 //! - it is put back on its exact line: each end is replaced by the nearest point of the line
-//!   where the two of those planes at the widest angle meet (exactly, by Cramer's rule), so
-//!   every decision strictly inside it is exact; its ends stay within about `2⁻⁴²·M` of the
-//!   engine's, and a run of about that length may appear at an end where the segment leaves a
-//!   face across an edge;
-//! - those planes hide nothing of it, as the engine's own faces of an intersection line hide
-//!   nothing (the two chosen contain it exactly; the others are the second triangles of faces
-//!   that are not exactly flat, or faces through the same line).
+//!   where the planes of the two triangles it lies on meet ([`Stroke::planes`], exactly, by
+//!   Cramer's rule), so every decision strictly inside it is exact; its ends stay within
+//!   about `2⁻⁴²·M` of the engine's (`M` the scene's largest coordinate), and a run of about
+//!   that length may appear at an end where the segment leaves a face across an edge;
+//! - the planes that pass within `2⁻⁴⁸·M` of both of its ends hide nothing of it, as the
+//!   engine's own faces of an intersection line hide nothing (measured as `|n·(p − c₀)| ≤
+//!   2⁻⁴⁸·M·|n|₁`: the two planes it lies on contain it exactly; the others are the second
+//!   triangles of faces that are not exactly flat, off by the rounding of their corners, or
+//!   faces through the same line). `2⁻⁴⁸·M` is far below the features of the stiff scenes
+//!   (offsets of `10^k` with unit features up to `k = 14`).
 //!
 //! The cost is `O(lines × triangles²)` rational operations in the worst case: for scenes of up
 //! to a few hundred triangles. A perspective view needs every vertex strictly in front of its
@@ -135,7 +135,6 @@ pub fn reference(scene: &Scene, view: &View, options: &Options) -> Result<Drawin
         Eye::Infinity(v) => Viewer::Direction(exact([v.x, v.y, v.z])?),
     };
     let mut hiders = Vec::new();
-    let mut planes = Vec::new();
     let mut largest = 0.0f64;
     for (id, mesh) in scene.mesh_objects(scene.roots()) {
         let mut corners = Vec::with_capacity(mesh.vertices().len());
@@ -154,15 +153,14 @@ pub fn reference(scene: &Scene, view: &View, options: &Options) -> Result<Drawin
             let plane = Plane::through([&c0.0, &c1.0, &c2.0]);
             if plane.normal.iter().any(|x| !x.is_zero()) {
                 hiders.extend(Hider::of(&plane, [c0, c1, c2], &viewer));
-                planes.push(plane);
             }
         }
     }
-    let slack = rational(ldexp(largest, -40))?;
+    let slack = rational(ldexp(largest, -48))?;
     let lines = strokes(scene, view, options)?;
     let runs = lines
         .par_iter()
-        .map(|s| runs(s, (&hiders, &planes, &slack), &map, options.hidden))
+        .map(|s| runs(s, (&hiders, &slack), &map, options.hidden))
         .collect::<Result<Vec<_>, Error>>()?;
     Ok(Drawing {
         polylines: runs.into_iter().flatten().collect(),
@@ -173,14 +171,20 @@ pub fn reference(scene: &Scene, view: &View, options: &Options) -> Result<Drawin
 /// The runs of one line: see [`reference`].
 fn runs(
     stroke: &Stroke,
-    (hiders, planes, slack): (&[Hider], &[Plane], &Q),
+    (hiders, slack): (&[Hider], &Q),
     map: &Map,
     keep_hidden: bool,
 ) -> Result<Vec<Polyline>, Error> {
     let ends = [point(&stroke.ends[0])?, point(&stroke.ends[1])?];
-    let [a, b] = match stroke.class {
-        EdgeClass::Intersection => on_meet(ends, planes, slack),
-        _ => ends,
+    let [a, b] = match stroke.planes {
+        Some(meet) => {
+            let through = |t: &[Point3; 3]| -> Result<Plane, Error> {
+                let [c0, c1, c2] = [point(&t[0])?, point(&t[1])?, point(&t[2])?];
+                Ok(Plane::through([&c0, &c1, &c2]))
+            };
+            on_meet(ends, [&through(&meet[0])?, &through(&meet[1])?])
+        }
+        None => ends,
     };
     if a == b {
         return Ok(Vec::new());
@@ -383,34 +387,20 @@ impl Hider {
     }
 }
 
-/// An intersection segment's ends moved onto the exact line where the planes of the two faces
-/// it lies on meet (see the module documentation). Of the planes that pass within `slack`
-/// (times the norm of their normals) of both ends, the two at the widest angle (largest
-/// `|n₁ × n₂|² / (|n₁|²·|n₂|²)`: the two triangles of a face that is not exactly flat are at
-/// almost none); each end becomes the point of their line nearest to it, `x` with `n₁·x =
-/// n₁·p₁`, `n₂·x = n₂·p₂` and `d·x = d·end` for `d = n₁ × n₂`, by Cramer's rule (the
-/// determinant of those rows is `d·d`). The ends as given when no two such planes meet.
-fn on_meet(ends: [V; 2], planes: &[Plane], slack: &Q) -> [V; 2] {
-    let near: Vec<&Plane> = planes
-        .iter()
-        .filter(|p| passes_near(p, &ends, slack))
-        .collect();
-    let mut widest: Option<(Q, &Plane, &Plane, V)> = None;
-    for (i, p) in near.iter().enumerate() {
-        for q in &near[i + 1..] {
-            let d = cross(&p.normal, &q.normal);
-            let angle = dot(&d, &d) / (dot(&p.normal, &p.normal) * dot(&q.normal, &q.normal));
-            if angle.is_positive() && widest.as_ref().is_none_or(|w| angle > w.0) {
-                widest = Some((angle, p, q, d));
-            }
-        }
-    }
-    let Some((_, first, second, d)) = widest else {
-        return ends;
-    };
+/// An intersection segment's ends moved onto the exact line where the planes of the two
+/// triangles it lies on meet (see the module documentation): each end becomes the point of
+/// their line nearest to it, `x` with `n₁·x = n₁·p₁`, `n₂·x = n₂·p₂` and `d·x = d·end` for
+/// `d = n₁ × n₂`, by Cramer's rule (the determinant of those rows is `d·d`). The ends as given
+/// when the planes are parallel.
+fn on_meet(ends: [V; 2], [first, second]: [&Plane; 2]) -> [V; 2] {
     let (n1, n2) = (&first.normal, &second.normal);
+    let d = cross(n1, n2);
+    let dd = dot(&d, &d);
+    if dd.is_zero() {
+        return ends;
+    }
     let (k1, k2) = (dot(n1, &first.at), dot(n2, &second.at));
-    let (u, w, dd) = (cross(n2, &d), cross(&d, n1), dot(&d, &d));
+    let (u, w) = (cross(n2, &d), cross(&d, n1));
     ends.map(|e| {
         let s = dot(&d, &e);
         [0, 1, 2].map(|i| (&k1 * &u[i] + &k2 * &w[i] + &s * &d[i]) / &dd)

@@ -71,7 +71,7 @@ impl Variant {
         let resolutions: &[u32] = if quick {
             &[256, 2048]
         } else {
-            &[256, 1024, 4096]
+            &[256, 1024, 2048]
         };
         all.extend(resolutions.iter().map(|&n| Variant::Sampled(n)));
         all.extend(resolutions.iter().map(|&n| Variant::Raster(n)));
