@@ -133,14 +133,21 @@ fn the_parameters_are_in_range_and_outside_it_is_an_error() {
         let quick = family.parameters(true);
         let full = family.parameters(false);
         assert_eq!(quick.len(), 3, "{family}");
-        assert!((7..=10).contains(&full.len()), "{family}");
+        assert!((6..=10).contains(&full.len()), "{family}");
         let range = family.range();
         for k in quick.iter().chain(&full) {
             assert!(range.contains(k), "{family}: {k}");
         }
         assert!(full.windows(2).all(|w| w[0] < w[1]), "{family}");
         assert_eq!(full[0], *range.start(), "{family}");
-        assert_eq!(full.last(), Some(range.end()), "{family}");
+        // The report's fan stops one short of the largest fan `gen` makes (2^12 triangles
+        // take 13 s to draw).
+        let last = if family == Family::Fan {
+            range.end() - 1
+        } else {
+            *range.end()
+        };
+        assert_eq!(full.last(), Some(&last), "{family}");
         assert_eq!(Family::from_name(family.name()), Some(family));
         let past = range.end() + 1;
         assert!(matches!(

@@ -69,7 +69,7 @@ use serde::Serialize;
 /// assert!(e.is_exact());
 /// assert_eq!((e.exact_length, e.relative(), e.runs), (0.0, 0.0, [0, 0]));
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
 pub struct ErrorFigures {
     /// The total length of the exact drawing, visible and hidden.
     pub exact_length: f64,
