@@ -488,25 +488,10 @@ impl Mesh {
         let six_v = if value.is_finite() && bound <= value.abs() / (1u64 << 40) as f64 {
             value
         } else {
-            let exponents = Exponents::of(
-                &self
-                    .vertices
-                    .iter()
-                    .flat_map(|p| scaled(p).coords.iter().copied().collect::<Vec<_>>())
-                    .collect::<Vec<f64>>(),
-            );
-            if exponents.exact_for(3) {
-                let mut sum: Vec<f64> = Vec::new();
-                for (k, d) in dets().enumerate() {
-                    sum = expansion_sum(&sum, &d.expansion());
-                    if k % 64 == 63 {
-                        sum = compress(&sum);
-                    }
-                }
-                estimate(&compress(&sum))
-            } else {
-                let sum = dets().fold(BigRational::zero(), |s, d| s + d.evaluate::<BigRational>());
-                sum.to_f64().unwrap_or(f64::NAN)
+            let points: Vec<Point3> = self.vertices.iter().map(scaled).collect();
+            match exact_sum(&points, dets()) {
+                ExactSum::Expansion(sum) => estimate(&sum),
+                ExactSum::Rational(sum) => sum.to_f64().unwrap_or(f64::NAN),
             }
         };
         times_power_of_two(six_v / 6.0, -3 * e)
@@ -548,25 +533,10 @@ impl Mesh {
         if let Some(sign) = filtered {
             return sign;
         }
-        let exponents = Exponents::of(
-            &self
-                .vertices
-                .iter()
-                .flat_map(|p| p.coords.iter().copied())
-                .collect::<Vec<f64>>(),
-        );
-        if exponents.exact_for(3) {
-            let mut sum: Vec<f64> = Vec::new();
-            for (k, d) in dets().enumerate() {
-                sum = expansion_sum(&sum, &d.expansion());
-                if k % 64 == 63 {
-                    sum = compress(&sum);
-                }
-            }
-            return expansion_sign(&sum);
+        match exact_sum(&self.vertices, dets()) {
+            ExactSum::Expansion(sum) => expansion_sign(&sum),
+            ExactSum::Rational(sum) => sum.cmp(&BigRational::zero()),
         }
-        let sum = dets().fold(BigRational::zero(), |s, d| s + d.evaluate::<BigRational>());
-        sum.cmp(&BigRational::zero())
     }
 
     /// The total area of the faces.
@@ -756,4 +726,34 @@ fn polygon_loop(faces: &[Face]) -> Vec<u32> {
         out.push(next[k].1);
     }
     out
+}
+
+/// A sum of determinants of a mesh's points, exactly.
+enum ExactSum {
+    /// As an expansion (when the points' exponents allow exact expansions of degree 3).
+    Expansion(Vec<f64>),
+    /// As a rational.
+    Rational(BigRational),
+}
+
+/// The exact sum of `dets` (determinants of `points`): expansions, compressed as they grow,
+/// or rationals where the points' exponents are too far apart for expansions.
+fn exact_sum(points: &[Point3], dets: impl Iterator<Item = Orient3d>) -> ExactSum {
+    let exponents = Exponents::of(
+        &points
+            .iter()
+            .flat_map(|p| p.coords.iter().copied())
+            .collect::<Vec<f64>>(),
+    );
+    if exponents.exact_for(3) {
+        let mut sum: Vec<f64> = Vec::new();
+        for (k, d) in dets.enumerate() {
+            sum = expansion_sum(&sum, &d.expansion());
+            if k % 64 == 63 {
+                sum = compress(&sum);
+            }
+        }
+        return ExactSum::Expansion(compress(&sum));
+    }
+    ExactSum::Rational(dets.fold(BigRational::zero(), |s, d| s + d.evaluate::<BigRational>()))
 }
