@@ -912,17 +912,26 @@ fn touching(k: i32, rng: &mut Rng) -> crate::Result<Layout> {
     Ok((objects, perspective(eye, [0.0; 3])))
 }
 
-/// A block with a box sunk `10^-k` into its top, one pressed `10^-k` into its front face, and
-/// two tetrahedra whose lowest edge runs `10^-k` below and `10^-k` above its top.
-fn tangent(k: i32, rng: &mut Rng) -> crate::Result<Layout> {
-    let g = ten_to_the(-k);
+/// The block of the tangent and inside-out families and its width, front, depth and height:
+/// `[0, w] × [y0, y0 + d] × [0, h]`.
+fn block(rng: &mut Rng) -> crate::Result<(Mesh, [f64; 4])> {
     let (w, y0, d, h) = (
         rng.eighths(3.0, 3.75),
         rng.eighths(0.0, 0.5),
         rng.eighths(2.5, 3.0),
         rng.eighths(1.5, 2.0),
     );
-    let block = solids::box_between([0.0, y0, 0.0], [w, y0 + d, h])?;
+    Ok((
+        solids::box_between([0.0, y0, 0.0], [w, y0 + d, h])?,
+        [w, y0, d, h],
+    ))
+}
+
+/// A block with a box sunk `10^-k` into its top, one pressed `10^-k` into its front face, and
+/// two tetrahedra whose lowest edge runs `10^-k` below and `10^-k` above its top.
+fn tangent(k: i32, rng: &mut Rng) -> crate::Result<Layout> {
+    let g = ten_to_the(-k);
+    let (block, [w, y0, d, h]) = block(rng)?;
     let (xs, ys) = (
         rng.eighths(w - 1.25, w - 0.5),
         rng.eighths(y0 + 0.5, y0 + 1.25),
@@ -969,13 +978,7 @@ fn tangent(k: i32, rng: &mut Rng) -> crate::Result<Layout> {
 /// in front, `10^-k` from the front face.
 fn inside_out(k: i32, rng: &mut Rng) -> crate::Result<Layout> {
     let g = ten_to_the(-k);
-    let (w, y0, d, h) = (
-        rng.eighths(3.0, 3.75),
-        rng.eighths(0.0, 0.5),
-        rng.eighths(2.5, 3.0),
-        rng.eighths(1.5, 2.0),
-    );
-    let block = solids::box_between([0.0, y0, 0.0], [w, y0 + d, h])?;
+    let (block, [w, y0, _, h]) = block(rng)?;
     let (xb, yb, zb) = (
         rng.eighths(w - 1.0, w - 0.5),
         rng.eighths(y0 + 0.25, y0 + 1.0),
