@@ -7,7 +7,11 @@
 //! then triangulated: silhouettes wander over the surface as on a scanned object, and nothing
 //! about them is aligned with the axes.
 //!
+//! The group "render crowds" times the cases of issue 16 that once grew with the square of
+//! their size: a fan, an array of separate objects, stacked copies, a flat mesh edge-on.
+//!
 //!   cargo bench --bench render
+//!   cargo bench --bench render -- crowds
 
 use std::hint::black_box;
 use std::time::Duration;
@@ -130,5 +134,91 @@ fn render_1m(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, render_70k, render_1m);
+/// The crowded cases of issue 16: 10,000 edges through one point (two cones of 10,000 slivers
+/// base to base), an array of 10,000 separate cubes seen obliquely, 1,000 exact copies of a
+/// cube in one place, and a flat mesh of 100,352 coplanar triangles seen obliquely and edge-on.
+fn render_crowds(c: &mut Criterion) {
+    let perspective = View::perspective(
+        Point3::new(3.0, -4.0, 2.0),
+        Point3::origin(),
+        Vector3::z(),
+        40.0,
+    )
+    .expect("view");
+    let mut group = c.benchmark_group("render crowds");
+    group
+        .sample_size(10)
+        .sampling_mode(SamplingMode::Flat)
+        .measurement_time(Duration::from_secs(10));
+    let fan = scene_of(kepler::solids::uv_sphere(1.0, 10_000, 2).expect("fan"));
+    group.throughput(Throughput::Elements(20_000));
+    group.bench_function("fan of 10,000 edges", |b| {
+        b.iter(|| draw(black_box(&fan), &perspective, &Options::default()).expect("drawing"))
+    });
+    let cube = kepler::solids::cube(1.0).expect("cube");
+    let mut array = Scene::new();
+    let mut stacked = Scene::new();
+    for i in 0..100 {
+        for j in 0..100 {
+            let at = nalgebra::Matrix4::new_translation(&Vector3::new(
+                2.0 * i as f64,
+                2.0 * j as f64,
+                0.0,
+            ));
+            let placed = cube.transformed(&at).expect("cube");
+            array
+                .add_mesh(None, format!("c{i}-{j}"), placed)
+                .expect("scene");
+        }
+    }
+    for k in 0..1000 {
+        stacked
+            .add_mesh(None, format!("c{k}"), cube.clone())
+            .expect("scene");
+    }
+    let oblique = View::perspective(
+        Point3::new(-70.0, -100.0, 80.0),
+        Point3::new(100.0, 100.0, 0.0),
+        Vector3::z(),
+        45.0,
+    )
+    .expect("view");
+    group.throughput(Throughput::Elements(10_000));
+    group.bench_function("array of 10,000 cubes", |b| {
+        b.iter(|| draw(black_box(&array), &oblique, &Options::default()).expect("drawing"))
+    });
+    group.throughput(Throughput::Elements(1_000));
+    group.bench_function("1,000 stacked copies", |b| {
+        b.iter(|| draw(black_box(&stacked), &perspective, &Options::default()).expect("drawing"))
+    });
+    let n = 224;
+    let vertices: Vec<Point3> = (0..=n)
+        .flat_map(|i| {
+            (0..=n).map(move |j| Point3::new(i as f64 / n as f64, j as f64 / n as f64, 0.0))
+        })
+        .collect();
+    let faces: Vec<Vec<u32>> = (0..n)
+        .flat_map(|i| {
+            (0..n).flat_map(move |j| {
+                let a = (i * (n + 1) + j) as u32;
+                let (b, c, d) = (a + n as u32 + 1, a + n as u32 + 2, a + 1);
+                [vec![a, b, c], vec![a, c, d]]
+            })
+        })
+        .collect();
+    let flat = scene_of(Mesh::from_polygons(vertices, faces).expect("flat mesh"));
+    group.throughput(Throughput::Elements(2 * (n * n) as u64));
+    for (name, direction) in [
+        ("oblique", Vector3::new(1.0, 2.0, -3.0)),
+        ("edge-on", Vector3::new(1.0, 2.0, 0.0)),
+    ] {
+        let view = View::orthographic(direction, Vector3::z()).expect("view");
+        group.bench_function(format!("flat 100,352 triangles {name}"), |b| {
+            b.iter(|| draw(black_box(&flat), &view, &Options::default()).expect("drawing"))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, render_70k, render_1m, render_crowds);
 criterion_main!(benches);

@@ -1411,3 +1411,42 @@ fn gen_writes_a_stiff_scene_that_renders_and_lists_the_families() {
     let o = kepler(&["gen", "--family", "wobble"]);
     assert!(!o.status.success() && stderr(&o).contains("unknown family (one of tilt,"));
 }
+
+/// The drawing does not depend on the number of threads (issue 16): the same bytes of SVG and
+/// JSON with one thread and with four, for scenes that take every parallel path (many objects,
+/// a large mesh, intersection lines, a clipping perspective view).
+#[test]
+fn one_thread_and_four_write_the_same_bytes() {
+    let dir = std::env::temp_dir().join(format!("kepler-threads-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let cases: [&[&str]; 4] = [
+        &["render", "scenes/metropolis.toml", "--edges", "all"],
+        &["render", "scenes/bunny.toml", "--edges", "all"],
+        &["render", "scenes/solids.toml", "--view-dir", "1,2,-3"],
+        &["surfaces", "scenes/city.toml"],
+    ];
+    for (k, args) in cases.iter().enumerate() {
+        let written = |threads: &str| -> (Vec<u8>, Vec<u8>) {
+            let svg = dir.join(format!("{k}-{threads}.svg"));
+            let json = dir.join(format!("{k}-{threads}.json"));
+            let o = Command::new(env!("CARGO_BIN_EXE_kepler"))
+                .args(*args)
+                .args([
+                    "-o",
+                    svg.to_str().unwrap(),
+                    "--json",
+                    json.to_str().unwrap(),
+                ])
+                .env("RAYON_NUM_THREADS", threads)
+                .current_dir(env!("CARGO_MANIFEST_DIR"))
+                .output()
+                .expect("the kepler binary runs");
+            assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+            (std::fs::read(svg).unwrap(), std::fs::read(json).unwrap())
+        };
+        let (one, four) = (written("1"), written("4"));
+        assert!(!one.0.is_empty() && !one.1.is_empty());
+        assert!(one == four, "{args:?}: one thread and four differ");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -129,6 +129,63 @@ impl Cells {
         let width = self.shape[0];
         range(1).flat_map(move |row| range(0).map(move |col| row * width + col))
     }
+
+    /// The row-major indices of the cells that the closed triangle `t`, grown by `margin`,
+    /// meets (and maybe a few that it nearly meets), appended to `out`: column by column, the
+    /// rows of the part of the triangle in the column (the column widened by the margin), so
+    /// a sliver is listed along itself and not in every cell of its box. The column bounds
+    /// round by far less than any margin of 2⁻⁴⁰ of the grid's coordinates.
+    ///
+    /// ```
+    /// let cells = kepler::grid::Cells::new([0.0; 2], [4.0; 2], [4, 4]);
+    /// let mut out = Vec::new();
+    /// // The lower left half of the square, just short of the diagonal.
+    /// cells.covering_triangle([[0.0, 0.0], [3.9, 0.0], [0.0, 3.9]], 1e-9, &mut out);
+    /// out.sort();
+    /// assert_eq!(out, vec![0, 1, 2, 3, 4, 5, 6, 8, 9, 12]);
+    /// ```
+    pub fn covering_triangle(&self, t: [[f64; 2]; 3], margin: f64, out: &mut Vec<usize>) {
+        let (lo, hi) = t
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(p[0]), hi.max(p[0]))
+            });
+        let (c0, c1) = (self.index(0, lo - margin), self.index(0, hi + margin));
+        for col in c0..=c1 {
+            let left = (col > c0).then(|| self.coordinate(0, col as f64) - margin);
+            let right = (col < c1).then(|| self.coordinate(0, (col + 1) as f64) + margin);
+            let Some((ylo, yhi)) = column_range(&t, left, right) else {
+                continue;
+            };
+            let (r0, r1) = (self.index(1, ylo - margin), self.index(1, yhi + margin));
+            out.extend((r0..=r1).map(|row| row * self.shape[0] + col));
+        }
+    }
+}
+
+/// The range of `y` over the part of triangle `t` with `x` between `left` and `right` (either
+/// unbounded when `None`), or `None` when that part is empty: the `y` of the vertices inside
+/// and of the points where the sides cross the two lines.
+fn column_range(t: &[[f64; 2]; 3], left: Option<f64>, right: Option<f64>) -> Option<(f64, f64)> {
+    let inside = |x: f64| left.is_none_or(|l| x >= l) && right.is_none_or(|r| x <= r);
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    let mut take = |y: f64| {
+        lo = lo.min(y);
+        hi = hi.max(y);
+    };
+    for i in 0..3 {
+        let (a, b) = (t[i], t[(i + 1) % 3]);
+        if inside(a[0]) {
+            take(a[1]);
+        }
+        for x in [left, right].into_iter().flatten() {
+            if (a[0] < x) != (b[0] < x) {
+                let s = (x - a[0]) / (b[0] - a[0]);
+                take(a[1] + s * (b[1] - a[1]));
+            }
+        }
+    }
+    (lo <= hi).then_some((lo, hi))
 }
 
 /// The lists of a grid's cells in one array: cell `c` lists `items[start[c]..start[c + 1]]`.
@@ -188,5 +245,67 @@ impl CellLists {
     /// ```
     pub fn entries(&self) -> usize {
         self.items.len()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn covering_triangle_lists_every_cell_a_point_of_the_triangle_falls_in() {
+        let mut seed = 11u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for shape in [[1, 1], [7, 3], [40, 40]] {
+            let cells = Cells::new([-1.0, -2.0], [6.0, 5.0], shape);
+            for k in 0..500 {
+                let mut p = || [-1.5 + 7.0 * next(), -2.5 + 6.0 * next()];
+                let mut t = [p(), p(), p()];
+                if k % 4 == 0 {
+                    // A sliver, or a segment.
+                    t[2] = [
+                        t[0][0] + (t[1][0] - t[0][0]) * 0.3,
+                        t[0][1] + (t[1][1] - t[0][1]) * 0.3 + if k % 8 == 0 { 0.0 } else { 1e-9 },
+                    ];
+                }
+                let mut listed = Vec::new();
+                cells.covering_triangle(t, 1e-12, &mut listed);
+                let n = listed.len();
+                listed.sort_unstable();
+                listed.dedup();
+                assert_eq!(listed.len(), n, "a cell listed twice");
+                let (mut boxed, _) = (
+                    cells
+                        .covering(
+                            [0, 1].map(|k| t.iter().map(|p| p[k]).fold(f64::INFINITY, f64::min)),
+                            [0, 1]
+                                .map(|k| t.iter().map(|p| p[k]).fold(f64::NEG_INFINITY, f64::max)),
+                            1e-12,
+                        )
+                        .collect::<Vec<_>>(),
+                    (),
+                );
+                boxed.sort_unstable();
+                assert!(
+                    listed.iter().all(|c| boxed.binary_search(c).is_ok()),
+                    "outside the box"
+                );
+                let steps = 60;
+                for i in 0..=steps {
+                    for j in 0..=steps - i {
+                        let (a, b) = (i as f64 / steps as f64, j as f64 / steps as f64);
+                        let x = t[0][0] + (t[1][0] - t[0][0]) * a + (t[2][0] - t[0][0]) * b;
+                        let y = t[0][1] + (t[1][1] - t[0][1]) * a + (t[2][1] - t[0][1]) * b;
+                        let c = cells.cell_of(x, y);
+                        assert!(listed.binary_search(&c).is_ok(), "cell {c} of {t:?} missed");
+                    }
+                }
+            }
+        }
     }
 }

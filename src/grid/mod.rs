@@ -28,8 +28,10 @@
 //! ```
 
 mod cells;
+mod voxels;
 
 pub use cells::{CellLists, Cells};
+pub use voxels::Voxels;
 
 use crate::geometry::exact::{accurate_sum, product_terms, two_sum};
 use crate::geometry::kernel::Polynomial;

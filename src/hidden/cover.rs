@@ -12,8 +12,8 @@
 //! near it) is looked up in every cell within the reach of its picture's error
 //! ([`Picture::reach`]): nearly always the one cell.
 
-use crate::geometry::Point3;
 use crate::geometry::polygon::bounding_box;
+use crate::geometry::{Aabb, Point3};
 use crate::grid::{CellLists, Cells};
 use crate::mesh::Mesh;
 use crate::queries::frustum::ray_direction;
@@ -23,6 +23,8 @@ use crate::queries::{Counters, Stage};
 use crate::scene::{ObjectId, Scene};
 use crate::views::{Eye, Picture};
 use rayon::prelude::*;
+use rstar::primitives::{GeomWithData, Rectangle};
+use rstar::{AABB, RTree};
 use slotmap::SecondaryMap;
 use std::cmp::Ordering;
 
@@ -67,18 +69,37 @@ impl PictureGrid {
         let [lo, hi] = bounding_box(boxes.iter().flatten().flatten().copied());
         let n = boxes.iter().flatten().count().max(1);
         let extent = [0, 1].map(|k| (hi[k] - lo[k]).max(0.0));
-        // Cells about the size of a triangle's picture times the factor, no smaller than one
-        // per triangle would give.
+        // Cells about the size of a triangle's picture times the factor (the size of a sliver
+        // is its width, not its length: it is listed along itself), no smaller than one per
+        // triangle would give, nor than a sixteenth of the mean picture box.
+        let whole = |tri: &[u32; 3]| window.is_none() || tri.iter().all(|&v| in_front(v));
+        let size = mesh
+            .triangles()
+            .par_iter()
+            .zip(&boxes)
+            .filter(|(_, b)| b.is_some())
+            .map(|(tri, b)| match (whole(tri), b) {
+                (true, _) => {
+                    let [p, q, r] = tri.map(|v| pictures[v as usize]);
+                    let cross = (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]);
+                    cross.abs().sqrt()
+                }
+                (false, Some([low, high])) => (high[0] - low[0]).max(high[1] - low[1]),
+                (false, None) => 0.0,
+            })
+            .sum::<f64>()
+            / n as f64;
         let mean = boxes
             .iter()
             .flatten()
             .map(|[low, high]| (high[0] - low[0]).max(high[1] - low[1]))
             .sum::<f64>()
             / n as f64;
-        let side =
-            (cell_factor(n, queries) * mean).max((extent[0] * extent[1] / 4.0 / n as f64).sqrt());
+        let side = (cell_factor(n, queries) * size)
+            .max(mean / 16.0)
+            .max((extent[0] * extent[1] / 4.0 / n as f64).sqrt());
         let mut shape = [0, 1].map(|k| {
-            if side > 0.0 {
+            if side > 0.0 && side.is_finite() {
                 ((extent[k] / side).ceil() as usize).clamp(1, n)
             } else {
                 1
@@ -93,14 +114,29 @@ impl PictureGrid {
             .par_iter()
             .enumerate()
             .filter_map(|(t, b)| b.map(|b| (t, b)))
-            .fold(Vec::new, |mut out, (t, [low, high])| {
-                out.extend(
-                    cells
-                        .covering(low, high, margin)
-                        .map(|c| (c as u32, t as u32)),
-                );
-                out
-            })
+            .fold(
+                || (Vec::new(), Vec::new()),
+                |(mut out, mut listed): (Vec<(u32, u32)>, Vec<usize>), (t, [low, high])| {
+                    let tri = &mesh.triangles()[t];
+                    if whole(tri) {
+                        listed.clear();
+                        cells.covering_triangle(
+                            tri.map(|v| pictures[v as usize]),
+                            margin,
+                            &mut listed,
+                        );
+                        out.extend(listed.iter().map(|&c| (c as u32, t as u32)));
+                    } else {
+                        out.extend(
+                            cells
+                                .covering(low, high, margin)
+                                .map(|c| (c as u32, t as u32)),
+                        );
+                    }
+                    (out, listed)
+                },
+            )
+            .map(|(out, _)| out)
             .reduce(Vec::new, |mut x, mut y| {
                 x.append(&mut y);
                 x
@@ -177,18 +213,52 @@ fn cell_factor(n: usize, queries: usize) -> f64 {
         .clamp(0.25, 2.0)
 }
 
+/// The box of the picture of `cbox` (of its corners' pictures, grown by the grids' margin), or
+/// `None` when a corner is not strictly in front of a perspective eye (the picture of the box
+/// is then unbounded) or the box is empty.
+fn cbox_picture(picture: &Picture, cbox: &Aabb) -> Option<[[f64; 2]; 2]> {
+    if !(0..3).all(|k| cbox.min[k] <= cbox.max[k]) {
+        return None;
+    }
+    let corners = cbox.corners();
+    if !corners.iter().all(|c| picture.in_front(c)) {
+        return None;
+    }
+    let [lo, hi] = bounding_box(corners.iter().map(|c| picture.point(c)));
+    let margin = MARGIN * lo.iter().chain(&hi).fold(0.0f64, |m, v| m.max(v.abs()));
+    let grown = [lo.map(|v| v - margin), hi.map(|v| v + margin)];
+    grown
+        .iter()
+        .flatten()
+        .all(|v| v.is_finite())
+        .then_some(grown)
+}
+
 /// A mesh object with its vertices' pictures and, when the view clips, which vertices are in
 /// front of the eye.
 pub(crate) type PicturedMesh<'a> = (ObjectId, &'a Mesh, &'a [[f64; 2]], &'a [bool]);
 
-/// VISP for the hidden-line pass: Franklin's hierarchy (CBOX rejects, INBOX accepts) over the
-/// whole scene, with each mesh's faces answered through its [`PictureGrid`].
+/// VISP for the hidden-line pass: Franklin's steps (CBOX rejects, INBOX accepts, faces decide)
+/// for each mesh object whose CBOX's picture reaches the point's, with the mesh's faces
+/// answered through its [`PictureGrid`].
+///
+/// The objects are found through an R-tree of their CBOXes' pictures (the box of the corners'
+/// pictures, grown by the grids' margin: the picture of a box in front of the eye is the
+/// convex hull of its corners' pictures), so a point asks only the objects drawn over it, not
+/// every object of the scene: an array of ten thousand cubes costs each point a few, as one
+/// cube would. Franklin's descent from the roots, which the picture index replaces here, asks
+/// every subobject of every group whose CBOX the line of sight meets.
 pub(crate) struct Occluders<'s> {
     scene: &'s Scene,
     eye: Eye,
     /// The picture map the grids' cells are in.
     picture: Picture,
     grids: SecondaryMap<ObjectId, PictureGrid>,
+    /// The mesh objects by the pictures of their CBOXes.
+    pictured: RTree<GeomWithData<Rectangle<[f64; 2]>, ObjectId>>,
+    /// The mesh objects whose CBOX has a corner not in front of a perspective eye: asked
+    /// about every point.
+    everywhere: Vec<ObjectId>,
     /// Objects whose INBOX is not used: those with a mesh of more than the limit's triangles.
     no_inbox: SecondaryMap<ObjectId, ()>,
 }
@@ -205,6 +275,13 @@ impl<'s> Occluders<'s> {
         inbox_limit: usize,
         queries: usize,
     ) -> Occluders<'s> {
+        // Each mesh's share of the queries, by its share of the triangles: a point asks only
+        // the meshes drawn over it.
+        let total = meshes
+            .iter()
+            .map(|m| m.1.triangles().len())
+            .sum::<usize>()
+            .max(1);
         let built: Vec<(ObjectId, PictureGrid)> = meshes
             .par_iter()
             .map(|&(id, mesh, pictures, front)| {
@@ -217,12 +294,34 @@ impl<'s> Occluders<'s> {
                 let window = window.map(|w| (&picture, w));
                 (
                     id,
-                    PictureGrid::new(mesh, pictures, (front, window), queries),
+                    PictureGrid::new(
+                        mesh,
+                        pictures,
+                        (front, window),
+                        (queries as f64 * mesh.triangles().len() as f64 / total as f64) as usize,
+                    ),
                 )
             })
             .collect();
         let mut grids = SecondaryMap::new();
         grids.extend(built);
+        let boxes: Vec<(ObjectId, Option<[[f64; 2]; 2]>)> = meshes
+            .par_iter()
+            .map(|&(id, ..)| (id, cbox_picture(&picture, &scene.cbox(id))))
+            .collect();
+        let everywhere = boxes
+            .iter()
+            .filter(|(_, b)| b.is_none())
+            .map(|&(id, _)| id)
+            .collect();
+        let pictured = RTree::bulk_load(
+            boxes
+                .into_iter()
+                .filter_map(|(id, b)| {
+                    b.map(|[lo, hi]| GeomWithData::new(Rectangle::from_corners(lo, hi), id))
+                })
+                .collect(),
+        );
         let mut no_inbox = SecondaryMap::new();
         for (id, _) in scene.walk() {
             let large = scene
@@ -242,6 +341,8 @@ impl<'s> Occluders<'s> {
             eye,
             picture,
             grids,
+            pictured,
+            everywhere,
             no_inbox,
         }
     }
@@ -265,14 +366,29 @@ impl<'s> Occluders<'s> {
         let reach = self.picture.reach(approximate, picture, radius);
         let sight = Sight::to_eye(approximate, &self.eye).blurred(radius);
         let wanted = |id: ObjectId| !self.no_inbox.contains_key(id);
-        let (answer, stage): (Visibility, Stage) =
-            any_hides(self.scene.roots().iter().map(|&id| {
-                descend(self.scene, id, &sight, &wanted, &|leaf, _| {
-                    self.grids
-                        .get(leaf)
-                        .is_some_and(|g| g.near(picture, reach).any(|&t| hides(leaf, t as usize)))
-                })
-            }));
+        let ask = |id: ObjectId| {
+            descend(self.scene, id, &sight, &wanted, &|leaf, _| {
+                self.grids
+                    .get(leaf)
+                    .is_some_and(|g| g.near(picture, reach).any(|&t| hides(leaf, t as usize)))
+            })
+        };
+        let (answer, stage): (Visibility, Stage) = if reach.is_finite() {
+            let around = AABB::from_corners(
+                [picture[0] - reach, picture[1] - reach],
+                [picture[0] + reach, picture[1] + reach],
+            );
+            let drawn_over = self.pictured.locate_in_envelope_intersecting(&around);
+            any_hides(
+                self.everywhere
+                    .iter()
+                    .copied()
+                    .chain(drawn_over.map(|o| o.data))
+                    .map(ask),
+            )
+        } else {
+            any_hides(self.grids.keys().map(ask))
+        };
         counters.record(stage);
         answer
     }

@@ -439,6 +439,8 @@ struct Pass<'a> {
     /// The frustum, when the view clips (a perspective eye with part of the scene not in
     /// front of it).
     clip: Option<Clip>,
+    /// The mesh objects left out as exact copies of an earlier one.
+    copies: usize,
 }
 
 impl<'a> Pass<'a> {
@@ -447,7 +449,10 @@ impl<'a> Pass<'a> {
     fn new(scene: &'a Scene, view: &View) -> Result<Pass<'a>> {
         let picture = Picture::of(view);
         let (meshes, clip) = pictured(scene, view)?;
-        let leaves = meshes
+        let all = meshes.len();
+        let meshes = without_copies(meshes);
+        let copies = all - meshes.len();
+        let leaves: Vec<Leaf> = meshes
             .into_iter()
             .map(|(id, mesh)| Leaf {
                 id,
@@ -467,6 +472,7 @@ impl<'a> Pass<'a> {
             meets: Vec::new(),
             cuts: Vec::new(),
             stages: Vec::new(),
+            copies,
         })
     }
 
@@ -592,9 +598,13 @@ impl<'a> Pass<'a> {
         } else {
             String::new()
         };
+        let copies = match self.copies {
+            0 => String::new(),
+            n => format!(", {n} objects that are exact copies of another (drawn once)"),
+        };
         let skipped = format!(
             "{flat} edges between coplanar faces (no edge), {end_on} seen end-on (a point)\
-             {smooth}{clipping}"
+             {smooth}{clipping}{copies}"
         );
         self.stage("edges", clock, done, Some(skipped));
     }
@@ -1493,6 +1503,55 @@ fn cut_picture(picture: &Picture, eye: &Eye, l: &Line, cut: Option<&Cut>) -> [f6
         Some(c) => cut_point(picture, eye, &c.zero.form, &l.a, &l.b),
         None => l.ends[0],
     }
+}
+
+/// The mesh objects, without those whose mesh is an exact copy of an earlier one's (see
+/// [`originals`]): a copy hides exactly what the first hides, meets nothing the first does not
+/// (coincident faces make no intersection line), and its edges are the first's. Copies stacked
+/// in one place would otherwise cost every pair of them.
+fn without_copies(meshes: Vec<(ObjectId, &Mesh)>) -> Vec<(ObjectId, &Mesh)> {
+    let first = originals(&meshes);
+    meshes
+        .into_iter()
+        .enumerate()
+        .filter(|&(n, _)| first[n] == n)
+        .map(|(_, m)| m)
+        .collect()
+}
+
+/// For each mesh object, the index of the first whose mesh is the same (the same vertices, bit
+/// for bit, and the same faces and triangles): itself unless it is an exact copy.
+pub(crate) fn originals(meshes: &[(ObjectId, &Mesh)]) -> Vec<usize> {
+    use std::hash::{Hash, Hasher};
+    let key = |m: &Mesh| {
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        for p in m.vertices() {
+            p.map(f64::to_bits).hash(&mut h);
+        }
+        m.triangles().hash(&mut h);
+        h.finish()
+    };
+    let keys: Vec<u64> = meshes.par_iter().map(|(_, m)| key(m)).collect();
+    let mut seen: HashMap<u64, Vec<usize>> = HashMap::new();
+    let mut first = Vec::with_capacity(meshes.len());
+    for (n, (&(_, m), k)) in meshes.iter().zip(keys).enumerate() {
+        let earlier = seen.entry(k).or_default();
+        let same = earlier.iter().copied().find(|&e| {
+            let o = meshes[e].1;
+            o.vertices() == m.vertices()
+                && o.triangles() == m.triangles()
+                && o.faces().len() == m.faces().len()
+                && o.faces()
+                    .iter()
+                    .zip(m.faces())
+                    .all(|(f, g)| f.vertices() == g.vertices())
+        });
+        first.push(same.unwrap_or_else(|| {
+            earlier.push(n);
+            n
+        }));
+    }
+    first
 }
 
 /// Every pair `(i, j)`, `i <= j`, of the objects `ids` whose CBOXes meet (closed boxes), in

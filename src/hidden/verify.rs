@@ -752,6 +752,13 @@ fn contours(scene: &Scene, view: &View, traced: &Traced, report: &mut Verificati
         }
     }
     let meshes = scene.mesh_objects(scene.roots());
+    // An exact copy of an earlier mesh is drawn by that one's pieces.
+    let first = super::originals(&meshes);
+    let drawn_as: HashMap<ObjectId, ObjectId> = meshes
+        .iter()
+        .zip(&first)
+        .map(|(&(id, _), &f)| (id, meshes[f].0))
+        .collect();
     let found: Vec<(ObjectId, Contours)> = meshes
         .par_iter()
         .map(|&(id, mesh)| (id, contour_edges(mesh, eye)))
@@ -761,7 +768,8 @@ fn contours(scene: &Scene, view: &View, traced: &Traced, report: &mut Verificati
         let Some(mesh) = scene[object].mesh() else {
             continue;
         };
-        let lines = lines_of.get(&object).map(Vec::as_slice).unwrap_or_default();
+        let source = drawn_as[&object];
+        let lines = lines_of.get(&source).map(Vec::as_slice).unwrap_or_default();
         let cover = found.chains.covering(mesh, lines);
         for c in found.contours {
             let (a, b) = (
@@ -783,7 +791,7 @@ fn contours(scene: &Scene, view: &View, traced: &Traced, report: &mut Verificati
                 }
             };
             let pieces = |key: &EdgeKey| {
-                on.get(&(object, *key))
+                on.get(&(source, *key))
                     .map(Vec::as_slice)
                     .unwrap_or_default()
             };

@@ -25,6 +25,7 @@ use super::along::{Form, Zero};
 use super::meet::{Meet, OnLine, reversed};
 use crate::geometry::predicates::{collinear, orient3d};
 use crate::geometry::{Aabb, Point3};
+use crate::grid::Voxels;
 use crate::mesh::Mesh;
 use crate::views::Eye;
 use rayon::prelude::*;
@@ -193,11 +194,14 @@ fn merged(group: &[Piece], eye: &Eye) -> Vec<Segment> {
     out
 }
 
-/// The pairs of triangles (of `m0`, of `m1`) whose closed boxes meet, each once: a uniform
-/// 3-D grid over the region where the meshes' boxes overlap, cells about the size of a
-/// triangle's box, each triangle listed in the cells its box meets. A pair is reported only in
-/// the cell holding the low corner of the two boxes' overlap, so once. For one mesh (`same`),
-/// pairs sharing a vertex or a face are left out.
+/// The pairs of triangles (of `m0`, of `m1`) whose closed boxes meet and that may meet, each
+/// once, in increasing order: a uniform 3-D grid ([`Voxels`]) over the region where the
+/// meshes' boxes overlap, each triangle listed in the cells it meets (not in all the cells of
+/// its box: the slivers of a fan all share the fan's box), pairs tested cell by cell. For one
+/// mesh (`same`), pairs sharing a vertex or a face are left out, and where most of a cell's
+/// triangles share one vertex (a fan's apex, a pole of a UV sphere) those are not paired with
+/// each other at all: only with the rest, so ten thousand edges at one point cost no more
+/// than ten thousand elsewhere.
 fn candidate_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32)> {
     let boxes = |m: &Mesh| -> Vec<Aabb> {
         (0..m.triangles().len())
@@ -220,102 +224,139 @@ fn candidate_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32)> {
     if (0..3).any(|k| region.min[k] > region.max[k]) {
         return Vec::new();
     }
-    let mean = b0
-        .iter()
-        .chain(second.iter())
-        .map(|b| b.size().into_iter().fold(0.0, f64::max))
-        .sum::<f64>()
-        / (b0.len() + second.len()).max(1) as f64;
-    let size = region.size();
-    // Cells twice the mean box: the total of pairs tested, about N²·(1 + e/s)⁶·s²/area for
-    // boxes of size e in cells of size s, is least at s = 2e.
-    let side = 2.0 * mean;
-    // Only occupied cells are listed (items are sorted by cell), so a surface in a large
-    // region costs nothing for the empty cells; the cap keeps cell numbers in 63 bits.
-    let shape = size.map(|e| {
-        if side > 0.0 {
-            ((e / side).ceil() as usize).clamp(1, 1 << 20)
-        } else {
-            1
-        }
-    });
-    let index = |k: usize, v: f64| -> usize {
-        if size[k] <= 0.0 {
-            return 0;
-        }
-        let c = (v - region.min[k]) / size[k] * shape[k] as f64;
-        if c >= shape[k] as f64 {
-            shape[k] - 1
-        } else if c > 0.0 {
-            c as usize
-        } else {
-            0
-        }
-    };
-    let cell_of = |c: [usize; 3]| ((c[2] * shape[1] + c[1]) * shape[0] + c[0]) as u64;
-    let list = |b: &[Aabb], mesh: u32| -> Vec<(u64, u32)> {
+    let grid = Voxels::new(
+        region,
+        cell_side(m0, &b0, if same { None } else { Some((m1, &b1)) }),
+    );
+    let list = |m: &Mesh, b: &[Aabb], mesh: u32| -> Vec<(u64, u32)> {
         b.par_iter()
             .enumerate()
-            .fold(Vec::new, |mut out, (t, bx)| {
-                if (0..3).any(|k| bx.max[k] < region.min[k] || bx.min[k] > region.max[k]) {
-                    return out;
-                }
-                let r = |k: usize| index(k, bx.min[k])..=index(k, bx.max[k]);
-                for z in r(2) {
-                    for y in r(1) {
-                        for x in r(0) {
-                            out.push((cell_of([x, y, z]), (mesh << 31) | t as u32));
-                        }
+            .fold(
+                || (Vec::new(), Vec::new()),
+                |(mut out, mut cells): (Vec<(u64, u32)>, Vec<u64>), (t, bx)| {
+                    if (0..3).any(|k| bx.max[k] < region.min[k] || bx.min[k] > region.max[k]) {
+                        return (out, cells);
                     }
-                }
-                out
-            })
+                    cells.clear();
+                    grid.triangle_cells(&m.triangle(t), &mut cells);
+                    out.extend(cells.iter().map(|&c| (c, (mesh << 31) | t as u32)));
+                    (out, cells)
+                },
+            )
+            .map(|(out, _)| out)
             .reduce(Vec::new, |mut x, mut y| {
                 x.append(&mut y);
                 x
             })
     };
-    let mut items = list(&b0, 0);
+    let mut items = list(m0, &b0, 0);
     if !same {
-        items.extend(list(&b1, 1));
+        items.extend(list(m1, &b1, 1));
     }
     items.par_sort_unstable();
     let runs: Vec<&[(u64, u32)]> = items.chunk_by(|x, y| x.0 == y.0).collect();
-    runs.par_iter()
-        .flat_map_iter(|run| {
-            let cell = run[0].0;
-            let of = |item: (u64, u32)| (item.1 & 0x7fff_ffff) as usize;
-            // Items sort by mesh within a cell (mesh 0 first): split there.
-            let split = if same {
-                run.len()
+    let of = |item: &(u64, u32)| item.1 & 0x7fff_ffff;
+    let mut pairs: Vec<(u32, u32)> = runs
+        .par_iter()
+        .fold(Vec::new, |mut out, run| {
+            if same {
+                let tris: Vec<u32> = run.iter().map(of).collect();
+                same_mesh_pairs(m0, &b0, &tris, &mut out);
             } else {
-                run.partition_point(|i| i.1 >> 31 == 0)
-            };
-            let (firsts, seconds) = if same {
-                (*run, *run)
-            } else {
-                run.split_at(split)
-            };
-            let mut out = Vec::new();
-            for (n, &x) in firsts.iter().enumerate() {
-                // For one mesh, each pair once: the items after x (larger triangle indices).
-                let others = if same { &seconds[n + 1..] } else { seconds };
-                for &y in others {
-                    let (i, j) = (of(x), of(y));
-                    let (bi, bj) = (&b0[i], &second[j]);
-                    if !bi.intersects(bj) {
-                        continue;
+                // Items sort by mesh within a cell (mesh 0 first): split there.
+                let (firsts, seconds) = run.split_at(run.partition_point(|i| i.1 >> 31 == 0));
+                for x in firsts {
+                    for y in seconds {
+                        let (i, j) = (of(x), of(y));
+                        if b0[i as usize].intersects(&b1[j as usize]) {
+                            out.push((i, j));
+                        }
                     }
-                    let low = [0, 1, 2].map(|k| index(k, bi.min[k].max(bj.min[k])));
-                    if cell_of(low) != cell || (same && neighbours(m0, i, j)) {
-                        continue;
-                    }
-                    out.push((i as u32, j as u32));
                 }
             }
             out
         })
-        .collect()
+        .reduce(Vec::new, |mut x, mut y| {
+            x.append(&mut y);
+            x
+        });
+    // A pair meeting in several cells was found in each.
+    pairs.par_sort_unstable();
+    pairs.dedup();
+    pairs
+}
+
+/// The side of the cells: twice the mean size of a triangle (the square root of twice its
+/// area), so that a cell holds a few triangles of a surface; no smaller than a sixteenth of
+/// the mean box, so that a mesh of slivers is not cut into more cells than its boxes are
+/// across.
+fn cell_side(m0: &Mesh, b0: &[Aabb], other: Option<(&Mesh, &[Aabb])>) -> f64 {
+    let mut meshes = vec![(m0, b0)];
+    meshes.extend(other);
+    let n = meshes.iter().map(|(_, b)| b.len()).sum::<usize>().max(1) as f64;
+    let size: f64 = meshes
+        .iter()
+        .map(|(m, _)| {
+            (0..m.triangles().len())
+                .into_par_iter()
+                .map(|t| {
+                    let [a, b, c] = m.triangle(t);
+                    ((b - a).cross(&(c - a)).norm()).sqrt()
+                })
+                .sum::<f64>()
+        })
+        .sum::<f64>()
+        / n;
+    let boxes: f64 = meshes
+        .iter()
+        .flat_map(|(_, b)| b.iter())
+        .map(|b| b.size().into_iter().fold(0.0, f64::max))
+        .sum::<f64>()
+        / n;
+    let side = (2.0 * size).max(boxes / 16.0);
+    if side.is_finite() { side } else { boxes }
+}
+
+/// The pairs among the triangles `tris` of one cell of mesh `m` (boxes `b`) whose boxes meet
+/// and that share no vertex and no face, appended to `out` as `(smaller, larger)`. Where at
+/// least a quarter of them share one vertex (a hub), those are paired only with the others,
+/// and the others among themselves the same way.
+fn same_mesh_pairs(m: &Mesh, b: &[Aabb], tris: &[u32], out: &mut Vec<(u32, u32)>) {
+    let test = |i: u32, j: u32, out: &mut Vec<(u32, u32)>| {
+        let (i, j) = (i.min(j), i.max(j));
+        if b[i as usize].intersects(&b[j as usize]) && !neighbours(m, i as usize, j as usize) {
+            out.push((i, j));
+        }
+    };
+    if tris.len() > 16 {
+        let mut vertices: Vec<u32> = tris
+            .iter()
+            .flat_map(|&t| m.triangles()[t as usize])
+            .collect();
+        vertices.sort_unstable();
+        let (hub, count) = vertices
+            .chunk_by(|x, y| x == y)
+            .map(|run| (run[0], run.len()))
+            .max_by(|x, y| x.1.cmp(&y.1).then(y.0.cmp(&x.0)))
+            .unwrap_or((0, 0));
+        if 4 * count >= tris.len() {
+            let (at, rest): (Vec<u32>, Vec<u32>) = tris
+                .iter()
+                .partition(|&&t| m.triangles()[t as usize].contains(&hub));
+            for &i in &at {
+                for &j in &rest {
+                    test(i, j, out);
+                }
+            }
+            same_mesh_pairs(m, b, &rest, out);
+            return;
+        }
+    }
+    for (n, &i) in tris.iter().enumerate() {
+        for &j in &tris[n + 1..] {
+            test(i, j, out);
+        }
+    }
 }
 
 /// Up to this many triangle pairs, every pair is tested: no grid.
@@ -626,4 +667,123 @@ pub(crate) fn pierces_line(
     } else {
         reversed(&form)
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::solids::uv_sphere;
+    use nalgebra::{Matrix4, Vector3};
+
+    /// Whether the pair `(i, j)` gives the pass anything: a piece of an intersection segment,
+    /// or a contact (an edge through the other triangle).
+    fn productive(m0: &Mesh, i: usize, m1: &Mesh, j: usize) -> bool {
+        let Some([s0, s1]) = sides(m0, i, m1, j) else {
+            return false;
+        };
+        let (t0, t1) = (m0.triangle(i), m1.triangle(j));
+        let eye = Eye::Infinity(Vector3::z());
+        let planes = [plane_of(m0, i), plane_of(m1, j)];
+        (crosses(&s0, m0, i)
+            && crosses(&s1, m1, j)
+            && piece(m0, i, m1, j, [s0, s1], planes, &eye).is_some())
+            || edge_through(&t0, &s0, m0, i, &t1)
+            || edge_through(&t1, &s1, m1, j, &t0)
+    }
+
+    /// The grid's pairs against every pair: none that gives anything is missed, and each
+    /// found is a pair whose boxes meet (and, in one mesh, that shares no vertex).
+    fn check(m0: &Mesh, m1: &Mesh, same: bool) -> usize {
+        let boxes = |m: &Mesh| {
+            (0..m.triangles().len())
+                .map(|t| Aabb::from_points(&m.triangle(t)))
+                .collect::<Vec<_>>()
+        };
+        let (b0, b1) = (boxes(m0), boxes(m1));
+        assert!(b0.len() * b1.len() > FEW_PAIRS, "the grid is not used");
+        let grid = candidate_pairs(m0, m1, same);
+        assert!(
+            grid.windows(2).all(|w| w[0] < w[1]),
+            "not sorted and unique"
+        );
+        let all = few_pairs(m0, &b0, &b1, same);
+        for &(i, j) in &grid {
+            assert!(
+                all.binary_search(&(i, j)).is_ok(),
+                "({i}, {j}) is not a candidate"
+            );
+        }
+        let mut productive_pairs = 0;
+        for &(i, j) in &all {
+            if productive(m0, i as usize, m1, j as usize) {
+                productive_pairs += 1;
+                assert!(
+                    grid.binary_search(&(i, j)).is_ok(),
+                    "({i}, {j}) missed: {:?} {:?} same {same}",
+                    m0.triangle(i as usize),
+                    m1.triangle(j as usize)
+                );
+            }
+        }
+        productive_pairs
+    }
+
+    fn moved(m: &Mesh, by: [f64; 3], scale: f64) -> Mesh {
+        let t = Matrix4::new_translation(&Vector3::from(by)) * Matrix4::new_scaling(scale);
+        m.transformed(&t).unwrap()
+    }
+
+    /// Random triangles, some large and some slivers, crossing each other everywhere.
+    fn soup(n: usize, seed: u64) -> Mesh {
+        let mut s = seed;
+        let mut next = || {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (s >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut vertices = Vec::new();
+        let mut faces = Vec::new();
+        for k in 0..n {
+            let c = Point3::new(next(), next(), next());
+            let r = if k % 3 == 0 { 0.5 } else { 0.08 };
+            let thin = if k % 5 == 0 { 1e-6 } else { 1.0 };
+            let a = c + Vector3::new(next() - 0.5, next() - 0.5, next() - 0.5) * r;
+            let b = c + Vector3::new(next() - 0.5, next() - 0.5, next() - 0.5) * r;
+            let d = a
+                + (b - a) * 0.5
+                + Vector3::new(next() - 0.5, next() - 0.5, next() - 0.5) * r * thin;
+            let v = vertices.len() as u32;
+            vertices.extend([a, b, d]);
+            faces.push(vec![v, v + 1, v + 2]);
+        }
+        Mesh::from_polygons(vertices, faces).unwrap()
+    }
+
+    #[test]
+    fn the_grid_misses_no_pair_of_a_fan_or_a_soup() {
+        // Two cones of 600 slivers base to base: every pair meets at an apex or the rim.
+        let fan = uv_sphere(1.0, 600, 2).unwrap();
+        check(&fan, &fan, true);
+        // The fan against itself turned and moved so the apexes pierce the other's sides.
+        let other = moved(&fan, [0.25, 0.1, 0.5], 0.75);
+        assert!(check(&fan, &other, false) > 0);
+        for seed in 0..4 {
+            let s = soup(400, seed);
+            assert!(check(&s, &s, true) > 0);
+            let t = soup(300, seed + 100);
+            assert!(check(&s, &t, false) > 0);
+        }
+        // Spheres that cut each other, and at extreme scales and offsets.
+        let sphere = uv_sphere(1.0, 48, 24).unwrap();
+        for (by, scale) in [
+            ([0.5, 0.3, 0.2], 1.0),
+            ([1e8, 0.0, 0.0], 1e-7),
+            ([0.0; 3], 1e-90),
+        ] {
+            let a = moved(&sphere, by, scale);
+            let b = moved(&sphere, [by[0] + 0.7 * scale, by[1], by[2]], scale);
+            assert!(check(&a, &b, false) > 0);
+        }
+    }
 }

@@ -1,0 +1,248 @@
+#!/usr/bin/env python3
+"""Whole-process timings of kepler on large and pathological scenes (issue 16).
+
+    cargo build --release && python3 scripts/perf.py [--only NAME,...] [--dir DIR] [--runs N]
+
+Generates the scenes (plain Python, no packages; cached in DIR, default target/perf), runs
+each job as a new user would (the release binary, reading the files and writing the SVG),
+and prints the median wall time of N runs (default 3) and the peak resident memory of the
+process (from wait4's rusage), with bytes per triangle where the scene has one mesh.
+"""
+
+import argparse
+import math
+import os
+import random
+import statistics
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+KEPLER = os.path.join(ROOT, "target", "release", "kepler")
+
+
+def cube_sphere(n, bumps, seed):
+    """A closed 'scanned' blob: the six n x n grids of a cube pushed onto a sphere and
+    displaced radially by a few random bumps (12 n^2 triangles), vertices and faces
+    shuffled as a scanner's export would leave them."""
+    rng = random.Random(seed)
+    waves = [(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1),
+              rng.uniform(2, 9), rng.uniform(0, 6.3), rng.uniform(0.005, 0.03))
+             for _ in range(bumps)]
+    index = {}
+    verts = []
+
+    def vertex(key, p):
+        v = index.get(key)
+        if v is None:
+            x, y, z = p
+            r = math.sqrt(x * x + y * y + z * z)
+            x, y, z = x / r, y / r, z / r
+            d = 1.0 + sum(a * math.sin(f * (ax * x + ay * y + az * z) + ph)
+                          for ax, ay, az, f, ph, a in waves)
+            v = len(verts)
+            index[key] = v
+            verts.append((x * d, y * d, z * d))
+        return v
+
+    faces = []
+    for axis in range(3):
+        for sign in (-1, 1):
+            def corner(i, j):
+                u = -1 + 2 * i / n
+                w = -1 + 2 * j / n
+                p = [0.0, 0.0, 0.0]
+                p[axis] = float(sign)
+                p[(axis + 1) % 3] = u
+                p[(axis + 2) % 3] = w
+                # Keys on an integer lattice, so that shared cube edges weld.
+                key = tuple(round((c + 1) * n / 2) for c in p)
+                return vertex(key, p)
+            for i in range(n):
+                for j in range(n):
+                    a, b = corner(i, j), corner(i + 1, j)
+                    c, d = corner(i + 1, j + 1), corner(i, j + 1)
+                    if sign > 0:
+                        faces += [(a, b, c), (a, c, d)]
+                    else:
+                        faces += [(a, c, b), (a, d, c)]
+    order = list(range(len(verts)))
+    rng.shuffle(order)
+    new = [0] * len(verts)
+    for k, v in enumerate(order):
+        new[v] = k
+    verts = [verts[v] for v in order]
+    faces = [(new[a], new[b], new[c]) for a, b, c in faces]
+    rng.shuffle(faces)
+    return verts, faces
+
+
+def flat_grid(n):
+    """n x n squares in the plane z = 0, two triangles each (2 n^2 coplanar triangles)."""
+    verts = [(i / n, j / n, 0.0) for i in range(n + 1) for j in range(n + 1)]
+    faces = []
+    for i in range(n):
+        for j in range(n):
+            a = i * (n + 1) + j
+            b, c, d = a + n + 1, a + n + 2, a + 1
+            faces += [(a, b, c), (a, c, d)]
+    return verts, faces
+
+
+def write_obj(path, verts, faces):
+    with open(path, "w") as f:
+        f.write("".join("v %.17g %.17g %.17g\n" % v for v in verts))
+        f.write("".join("f %d %d %d\n" % (a + 1, b + 1, c + 1) for a, b, c in faces))
+
+
+def write(path, text):
+    with open(path, "w") as f:
+        f.write(text)
+
+
+CAMERA = """[camera]
+projection = "perspective"
+eye = [{ex}, {ey}, {ez}]
+target = [{tx}, {ty}, {tz}]
+fov = {fov}
+"""
+
+
+def cubes(count, step, stacked=False):
+    nx = int(round(math.sqrt(count)))
+    ny = count // nx
+    extent = (nx - 1) * step
+    cam = CAMERA.format(ex=-0.6 * extent - 5, ey=-0.9 * extent - 5, ez=0.7 * extent + 5,
+                        tx=extent / 2, ty=extent / 2, tz=0, fov=45)
+    if stacked:
+        cam = CAMERA.format(ex=-3, ey=-4, ez=3, tx=0, ty=0, tz=0, fov=40)
+        spec = "[%d, 1, 1]" % count, "[0, 0, 0]"
+    else:
+        spec = "[%d, %d, 1]" % (nx, ny), "[%g, %g, 0]" % (step, step)
+    return cam + """
+[[object]]
+name = "cubes"
+solid = "cube"
+edge = 1
+array = {{ count = {0}, step = {1} }}
+""".format(*spec)
+
+
+def scenes(d):
+    """(name, command arguments, triangles) for every job, generating missing files."""
+    os.makedirs(d, exist_ok=True)
+
+    def obj(name, make):
+        path = os.path.join(d, name)
+        if not os.path.exists(path):
+            write_obj(path + ".tmp", *make())
+            os.replace(path + ".tmp", path)
+        return path
+
+    def toml(name, text):
+        path = os.path.join(d, name)
+        write(path, text)
+        return path
+
+    scan = obj("scan.obj", lambda: cube_sphere(299, 40, 1))          # 1,073,388 triangles
+    blob = obj("blob.obj", lambda: cube_sphere(76, 25, 2))           # 69,312 triangles
+    flat = obj("flat.obj", lambda: flat_grid(224))                   # 100,352 triangles
+    sphere = toml("sphere.toml", CAMERA.format(ex=3, ey=-4, ez=2, tx=0, ty=0, tz=0, fov=40) + """
+[[object]]
+name = "sphere"
+solid = "sphere"
+radius = 1
+segments = 1000
+rings = 501
+""")
+    fan = toml("fan.toml", CAMERA.format(ex=3, ey=-4, ez=2, tx=0, ty=0, tz=0, fov=40) + """
+[[object]]
+name = "cone"
+solid = "sphere"
+radius = 1
+segments = 10000
+rings = 2
+""")
+    points = os.path.join(d, "points.txt")
+    if not os.path.exists(points):
+        rng = random.Random(3)
+        write(points, "".join("%r %r %r\n" % (rng.uniform(-1.2, 1.2), rng.uniform(-1.2, 1.2),
+                                             rng.uniform(-1.2, 1.2)) for _ in range(100000)))
+    out = os.path.join(d, "out.svg")
+    jobs = [
+        ("scan 1.07M tris, feature", ["render", scan, "-o", out], 1073388),
+        ("scan 1.07M tris, all", ["render", scan, "--edges", "all", "-o", out], 1073388),
+        ("blob 69k tris, feature", ["render", blob, "-o", out], 69312),
+        ("blob 69k tris, all", ["render", blob, "--edges", "all", "-o", out], 69312),
+        ("sphere 1M tris", ["render", sphere, "-o", out], 998000),
+        ("fan 10,000 edges at a point", ["render", fan, "-o", out], 20000),
+        ("flat 100k tris, oblique", ["render", flat, "--view-dir", "1,2,-3", "-o", out], 100352),
+        ("flat 100k tris, edge-on", ["render", flat, "--view-dir", "1,2,0", "-o", out], 100352),
+        ("include 100k points, 1M sphere", ["include", "--points", points, sphere], 998000),
+    ]
+    for n in (1000, 3000, 10000, 30000, 100000):
+        name = "cubes-%d.toml" % n
+        jobs.append(("array of %d cubes" % n, ["render", toml(name, cubes(n, 2.0)), "-o", out],
+                     12 * n))
+    for n in (100, 300, 1000, 10000, 100000):
+        name = "stacked-%d.toml" % n
+        jobs.append(("%d stacked cubes" % n,
+                     ["render", toml(name, cubes(n, 0, stacked=True)), "-o", out], 12 * n))
+    return jobs
+
+
+def run(args):
+    start = time.perf_counter()
+    proc = subprocess.Popen([KEPLER] + args, stdout=subprocess.DEVNULL,
+                            stderr=subprocess.PIPE)
+    try:
+        _, status, usage = os.wait4(proc.pid, 0)
+    except KeyboardInterrupt:
+        proc.kill()
+        raise
+    seconds = time.perf_counter() - start
+    err = proc.stderr.read().decode(errors="replace")
+    proc.returncode = os.waitstatus_to_exitcode(status)
+    return seconds, usage.ru_maxrss * 1024, proc.returncode, err
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("--dir", default=os.path.join(ROOT, "target", "perf"))
+    p.add_argument("--runs", type=int, default=3)
+    p.add_argument("--only", default="", help="comma-separated substrings of job names")
+    p.add_argument("--timeout", type=float, default=120.0,
+                   help="skip further runs of a job slower than this many seconds")
+    p.add_argument("--generate", action="store_true", help="only write the scenes")
+    a = p.parse_args()
+    if a.generate:
+        scenes(a.dir)
+        return
+    if not os.path.exists(KEPLER):
+        sys.exit("build first: cargo build --release")
+    # The scenes are generated by a child process: a child's peak memory starts from its
+    # parent's (fork keeps the high-water mark), so this process must stay small.
+    subprocess.run([sys.executable, __file__, "--generate", "--dir", a.dir], check=True)
+    only = [s for s in a.only.split(",") if s]
+    print("%-34s %10s %10s %10s" % ("job", "seconds", "peak MB", "B/tri"))
+    for name, args, tris in scenes(a.dir):
+        if only and not any(s in name for s in only):
+            continue
+        times, peak = [], 0
+        for _ in range(a.runs):
+            seconds, rss, code, err = run(args)
+            if code != 0:
+                print("%-34s failed (exit %d): %s" % (name, code, err.strip()[-300:]))
+                break
+            times.append(seconds)
+            peak = max(peak, rss)
+            if seconds > a.timeout:
+                break
+        if times:
+            print("%-34s %10.3f %10.0f %10.0f" % (name, statistics.median(times), peak / 1e6,
+                                                 peak / tris), flush=True)
+
+
+if __name__ == "__main__":
+    main()
