@@ -148,22 +148,19 @@ def scenes(d):
     scan = obj("scan.obj", lambda: cube_sphere(299, 40, 1))          # 1,073,388 triangles
     blob = obj("blob.obj", lambda: cube_sphere(76, 25, 2))           # 69,312 triangles
     flat = obj("flat.obj", lambda: flat_grid(224))                   # 100,352 triangles
-    sphere = toml("sphere.toml", CAMERA.format(ex=3, ey=-4, ez=2, tx=0, ty=0, tz=0, fov=40) + """
+    def uv_sphere(name, segments, rings):
+        camera = CAMERA.format(ex=3, ey=-4, ez=2, tx=0, ty=0, tz=0, fov=40)
+        return toml(name + ".toml", camera + """
 [[object]]
-name = "sphere"
+name = "%s"
 solid = "sphere"
 radius = 1
-segments = 1000
-rings = 501
-""")
-    fan = toml("fan.toml", CAMERA.format(ex=3, ey=-4, ez=2, tx=0, ty=0, tz=0, fov=40) + """
-[[object]]
-name = "cone"
-solid = "sphere"
-radius = 1
-segments = 10000
-rings = 2
-""")
+segments = %d
+rings = %d
+""" % (name, segments, rings))
+
+    sphere = uv_sphere("sphere", 1000, 501)                          # 998,000 triangles
+    fan = uv_sphere("fan", 10000, 2)                                 # two cones of 10,000
     points = os.path.join(d, "points.txt")
     if not os.path.exists(points):
         rng = random.Random(3)
