@@ -817,3 +817,34 @@ fn closed_meshes_are_oriented_exactly() {
         "{checked} checked, {rounded_wrong} rounded wrong"
     );
 }
+
+/// `Mesh::scaled_exactly` (issue 16: bringing a large scene into the working range without a
+/// new validation) builds the same mesh as scaling by a matrix and rebuilding, for every mesh
+/// of the bundled scenes (polygons split or not, T-junctions, non-convex faces) and for
+/// exponents in both directions.
+#[test]
+fn scaling_exactly_equals_rebuilding() {
+    use kepler::scene::file;
+    let mut meshes = Vec::new();
+    for name in ["meshes", "solids", "polyhedra", "bunny", "city"] {
+        let scene = file::load(std::path::Path::new(&format!("scenes/{name}.toml"))).unwrap();
+        for (_, mesh) in scene.mesh_objects(scene.roots()) {
+            meshes.push(mesh.clone());
+        }
+    }
+    assert!(meshes.len() > 20);
+    for (n, mesh) in meshes.iter().enumerate() {
+        for exponent in [-300, -61, -1, 1, 7, 100, 400] {
+            let Some(fast) = mesh.scaled_exactly(exponent) else {
+                continue;
+            };
+            let half = exponent / 2;
+            let step = |k: i32| nalgebra::Matrix4::new_scaling(2f64.powi(k));
+            let slow = mesh
+                .transformed(&step(half))
+                .and_then(|m| m.transformed(&step(exponent - half)))
+                .unwrap();
+            assert!(fast == slow, "mesh {n} scaled by 2^{exponent}");
+        }
+    }
+}

@@ -140,21 +140,28 @@ fn statements(text: &str) -> impl Iterator<Item = (usize, Cow<'_, str>)> {
 
 /// The point of a `v` statement: `x y z`, or `x y z 1`.
 fn vertex<'a>(tokens: impl Iterator<Item = &'a str>) -> Result<Point3, String> {
-    let tokens: Vec<&str> = tokens.collect();
-    let (x, y, z, w) = match *tokens.as_slice() {
-        [x, y, z] => (x, y, z, None),
-        [x, y, z, w] => (x, y, z, Some(w)),
-        _ if tokens.len() < 3 => {
+    // The first four tokens and the count, without collecting a line into a vector.
+    let mut first = [""; 4];
+    let mut count = 0;
+    for token in tokens {
+        if let Some(slot) = first.get_mut(count) {
+            *slot = token;
+        }
+        count += 1;
+    }
+    let [x, y, z, w] = first;
+    let w = match count {
+        3 => None,
+        4 => Some(w),
+        n if n < 3 => {
             return Err(format!(
-                "missing coordinate: expected x y z, found {} values",
-                tokens.len()
+                "missing coordinate: expected x y z, found {n} values"
             ));
         }
-        _ => {
+        n => {
             return Err(format!(
-                "too many values: expected x y z and optionally w = 1, found {} values \
-                 (vertex colours are not supported)",
-                tokens.len()
+                "too many values: expected x y z and optionally w = 1, found {n} values \
+                 (vertex colours are not supported)"
             ));
         }
     };
@@ -182,12 +189,12 @@ fn face<'a>(tokens: impl Iterator<Item = &'a str>, defined: &Defined) -> Result<
 
 /// One corner of a face, `v`, `v/vt`, `v/vt/vn` or `v//vn`: the 0-based vertex index.
 fn face_corner(corner: &str, defined: &Defined) -> Result<u32, String> {
-    let parts: Vec<&str> = corner.split('/').collect();
-    let (v, vt, vn) = match parts.as_slice() {
-        [v] => (*v, None, None),
-        [v, vt] => (*v, Some(*vt), None),
-        [v, "", vn] => (*v, None, Some(*vn)),
-        [v, vt, vn] => (*v, Some(*vt), Some(*vn)),
+    let mut parts = corner.split('/');
+    let (v, vt, vn) = match (parts.next(), parts.next(), parts.next(), parts.next()) {
+        (Some(v), None, _, _) => (v, None, None),
+        (Some(v), Some(vt), None, _) => (v, Some(vt), None),
+        (Some(v), Some(""), Some(vn), None) => (v, None, Some(vn)),
+        (Some(v), Some(vt), Some(vn), None) => (v, Some(vt), Some(vn)),
         _ => return Err(malformed_corner(corner)),
     };
     if v.is_empty() || vt == Some("") || vn == Some("") {

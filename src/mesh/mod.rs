@@ -258,36 +258,50 @@ impl Mesh {
         polygons: Vec<Polygon>,
         validation: Validation,
     ) -> Result<Mesh, MeshError> {
-        let mut faces = Vec::with_capacity(polygons.len());
-        let mut triangles = Vec::with_capacity(polygons.len() * 2);
-        let (mut degenerate_faces, mut split_polygons) = (0, 0);
-        for (fi, (idx, diagonals, polygon)) in polygons.into_iter().enumerate() {
-            match build::shape(&vertices, idx, fi, validation)? {
-                Shape::Degenerate => degenerate_faces += 1,
-                Shape::Planar(idx, local) => {
-                    let (face, tris) = build::face(
-                        &vertices,
-                        (idx, diagonals, polygon),
-                        &local,
-                        triangles.len(),
-                    );
-                    triangles.extend(tris);
-                    faces.push(face);
-                }
-                Shape::Split(idx, local) => {
-                    split_polygons += 1;
-                    for t in &local {
-                        let corners = t.iter().map(|&k| idx[k]).collect();
-                        let (face, tris) = build::face(
-                            &vertices,
-                            (corners, diagonals_of(t, idx.len()), polygon),
-                            &[[0, 1, 2]],
-                            triangles.len(),
-                        );
-                        triangles.extend(tris);
-                        faces.push(face);
+        use rayon::prelude::*;
+        // Each polygon validated and made into faces independently, in parallel; the first
+        // error by polygon index is reported, whatever the threads; the triangle ranges are
+        // assigned in order afterwards.
+        type Built = (bool, bool, Vec<(Face, Vec<[u32; 3]>)>);
+        let built: Vec<Result<Built, MeshError>> = polygons
+            .into_par_iter()
+            .enumerate()
+            .map(|(fi, (idx, diagonals, polygon))| {
+                Ok(match build::shape(&vertices, idx, fi, validation)? {
+                    Shape::Degenerate => (true, false, Vec::new()),
+                    Shape::Planar(idx, local) => {
+                        let face = build::face(&vertices, (idx, diagonals, polygon), &local, 0);
+                        (false, false, vec![face])
                     }
-                }
+                    Shape::Split(idx, local) => {
+                        let faces = local
+                            .iter()
+                            .map(|t| {
+                                let corners = t.iter().map(|&k| idx[k]).collect();
+                                build::face(
+                                    &vertices,
+                                    (corners, diagonals_of(t, idx.len()), polygon),
+                                    &[[0, 1, 2]],
+                                    0,
+                                )
+                            })
+                            .collect();
+                        (false, true, faces)
+                    }
+                })
+            })
+            .collect();
+        let mut faces = Vec::with_capacity(built.len());
+        let mut triangles = Vec::with_capacity(built.len() * 2);
+        let (mut degenerate_faces, mut split_polygons) = (0, 0);
+        for b in built {
+            let (degenerate, split, made) = b?;
+            degenerate_faces += usize::from(degenerate);
+            split_polygons += usize::from(split);
+            for (mut face, tris) in made {
+                face.triangles = triangles.len()..triangles.len() + tris.len();
+                triangles.extend(tris);
+                faces.push(face);
             }
         }
         let junctions = topology::junctions(&vertices, &faces);
@@ -638,6 +652,58 @@ impl Mesh {
             })
             .collect();
         Mesh::rebuilt(vertices, polygons, [self])
+    }
+
+    /// The mesh scaled by `2^exponent`, when that is exact for every coordinate (no overflow,
+    /// no bit lost below the normal range); `None` otherwise.
+    ///
+    /// Every sign the mesh was built from is a sign of a polynomial in the coordinates, the
+    /// same after an exact scaling, so the faces, their triangulations, the topology and the
+    /// T-junctions are the mesh's own: only what is rounded from coordinates (each face's
+    /// plane, texture frame and area) is computed again, from the scaled vertices, as a
+    /// rebuild would. Bringing a million-triangle scene into the working range then costs a
+    /// pass over its faces, not a new validation.
+    ///
+    /// ```
+    /// let sphere = kepler::solids::uv_sphere(1.0, 16, 8).unwrap();
+    /// let big = sphere.scaled_exactly(40).unwrap();
+    /// let rebuilt = sphere.transformed(&nalgebra::Matrix4::new_scaling(2f64.powi(40))).unwrap();
+    /// assert_eq!(big, rebuilt);
+    /// assert!(sphere.scaled_exactly(2000).is_none());
+    /// ```
+    pub fn scaled_exactly(&self, exponent: i32) -> Option<Mesh> {
+        use rayon::prelude::*;
+        let scale = |c: f64| {
+            let s = build::times_power_of_two(c, exponent);
+            (s.is_finite() && build::times_power_of_two(s, -exponent) == c).then_some(s)
+        };
+        let vertices: Vec<Point3> = self
+            .vertices
+            .par_iter()
+            .map(|p| Some(Point3::new(scale(p.x)?, scale(p.y)?, scale(p.z)?)))
+            .collect::<Option<_>>()?;
+        let faces = self
+            .faces
+            .par_iter()
+            .map(|f| {
+                let local: Vec<[usize; 3]> = self.triangles[f.triangles.clone()]
+                    .iter()
+                    .map(|t| t.map(|v| f.vertices.iter().position(|&w| w == v).unwrap_or(0)))
+                    .collect();
+                let polygon = (f.vertices.clone(), f.diagonals, f.polygon);
+                build::face(&vertices, polygon, &local, f.triangles.start).0
+            })
+            .collect();
+        Some(Mesh {
+            vertices,
+            faces,
+            triangles: self.triangles.clone(),
+            topology: self.topology,
+            merged_vertices: self.merged_vertices,
+            degenerate_faces: self.degenerate_faces,
+            split_polygons: self.split_polygons,
+            junctions: self.junctions.clone(),
+        })
     }
 
     /// The meshes as one: their vertex lists appended (equal vertices merged) and their faces

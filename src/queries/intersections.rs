@@ -94,7 +94,10 @@ pub(crate) fn meetings(
             |(mut crossing, mut contacts): Found, &(i, j)| {
                 let (i, j) = (i as usize, j as usize);
                 if let Some([s0, s1]) = sides(m0, i, m1, j) {
-                    if crosses(&s0, m0, i) && crosses(&s1, m1, j) {
+                    if crosses(&s0, m0, i)
+                        && crosses(&s1, m1, j)
+                        && !surely_apart(&m0.triangle(i), &m1.triangle(j))
+                    {
                         crossing.push((i, j, [s0, s1]));
                     }
                     // (Also for a pair that pierces: it may meet in one point, no segment.)
@@ -260,8 +263,14 @@ fn candidate_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32)> {
         .par_iter()
         .fold(Vec::new, |mut out, run| {
             if same {
-                let tris: Vec<u32> = run.iter().map(of).collect();
-                same_mesh_pairs(m0, &b0, &tris, &mut out);
+                let tris: Vec<CellTriangle> = run
+                    .iter()
+                    .map(|item| {
+                        let t = of(item);
+                        (t, m0.triangles()[t as usize], b0[t as usize])
+                    })
+                    .collect();
+                same_mesh_pairs(m0, &tris, &mut out);
             } else {
                 // Items sort by mesh within a cell (mesh 0 first): split there.
                 let (firsts, seconds) = run.split_at(run.partition_point(|i| i.1 >> 31 == 0));
@@ -317,22 +326,25 @@ fn cell_side(m0: &Mesh, b0: &[Aabb], other: Option<(&Mesh, &[Aabb])>) -> f64 {
     if side.is_finite() { side } else { boxes }
 }
 
-/// The pairs among the triangles `tris` of one cell of mesh `m` (boxes `b`) whose boxes meet
-/// and that share no vertex and no face, appended to `out` as `(smaller, larger)`. Where at
-/// least a quarter of them share one vertex (a hub), those are paired only with the others,
-/// and the others among themselves the same way.
-fn same_mesh_pairs(m: &Mesh, b: &[Aabb], tris: &[u32], out: &mut Vec<(u32, u32)>) {
-    let test = |i: u32, j: u32, out: &mut Vec<(u32, u32)>| {
-        let (i, j) = (i.min(j), i.max(j));
-        if b[i as usize].intersects(&b[j as usize]) && !neighbours(m, i as usize, j as usize) {
-            out.push((i, j));
+/// A triangle of a cell, with what the pair tests read: its index, vertices and box (copied
+/// together, so a cell's pairs read one small array instead of the whole mesh).
+type CellTriangle = (u32, [u32; 3], Aabb);
+
+/// The pairs among the triangles `tris` of one cell of mesh `m` whose boxes meet and that
+/// share no vertex and no face, appended to `out` as `(smaller, larger)`. Where at least a
+/// quarter of them share one vertex (a hub), those are paired only with the others, and the
+/// others among themselves the same way.
+fn same_mesh_pairs(m: &Mesh, tris: &[CellTriangle], out: &mut Vec<(u32, u32)>) {
+    let test = |x: &CellTriangle, y: &CellTriangle, out: &mut Vec<(u32, u32)>| {
+        if x.2.intersects(&y.2)
+            && !shares_vertex(&x.1, &y.1)
+            && m.face_of(x.0 as usize) != m.face_of(y.0 as usize)
+        {
+            out.push((x.0.min(y.0), x.0.max(y.0)));
         }
     };
     if tris.len() > 16 {
-        let mut vertices: Vec<u32> = tris
-            .iter()
-            .flat_map(|&t| m.triangles()[t as usize])
-            .collect();
+        let mut vertices: Vec<u32> = tris.iter().flat_map(|t| t.1).collect();
         vertices.sort_unstable();
         let (hub, count) = vertices
             .chunk_by(|x, y| x == y)
@@ -340,23 +352,55 @@ fn same_mesh_pairs(m: &Mesh, b: &[Aabb], tris: &[u32], out: &mut Vec<(u32, u32)>
             .max_by(|x, y| x.1.cmp(&y.1).then(y.0.cmp(&x.0)))
             .unwrap_or((0, 0));
         if 4 * count >= tris.len() {
-            let (at, rest): (Vec<u32>, Vec<u32>) = tris
-                .iter()
-                .partition(|&&t| m.triangles()[t as usize].contains(&hub));
-            for &i in &at {
-                for &j in &rest {
-                    test(i, j, out);
+            let (at, rest): (Vec<CellTriangle>, Vec<CellTriangle>) =
+                tris.iter().partition(|t| t.1.contains(&hub));
+            for x in &at {
+                for y in &rest {
+                    test(x, y, out);
                 }
             }
-            same_mesh_pairs(m, b, &rest, out);
+            same_mesh_pairs(m, &rest, out);
             return;
         }
     }
-    for (n, &i) in tris.iter().enumerate() {
-        for &j in &tris[n + 1..] {
-            test(i, j, out);
+    for (n, x) in tris.iter().enumerate() {
+        for y in &tris[n + 1..] {
+            test(x, y, out);
         }
     }
+}
+
+/// Whether the closed triangles `a` and `b` are certainly disjoint: some direction across an
+/// edge of each (one of the nine cross products of their sides) separates their projections by
+/// more than the rounding of the projections can move them. A filter before the exact section
+/// of a pair whose planes cross (on a curved surface, most near neighbours cross each other's
+/// planes without meeting): the direction may be rounded, any direction that separates proves
+/// them apart; only the comparison must be sure, and each projection `p·d` is within
+/// `γ₃·Σ|pₖ·dₖ|` of its rounded value (with a term for underflow).
+fn surely_apart(a: &[Point3; 3], b: &[Point3; 3]) -> bool {
+    const GAMMA: f64 = 4.0 * f64::EPSILON / 2.0;
+    let sides = |t: &[Point3; 3]| [t[1] - t[0], t[2] - t[1], t[0] - t[2]];
+    let (sa, sb) = (sides(a), sides(b));
+    let range = |t: &[Point3; 3], d: &crate::geometry::Vector3| {
+        t.iter().fold(
+            (f64::INFINITY, f64::NEG_INFINITY, 0.0f64),
+            |(lo, hi, err), p| {
+                let v = p.x * d.x + p.y * d.y + p.z * d.z;
+                let e = (p.x * d.x).abs() + (p.y * d.y).abs() + (p.z * d.z).abs();
+                (lo.min(v), hi.max(v), err.max(e))
+            },
+        )
+    };
+    sa.iter().any(|ea| {
+        sb.iter().any(|eb| {
+            let d = ea.cross(eb);
+            let (alo, ahi, ae) = range(a, &d);
+            let (blo, bhi, be) = range(b, &d);
+            let slack = GAMMA * (ae + be) + 8.0 * f64::MIN_POSITIVE;
+            let gap = (blo - ahi).max(alo - bhi);
+            gap.is_finite() && gap > slack
+        })
+    })
 }
 
 /// Up to this many triangle pairs, every pair is tested: no grid.
@@ -758,6 +802,43 @@ mod tests {
             faces.push(vec![v, v + 1, v + 2]);
         }
         Mesh::from_polygons(vertices, faces).unwrap()
+    }
+
+    #[test]
+    fn triangles_surely_apart_make_nothing() {
+        // Pairs of the soups, and pairs that touch exactly: at a vertex, along an edge, a
+        // vertex on the other's interior; and pairs apart by one ulp.
+        let mut apart = 0;
+        for seed in 0..3 {
+            let (s, t) = (soup(300, seed), soup(300, seed + 50));
+            for i in 0..s.triangles().len() {
+                for j in 0..t.triangles().len() {
+                    if surely_apart(&s.triangle(i), &t.triangle(j)) {
+                        apart += 1;
+                        assert!(!productive(&s, i, &t, j), "{i} {j} are not apart");
+                    }
+                }
+            }
+        }
+        assert!(apart > 10_000);
+        let p = |x: f64, y: f64, z: f64| Point3::new(x, y, z);
+        let a = [p(0.0, 0.0, 0.0), p(1.0, 0.0, 0.0), p(0.0, 1.0, 0.0)];
+        let touching = [
+            [p(1.0, 0.0, 0.0), p(2.0, 1.0, 1.0), p(2.0, -1.0, 0.5)],
+            [p(0.5, 0.5, 0.0), p(0.5, 0.5, 1.0), p(1.5, 1.5, 0.3)],
+            [p(0.25, 0.25, 0.0), p(3.0, 1.0, 1.0), p(1.0, 3.0, -1.0)],
+            [p(0.1, 0.1, -1.0), p(0.1, 0.1, 1.0), p(-3.0, 0.1, 0.0)],
+        ];
+        for b in &touching {
+            assert!(!surely_apart(&a, b), "{b:?} touches");
+            assert!(!surely_apart(b, &a), "{b:?} touches");
+        }
+        let next = 1.0f64.next_up();
+        let beyond = [p(next, 0.0, 0.0), p(2.0, 1.0, 1.0), p(2.0, -1.0, 0.5)];
+        // One ulp away is apart, but too close for the filter to be sure: the exact test decides.
+        assert!(!surely_apart(&a, &beyond));
+        let far = [p(1.5, 0.0, 0.0), p(2.0, 1.0, 1.0), p(2.0, -1.0, 0.5)];
+        assert!(surely_apart(&a, &far));
     }
 
     #[test]

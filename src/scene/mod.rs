@@ -34,7 +34,7 @@ use crate::io::FileError;
 use crate::mesh::{Mesh, MeshError};
 use crate::solids::SolidError;
 use slotmap::SlotMap;
-use std::sync::OnceLock;
+use std::sync::{Arc, OnceLock};
 
 /// What went wrong building or reading a scene: the scene layer's error.
 ///
@@ -127,8 +127,9 @@ slotmap::new_key_type! {
 pub enum Content {
     /// Subobjects, in order.
     Subobjects(Vec<ObjectId>),
-    /// Vertices and faces.
-    Mesh(Mesh),
+    /// Vertices and faces (shared: copying a scene, to scale it, say, does not copy its
+    /// meshes).
+    Mesh(Arc<Mesh>),
 }
 
 /// One object of the scene: a name, its content, and its cached bounds.
@@ -349,7 +350,7 @@ impl Scene {
         name: impl Into<String>,
         mesh: Mesh,
     ) -> Result<ObjectId> {
-        self.insert(parent, name.into(), Content::Mesh(mesh))
+        self.insert(parent, name.into(), Content::Mesh(Arc::new(mesh)))
     }
 
     /// Places a copy of the subtree `source` under `parent` with `transform` applied to every
@@ -427,12 +428,12 @@ impl Scene {
         };
         let source_name = src.name.clone();
         let content = match &src.content {
-            Content::Mesh(mesh) => {
-                Content::Mesh(mesh.transformed(m).map_err(|e| SceneError::Object {
+            Content::Mesh(mesh) => Content::Mesh(Arc::new(mesh.transformed(m).map_err(|e| {
+                SceneError::Object {
                     object: name.clone(),
                     problem: ObjectProblem::Mesh(e),
-                })?)
-            }
+                }
+            })?)),
             Content::Subobjects(_) => Content::Subobjects(Vec::new()),
         };
         let children = src.subobjects().to_vec();
@@ -857,14 +858,17 @@ impl Scene {
             if let Content::Mesh(mesh) = &o.content
                 && chosen(id)
             {
-                let scaled = mesh
-                    .transformed(&steps[0])
-                    .and_then(|m| m.transformed(&steps[1]))
-                    .map_err(|e| SceneError::Object {
-                        object: o.name.clone(),
-                        problem: ObjectProblem::Mesh(e),
-                    })?;
-                o.content = Content::Mesh(scaled);
+                let scaled = match mesh.scaled_exactly(exponent) {
+                    Some(m) => Ok(m),
+                    None => mesh
+                        .transformed(&steps[0])
+                        .and_then(|m| m.transformed(&steps[1])),
+                }
+                .map_err(|e| SceneError::Object {
+                    object: o.name.clone(),
+                    problem: ObjectProblem::Mesh(e),
+                })?;
+                o.content = Content::Mesh(Arc::new(scaled));
             }
             o.cbox = OnceLock::new();
             o.inbox = OnceLock::new();
