@@ -184,6 +184,9 @@ pub struct Mesh {
     junctions: Vec<Junction>,
 }
 
+/// From this many polygons on, a mesh's polygons are validated in parallel.
+const PARALLEL_POLYGONS: usize = 4096;
+
 /// A polygon to become faces: its vertex loop, which of its sides are diagonals of a split
 /// polygon (bit `i`: the side from vertex `i`), and the input polygon it is (part of).
 type Polygon = (Vec<u32>, u8, u32);
@@ -263,45 +266,57 @@ impl Mesh {
         // error by polygon index is reported, whatever the threads; the triangle ranges are
         // assigned in order afterwards.
         type Built = (bool, bool, Vec<(Face, Vec<[u32; 3]>)>);
-        let built: Vec<Result<Built, MeshError>> = polygons
-            .into_par_iter()
-            .enumerate()
-            .map(|(fi, (idx, diagonals, polygon))| {
-                Ok(match build::shape(&vertices, idx, fi, validation)? {
-                    Shape::Degenerate => (true, false, Vec::new()),
-                    Shape::Planar(idx, local) => {
-                        let face = build::face(&vertices, (idx, diagonals, polygon), &local, 0);
-                        (false, false, vec![face])
-                    }
-                    Shape::Split(idx, local) => {
-                        let faces = local
-                            .iter()
-                            .map(|t| {
-                                let corners = t.iter().map(|&k| idx[k]).collect();
-                                build::face(
-                                    &vertices,
-                                    (corners, diagonals_of(t, idx.len()), polygon),
-                                    &[[0, 1, 2]],
-                                    0,
-                                )
-                            })
-                            .collect();
-                        (false, true, faces)
-                    }
-                })
+        let one = |(fi, (idx, diagonals, polygon)): (usize, Polygon)| -> Result<Built, MeshError> {
+            Ok(match build::shape(&vertices, idx, fi, validation)? {
+                Shape::Degenerate => (true, false, Vec::new()),
+                Shape::Planar(idx, local) => {
+                    let face = build::face(&vertices, (idx, diagonals, polygon), &local, 0);
+                    (false, false, vec![face])
+                }
+                Shape::Split(idx, local) => {
+                    let faces = local
+                        .iter()
+                        .map(|t| {
+                            let corners = t.iter().map(|&k| idx[k]).collect();
+                            build::face(
+                                &vertices,
+                                (corners, diagonals_of(t, idx.len()), polygon),
+                                &[[0, 1, 2]],
+                                0,
+                            )
+                        })
+                        .collect();
+                    (false, true, faces)
+                }
             })
-            .collect();
-        let mut faces = Vec::with_capacity(built.len());
-        let mut triangles = Vec::with_capacity(built.len() * 2);
+        };
+        // In blocks, each in parallel, so that what a block made is moved into place before
+        // the next is made; small meshes (the copies of an array) on the calling thread:
+        // handing a few polygons to the pool costs more than building them.
+        let mut faces = Vec::with_capacity(polygons.len());
+        let mut triangles = Vec::with_capacity(polygons.len() * 2);
         let (mut degenerate_faces, mut split_polygons) = (0, 0);
-        for b in built {
-            let (degenerate, split, made) = b?;
-            degenerate_faces += usize::from(degenerate);
-            split_polygons += usize::from(split);
-            for (mut face, tris) in made {
-                face.triangles = triangles.len()..triangles.len() + tris.len();
-                triangles.extend(tris);
-                faces.push(face);
+        let parallel = polygons.len() >= PARALLEL_POLYGONS;
+        let mut polygons = polygons.into_iter().enumerate();
+        loop {
+            let block: Vec<(usize, Polygon)> = polygons.by_ref().take(1 << 16).collect();
+            if block.is_empty() {
+                break;
+            }
+            let built: Vec<Result<Built, MeshError>> = if parallel {
+                block.into_par_iter().map(one).collect()
+            } else {
+                block.into_iter().map(one).collect()
+            };
+            for b in built {
+                let (degenerate, split, made) = b?;
+                degenerate_faces += usize::from(degenerate);
+                split_polygons += usize::from(split);
+                for (mut face, tris) in made {
+                    face.triangles = triangles.len()..triangles.len() + tris.len();
+                    triangles.extend(tris);
+                    faces.push(face);
+                }
             }
         }
         let junctions = topology::junctions(&vertices, &faces);
@@ -677,23 +692,29 @@ impl Mesh {
             let s = build::times_power_of_two(c, exponent);
             (s.is_finite() && build::times_power_of_two(s, -exponent) == c).then_some(s)
         };
-        let vertices: Vec<Point3> = self
-            .vertices
-            .par_iter()
-            .map(|p| Some(Point3::new(scale(p.x)?, scale(p.y)?, scale(p.z)?)))
-            .collect::<Option<_>>()?;
-        let faces = self
-            .faces
-            .par_iter()
-            .map(|f| {
-                let local: Vec<[usize; 3]> = self.triangles[f.triangles.clone()]
-                    .iter()
-                    .map(|t| t.map(|v| f.vertices.iter().position(|&w| w == v).unwrap_or(0)))
-                    .collect();
-                let polygon = (f.vertices.clone(), f.diagonals, f.polygon);
-                build::face(&vertices, polygon, &local, f.triangles.start).0
-            })
-            .collect();
+        let parallel = self.faces.len() >= PARALLEL_POLYGONS;
+        let vertex = |p: &Point3| Some(Point3::new(scale(p.x)?, scale(p.y)?, scale(p.z)?));
+        let vertices: Vec<Point3> = if parallel {
+            self.vertices
+                .par_iter()
+                .map(vertex)
+                .collect::<Option<_>>()?
+        } else {
+            self.vertices.iter().map(vertex).collect::<Option<_>>()?
+        };
+        let face = |f: &Face| {
+            let local: Vec<[usize; 3]> = self.triangles[f.triangles.clone()]
+                .iter()
+                .map(|t| t.map(|v| f.vertices.iter().position(|&w| w == v).unwrap_or(0)))
+                .collect();
+            let polygon = (f.vertices.clone(), f.diagonals, f.polygon);
+            build::face(&vertices, polygon, &local, f.triangles.start).0
+        };
+        let faces = if parallel {
+            self.faces.par_iter().map(face).collect()
+        } else {
+            self.faces.iter().map(face).collect()
+        };
         Some(Mesh {
             vertices,
             faces,
