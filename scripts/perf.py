@@ -2,11 +2,15 @@
 """Whole-process timings of kepler on large and pathological scenes (issue 16).
 
     cargo build --release && python3 scripts/perf.py [--only NAME,...] [--dir DIR] [--runs N]
+        [--baseline OTHER/target/release/kepler]
 
 Generates the scenes (plain Python, no packages; cached in DIR, default target/perf), runs
 each job as a new user would (the release binary, reading the files and writing the SVG),
 and prints the median wall time of N runs (default 3) and the peak resident memory of the
-process (from wait4's rusage), with bytes per triangle where the scene has one mesh.
+process (from wait4's rusage), with bytes per triangle where the scene has one mesh. With
+`--baseline`, each run of this build alternates with a run of the other binary (an older
+commit built elsewhere), and the table gives both medians and their ratio: measured in the
+same run, so the noise of a shared machine falls on both.
 """
 
 import argparse
@@ -189,9 +193,9 @@ rings = %d
     return jobs
 
 
-def run(args):
+def run(args, binary=KEPLER):
     start = time.perf_counter()
-    proc = subprocess.Popen([KEPLER] + args, stdout=subprocess.DEVNULL,
+    proc = subprocess.Popen([binary] + args, stdout=subprocess.DEVNULL,
                             stderr=subprocess.PIPE)
     try:
         _, status, usage = os.wait4(proc.pid, 0)
@@ -212,6 +216,7 @@ def main():
     p.add_argument("--timeout", type=float, default=120.0,
                    help="skip further runs of a job slower than this many seconds")
     p.add_argument("--generate", action="store_true", help="only write the scenes")
+    p.add_argument("--baseline", help="another kepler binary to run alternately")
     a = p.parse_args()
     if a.generate:
         scenes(a.dir)
@@ -222,23 +227,40 @@ def main():
     # parent's (fork keeps the high-water mark), so this process must stay small.
     subprocess.run([sys.executable, __file__, "--generate", "--dir", a.dir], check=True)
     only = [s for s in a.only.split(",") if s]
-    print("%-34s %10s %10s %10s" % ("job", "seconds", "peak MB", "B/tri"))
+    binaries = [KEPLER] + ([a.baseline] if a.baseline else [])
+    header = "%-34s %10s %10s %10s" % ("job", "seconds", "peak MB", "B/tri")
+    if a.baseline:
+        header += " %12s %10s %8s" % ("baseline s", "base MB", "speed-up")
+    print(header, flush=True)
     for name, args, tris in scenes(a.dir):
         if only and not any(s in name for s in only):
             continue
-        times, peak = [], 0
+        times = [[] for _ in binaries]
+        peaks = [0 for _ in binaries]
+        failed = False
         for _ in range(a.runs):
-            seconds, rss, code, err = run(args)
-            if code != 0:
-                print("%-34s failed (exit %d): %s" % (name, code, err.strip()[-300:]))
+            for k, binary in enumerate(binaries):
+                if times[k] and times[k][-1] > a.timeout:
+                    continue
+                seconds, rss, code, err = run(args, binary)
+                if code != 0:
+                    print("%-34s failed (exit %d) with %s: %s" % (name, code, binary,
+                                                                 err.strip()[-300:]))
+                    failed = True
+                    break
+                times[k].append(seconds)
+                peaks[k] = max(peaks[k], rss)
+            if failed:
                 break
-            times.append(seconds)
-            peak = max(peak, rss)
-            if seconds > a.timeout:
-                break
-        if times:
-            print("%-34s %10.3f %10.0f %10.0f" % (name, statistics.median(times), peak / 1e6,
-                                                 peak / tris), flush=True)
+        if failed or not times[0]:
+            continue
+        line = "%-34s %10.3f %10.0f %10.0f" % (name, statistics.median(times[0]),
+                                               peaks[0] / 1e6, peaks[0] / tris)
+        if a.baseline and times[1]:
+            base = statistics.median(times[1])
+            line += " %12.3f %10.0f %7.1fx" % (base, peaks[1] / 1e6,
+                                              base / statistics.median(times[0]))
+        print(line, flush=True)
 
 
 if __name__ == "__main__":
