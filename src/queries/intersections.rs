@@ -261,30 +261,33 @@ fn candidate_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32)> {
     let of = |item: &(u64, u32)| item.1 & 0x7fff_ffff;
     let mut pairs: Vec<(u32, u32)> = runs
         .par_iter()
-        .fold(Vec::new, |mut out, run| {
-            if same {
-                let tris: Vec<CellTriangle> = run
-                    .iter()
-                    .map(|item| {
+        .fold(
+            || (Vec::new(), Vec::new()),
+            |(mut out, mut tris): (Vec<(u32, u32)>, Vec<CellTriangle>), run| {
+                if same {
+                    // One buffer per thread for the cells' triangles, not one per cell.
+                    tris.clear();
+                    tris.extend(run.iter().map(|item| {
                         let t = of(item);
                         (t, m0.triangles()[t as usize], b0[t as usize])
-                    })
-                    .collect();
-                same_mesh_pairs(m0, &tris, &mut out);
-            } else {
-                // Items sort by mesh within a cell (mesh 0 first): split there.
-                let (firsts, seconds) = run.split_at(run.partition_point(|i| i.1 >> 31 == 0));
-                for x in firsts {
-                    for y in seconds {
-                        let (i, j) = (of(x), of(y));
-                        if b0[i as usize].intersects(&b1[j as usize]) {
-                            out.push((i, j));
+                    }));
+                    same_mesh_pairs(m0, &tris, &mut out);
+                } else {
+                    // Items sort by mesh within a cell (mesh 0 first): split there.
+                    let (firsts, seconds) = run.split_at(run.partition_point(|i| i.1 >> 31 == 0));
+                    for x in firsts {
+                        for y in seconds {
+                            let (i, j) = (of(x), of(y));
+                            if b0[i as usize].intersects(&b1[j as usize]) {
+                                out.push((i, j));
+                            }
                         }
                     }
                 }
-            }
-            out
-        })
+                (out, tris)
+            },
+        )
+        .map(|(out, _)| out)
         .reduce(Vec::new, |mut x, mut y| {
             x.append(&mut y);
             x
