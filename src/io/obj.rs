@@ -26,7 +26,7 @@
 use super::{FileError, Result};
 use super::{finite, located_at_lines, quoted, strip_bom, strip_comment};
 use crate::geometry::Point3;
-use crate::mesh::{Mesh, Validation};
+use crate::mesh::{Loop, Mesh, Validation};
 use std::borrow::Cow;
 
 /// Parses the text of an OBJ file; `path` names the file in error messages.
@@ -57,12 +57,155 @@ pub fn parse(text: &str, path: &str) -> Result<Mesh> {
 /// assert!(err.to_string().starts_with("q.obj:5: face 1 is not planar"));
 /// ```
 pub fn parse_with(text: &str, path: &str, validation: Validation) -> Result<Mesh> {
-    let mut vertices = Vec::new();
-    let mut vertex_lines = Vec::new();
-    let mut faces = Vec::new();
-    let mut face_lines = Vec::new();
-    let (mut texture_coordinates, mut normals) = (0, 0);
-    for (line, statement) in statements(strip_bom(text)) {
+    parse_in_pieces(text, path, validation, PIECE)
+}
+
+/// [`parse_with`], reading the text in pieces of about `piece` bytes.
+fn parse_in_pieces(text: &str, path: &str, validation: Validation, piece: usize) -> Result<Mesh> {
+    use rayon::prelude::*;
+    // Two passes over pieces of the text that start at statements, each piece in parallel:
+    // the first counts the lines and the elements each defines, the second parses it knowing
+    // how many of each are defined before it, straight into its place in the output. Every
+    // statement is read as a sequential reader reads it, and the first error of the first
+    // piece with one is the file's first error.
+    let pieces = pieces(strip_bom(text), piece);
+    let counts: Vec<Counts> = pieces.par_iter().map(|p| Counts::of(p)).collect();
+    let total = counts.iter().fold(Counts::default(), |s, c| s.plus(c));
+    let mut vertices = vec![Point3::origin(); total.vertices];
+    let mut vertex_lines = vec![0; total.vertices];
+    let mut faces = vec![Loop::new(); total.faces];
+    let mut face_lines = vec![0; total.faces];
+    let mut jobs = Vec::with_capacity(pieces.len());
+    let (mut v, mut vl, mut f, mut fl) = (
+        &mut vertices[..],
+        &mut vertex_lines[..],
+        &mut faces[..],
+        &mut face_lines[..],
+    );
+    let mut before = Counts::default();
+    for (text, count) in pieces.iter().zip(&counts) {
+        let (v_here, v_rest) = v.split_at_mut(count.vertices);
+        let (vl_here, vl_rest) = vl.split_at_mut(count.vertices);
+        let (f_here, f_rest) = f.split_at_mut(count.faces);
+        let (fl_here, fl_rest) = fl.split_at_mut(count.faces);
+        jobs.push((
+            *text,
+            before.clone(),
+            Out {
+                vertices: v_here,
+                vertex_lines: vl_here,
+                faces: f_here,
+                face_lines: fl_here,
+            },
+        ));
+        (v, vl, f, fl) = (v_rest, vl_rest, f_rest, fl_rest);
+        before = before.plus(count);
+    }
+    let results: Vec<Result<()>> = if jobs.len() > 1 {
+        jobs.into_par_iter()
+            .map(|(text, before, out)| parse_piece(text, path, &before, out))
+            .collect()
+    } else {
+        jobs.into_iter()
+            .map(|(text, before, out)| parse_piece(text, path, &before, out))
+            .collect()
+    };
+    results.into_iter().collect::<Result<()>>()?;
+    Mesh::from_loops_with(vertices, faces, validation)
+        .map_err(|e| located_at_lines(path, e, &vertex_lines, &face_lines))
+}
+
+/// Texts of at least this many bytes are read in pieces of about this size, in parallel.
+const PIECE: usize = 1 << 20;
+
+/// The text cut into pieces of about `size` bytes, each starting at a statement: after a
+/// line whose content (without its comment) is not blank and does not end with `\`, which
+/// therefore ends its statement whatever came before.
+fn pieces(text: &str, size: usize) -> Vec<&str> {
+    let mut pieces = Vec::with_capacity(text.len() / size + 1);
+    let mut start = 0;
+    while text.len() - start > size {
+        let mut cut = start + size;
+        let found = loop {
+            let Some(newline) = text.as_bytes()[cut..].iter().position(|&b| b == b'\n') else {
+                break None;
+            };
+            let end = cut + newline;
+            let line_start = text[..end].rfind('\n').map_or(0, |i| i + 1);
+            let content = strip_comment(&text[line_start..end]).trim_end();
+            if !content.is_empty() && !content.ends_with('\\') {
+                break Some(end + 1);
+            }
+            cut = end + 1;
+        };
+        match found {
+            Some(cut) => {
+                pieces.push(&text[start..cut]);
+                start = cut;
+            }
+            None => break,
+        }
+    }
+    pieces.push(&text[start..]);
+    pieces
+}
+
+/// How many lines, vertices, texture coordinates, normals and faces a piece of text has.
+#[derive(Clone, Default)]
+struct Counts {
+    lines: usize,
+    vertices: usize,
+    texture_coordinates: usize,
+    normals: usize,
+    faces: usize,
+}
+
+impl Counts {
+    /// The counts of a piece: its statements' keywords (what [`parse_piece`] reads them as).
+    fn of(text: &str) -> Counts {
+        let mut c = Counts {
+            lines: text.bytes().filter(|&b| b == b'\n').count()
+                + usize::from(!text.is_empty() && !text.ends_with('\n')),
+            ..Counts::default()
+        };
+        for (_, statement) in statements(text) {
+            match statement.split_whitespace().next() {
+                Some("v") => c.vertices += 1,
+                Some("vt") => c.texture_coordinates += 1,
+                Some("vn") => c.normals += 1,
+                Some("f") => c.faces += 1,
+                _ => {}
+            }
+        }
+        c
+    }
+
+    fn plus(&self, other: &Counts) -> Counts {
+        Counts {
+            lines: self.lines + other.lines,
+            vertices: self.vertices + other.vertices,
+            texture_coordinates: self.texture_coordinates + other.texture_coordinates,
+            normals: self.normals + other.normals,
+            faces: self.faces + other.faces,
+        }
+    }
+}
+
+/// Where a piece's vertices and faces go, with their 1-based lines.
+struct Out<'a> {
+    vertices: &'a mut [Point3],
+    vertex_lines: &'a mut [usize],
+    faces: &'a mut [Loop],
+    face_lines: &'a mut [usize],
+}
+
+/// Parses a piece of the text, with `before` the counts of the text before it, into `out`
+/// (sized by [`Counts::of`]); the error is the piece's first.
+fn parse_piece(text: &str, path: &str, before: &Counts, out: Out<'_>) -> Result<()> {
+    let (mut vertices, mut faces) = (0, 0);
+    let (mut texture_coordinates, mut normals) = (before.texture_coordinates, before.normals);
+    for (line, statement) in statements(text) {
+        let line = before.lines + line;
         let mut tokens = statement.split_whitespace();
         let Some(keyword) = tokens.next() else {
             continue;
@@ -70,19 +213,21 @@ pub fn parse_with(text: &str, path: &str, validation: Validation) -> Result<Mesh
         let at_line = |message: String| FileError::at_line(path, line, message);
         match keyword {
             "v" => {
-                vertices.push(vertex(tokens).map_err(at_line)?);
-                vertex_lines.push(line);
+                out.vertices[vertices] = vertex(tokens).map_err(at_line)?;
+                out.vertex_lines[vertices] = line;
+                vertices += 1;
             }
             "vt" => texture_coordinates += 1,
             "vn" => normals += 1,
             "f" => {
                 let defined = Defined {
-                    vertices: vertices.len(),
+                    vertices: before.vertices + vertices,
                     texture_coordinates,
                     normals,
                 };
-                faces.push(face(tokens, &defined).map_err(at_line)?);
-                face_lines.push(line);
+                out.faces[faces] = face(tokens, &defined).map_err(at_line)?;
+                out.face_lines[faces] = line;
+                faces += 1;
             }
             "o" | "g" | "s" | "usemtl" | "mtllib" => {}
             "p" | "l" => {
@@ -102,8 +247,7 @@ pub fn parse_with(text: &str, path: &str, validation: Validation) -> Result<Mesh
             _ => return Err(at_line(format!("unknown keyword {}", quoted(keyword)))),
         }
     }
-    Mesh::from_polygons_with(vertices, faces, validation)
-        .map_err(|e| located_at_lines(path, e, &vertex_lines, &face_lines))
+    Ok(())
 }
 
 /// How many elements of each kind are defined before a face.
@@ -183,7 +327,7 @@ fn vertex<'a>(tokens: impl Iterator<Item = &'a str>) -> Result<Point3, String> {
 
 /// The vertex indices (0-based) of an `f` statement, checking the texture coordinate and
 /// normal indices too.
-fn face<'a>(tokens: impl Iterator<Item = &'a str>, defined: &Defined) -> Result<Vec<u32>, String> {
+fn face<'a>(tokens: impl Iterator<Item = &'a str>, defined: &Defined) -> Result<Loop, String> {
     tokens.map(|corner| face_corner(corner, defined)).collect()
 }
 
@@ -245,4 +389,113 @@ fn index(token: &str, kind: &str, kinds: &str, defined: usize) -> Result<usize, 
     resolved.ok_or_else(|| {
         format!("{kind} index {i} is out of range: {defined} {kinds} are defined before this line")
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A small generator (no dependency needed for test data).
+    struct Lcg(u64);
+
+    impl Lcg {
+        fn below(&mut self, n: u64) -> u64 {
+            self.0 = self
+                .0
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (self.0 >> 33) % n
+        }
+    }
+
+    /// A random OBJ text over a grid of points: faces with absolute and relative indices,
+    /// texture coordinate and normal references, comments, blank lines, CRLF endings, lines
+    /// continued with `\` (also after a line ending in two of them), and now and then an
+    /// error (an index out of range, a malformed number, an unknown keyword).
+    fn random_obj(rng: &mut Lcg, errors: bool) -> String {
+        let mut text = String::new();
+        let (mut v, mut vt, mut vn) = (0i64, 0i64, 0i64);
+        for _ in 0..(20 + rng.below(200)) {
+            let end = if rng.below(8) == 0 { "\r\n" } else { "\n" };
+            match rng.below(12) {
+                0..=3 => {
+                    let c = [0; 3].map(|_| rng.below(4) as f64 - 1.5);
+                    text += &format!("v {} {} {}{end}", c[0], c[1], c[2]);
+                    v += 1;
+                }
+                4 => {
+                    text += &format!("vt 0.5 0.25{end}");
+                    vt += 1;
+                }
+                5 => {
+                    text += &format!("vn 0 0 1{end}");
+                    vn += 1;
+                }
+                6..=8 if v >= 3 => {
+                    text += "f";
+                    for _ in 0..3 + rng.below(2) {
+                        let i = 1 + rng.below(v as u64) as i64;
+                        let i = if rng.below(2) == 0 { i } else { i - v - 1 };
+                        text += &format!(" {i}");
+                        if vt > 0 && rng.below(3) == 0 {
+                            text += &format!("/{}", 1 + rng.below(vt as u64));
+                        } else if vn > 0 && rng.below(3) == 0 {
+                            text += &format!("//-{}", 1 + rng.below(vn as u64));
+                        }
+                        if rng.below(10) == 0 {
+                            text += " \\\n ";
+                        }
+                    }
+                    text += end;
+                }
+                9 => text += &format!("# a comment \\{end}"),
+                10 => {
+                    // Two backslashes, then a blank line: the statement goes on after it.
+                    text += &format!("v 1 2 \\\\{end}{end}0{end}");
+                    v += 1;
+                }
+                _ => text += end,
+            }
+            if errors && rng.below(150) == 0 {
+                text +=
+                    ["f 1 2 99999\n", "v 1 x 0\n", "q\n", "f 1 2 -99999\n"][rng.below(4) as usize];
+            }
+        }
+        text
+    }
+
+    #[test]
+    fn pieces_read_as_the_whole_text() {
+        let mut rng = Lcg(7);
+        for case in 0..300 {
+            let text = random_obj(&mut rng, case % 3 == 0);
+            let whole = parse_in_pieces(&text, "t.obj", Validation::Repair, usize::MAX);
+            for size in [1, 2, 5, 17, 64, 301] {
+                let pieces = pieces(&text, size);
+                assert_eq!(pieces.concat(), text);
+                let cut = parse_in_pieces(&text, "t.obj", Validation::Repair, size);
+                match (&whole, &cut) {
+                    (Ok(a), Ok(b)) => assert_eq!(a, b, "case {case}, size {size}"),
+                    (Err(a), Err(b)) => {
+                        assert_eq!(a.to_string(), b.to_string(), "case {case}, size {size}")
+                    }
+                    _ => panic!("case {case}, size {size}: {whole:?} against {cut:?}"),
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn an_error_late_in_a_large_file_names_its_line() {
+        let mut text = "v 0 0 0\nv 1 0 0\nv 0 1 0\n".to_owned();
+        text += &"f 1 2 3\n".repeat(300_000);
+        text += "f 1 2 -4\nf 1 2 x\n";
+        let err = parse(&text, "big.obj").unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "big.obj:300004: vertex index -4 is out of range: 3 vertices are defined before \
+             this line"
+        );
+        assert!(pieces(&text, PIECE).len() > 1);
+    }
 }

@@ -24,7 +24,7 @@
 use super::{FileError, Result};
 use super::{finite, last_line, located_at_lines, quoted, strip_bom, strip_comment};
 use crate::geometry::Point3;
-use crate::mesh::{Mesh, Validation};
+use crate::mesh::{Loop, Mesh, Validation};
 
 /// Parses the text of an OFF file; `path` names the file in error messages.
 ///
@@ -132,7 +132,7 @@ pub fn parse_with(text: &str, path: &str, validation: Validation) -> Result<Mesh
             ),
         ));
     }
-    Mesh::from_polygons_with(vertices, faces, validation)
+    Mesh::from_loops_with(vertices, faces, validation)
         .map_err(|e| located_at_lines(path, e, &vertex_lines, &face_lines))
 }
 
@@ -224,7 +224,7 @@ fn parse_counts(tokens: &[&str]) -> Result<(usize, usize), String> {
 }
 
 /// The 0-based vertex indices of a face line `n i1 .. in [colour]`, given the vertex count.
-fn face(tokens: &[&str], vertex_count: usize) -> Result<Vec<u32>, String> {
+fn face(tokens: &[&str], vertex_count: usize) -> Result<Loop, String> {
     let Some((n, rest)) = tokens.split_first() else {
         return Err("expected a face".into());
     };

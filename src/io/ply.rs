@@ -24,7 +24,7 @@
 
 use super::{FileError, Result, located, quoted, shortened};
 use crate::geometry::Point3;
-use crate::mesh::{Mesh, Validation};
+use crate::mesh::{Loop, Mesh, Validation};
 use ply_rs_bw::parser::{ParseError, Parser, Reader};
 use ply_rs_bw::ply::{
     ElementDef, Encoding, Header, PropertyAccess, PropertyAccessResult, PropertyType, ScalarType,
@@ -129,7 +129,7 @@ pub fn parse_with(bytes: &[u8], path: &str, validation: Validation) -> Result<Me
             }
         }
     }
-    Mesh::from_polygons_with(vertices, faces, validation).map_err(|e| {
+    Mesh::from_loops_with(vertices, faces, validation).map_err(|e| {
         located(
             path,
             e,
@@ -199,7 +199,7 @@ fn is_integer(t: &ScalarType) -> bool {
 }
 
 /// The 0-based vertex indices of a face, checked against the number of vertices.
-fn face(indices: &[i64], vertex_count: usize) -> Result<Vec<u32>, String> {
+fn face(indices: &[i64], vertex_count: usize) -> Result<Loop, String> {
     indices
         .iter()
         .map(|&i| match usize::try_from(i) {

@@ -33,7 +33,7 @@
 use super::{FileError, Result};
 use super::{finite, last_line, located, located_at_lines, quoted, strip_bom};
 use crate::geometry::Point3;
-use crate::mesh::{Mesh, Validation};
+use crate::mesh::{Loop, Mesh, Validation};
 use std::iter::Peekable;
 
 /// Parses the bytes of an STL file, ASCII or binary; `path` names the file in error messages.
@@ -161,7 +161,7 @@ fn binary(records: &[[u8; 50]], path: &str, validation: Validation) -> Result<Me
         }
         faces.push(face);
     }
-    Mesh::from_polygons_with(vertices, faces, validation).map_err(|e| {
+    Mesh::from_loops_with(vertices, faces, validation).map_err(|e| {
         located(
             path,
             e,
@@ -172,9 +172,9 @@ fn binary(records: &[[u8; 50]], path: &str, validation: Validation) -> Result<Me
 }
 
 /// The triangle of the three vertices numbered from `first` on, if their indices fit in `u32`.
-fn triangle(first: usize) -> Option<Vec<u32>> {
+fn triangle(first: usize) -> Option<Loop> {
     let last = u32::try_from(first.checked_add(2)?).ok()?;
-    Some(vec![last - 2, last - 1, last])
+    Some(Loop::from_slice(&[last - 2, last - 1, last]))
 }
 
 /// The 12 `f32` of a binary record (normal, three vertices), widened exactly to `f64`.
@@ -245,7 +245,7 @@ fn ascii(text: &str, path: &str, validation: Validation) -> Result<Mesh> {
             format!("unexpected {} after 'endsolid'", quoted(token)),
         ));
     }
-    Mesh::from_polygons_with(vertices, faces, validation)
+    Mesh::from_loops_with(vertices, faces, validation)
         .map_err(|e| located_at_lines(path, e, &vertex_lines, &face_lines))
 }
 

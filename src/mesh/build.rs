@@ -7,12 +7,15 @@
 //! (exact) when they are very large or very small, then scaled back, so they neither overflow
 //! nor underflow into nonsense at any scale.
 
-use super::face::{Face, Plane, TextureFrame};
+use super::face::{Face, Loop, Plane};
 use super::{MeshError, Validation};
 use crate::geometry::polygon::{dominant_axis, newell_normal, triangulate_along};
 use crate::geometry::predicates::{collinear, orient2d, orient3d, project};
 use crate::geometry::{Point3, Vector3};
+use foldhash::fast::FixedState;
+use smallvec::SmallVec;
 use std::cmp::Ordering;
+use std::collections::HashMap;
 
 /// Points whose largest coordinate magnitude lies in `[2^-SAFE, 2^SAFE]` (or is 0) are used
 /// as they are: products of up to four of their coordinates neither overflow nor underflow,
@@ -49,10 +52,19 @@ pub(crate) fn largest_coordinate<'a>(points: impl IntoIterator<Item = &'a Point3
         .fold(0.0, f64::max)
 }
 
+/// A polygon's points, inline for triangles and quads.
+pub(crate) type Points = SmallVec<[Point3; 4]>;
+
+/// Triangles of a polygon (indices into its loop), inline for triangles and quads.
+pub(crate) type Local = SmallVec<[[usize; 3]; 2]>;
+
+/// Triangles of a face (indices into the mesh's vertices), inline for triangles and quads.
+pub(crate) type Triangles = SmallVec<[[u32; 3]; 2]>;
+
 /// The points scaled by `2^e`.
-fn scaled(points: &[Point3], e: i32) -> Vec<Point3> {
+fn scaled(points: &[Point3], e: i32) -> Points {
     if e == 0 {
-        return points.to_vec();
+        return SmallVec::from_slice(points);
     }
     points
         .iter()
@@ -65,10 +77,10 @@ pub(crate) enum Shape {
     /// Nothing: a degenerate face (repeated vertices, or zero area), left out.
     Degenerate,
     /// One planar face: its vertex loop and its triangles (indices into the loop).
-    Planar(Vec<u32>, Vec<[usize; 3]>),
+    Planar(Loop, Local),
     /// A polygon that is not exactly planar, split into these triangles (indices into the
     /// loop), each a face.
-    Split(Vec<u32>, Vec<[usize; 3]>),
+    Split(Loop, Local),
 }
 
 /// Decides what the input polygon `idx` (face `fi`, vertex indices already merged) becomes,
@@ -76,11 +88,15 @@ pub(crate) enum Shape {
 /// modes refuse polygons that cross themselves).
 pub(crate) fn shape(
     vertices: &[Point3],
-    mut idx: Vec<u32>,
+    mut idx: Loop,
     fi: usize,
     validation: Validation,
 ) -> Result<Shape, MeshError> {
     let repeated = |idx: &[u32]| {
+        if idx.len() <= 8 {
+            // Few vertices: every pair, without sorting a copy.
+            return (1..idx.len()).find_map(|j| idx[..j].contains(&idx[j]).then_some(idx[j]));
+        }
         let mut sorted = idx.to_vec();
         sorted.sort_unstable();
         sorted.windows(2).find(|w| w[0] == w[1]).map(|w| w[0])
@@ -109,7 +125,7 @@ pub(crate) fn shape(
             }
         }
     }
-    let pts: Vec<Point3> = idx.iter().map(|&i| vertices[i as usize]).collect();
+    let pts: Points = idx.iter().map(|&i| vertices[i as usize]).collect();
     let (a, b) = (&pts[0], &pts[1]);
     let Some(k) = (2..pts.len()).find(|&k| !collinear(a, b, &pts[k])) else {
         return match validation {
@@ -118,7 +134,10 @@ pub(crate) fn shape(
         };
     };
     if pts.len() == 3 {
-        return Ok(Shape::Planar(idx, vec![[0, 1, 2]]));
+        return Ok(Shape::Planar(
+            idx,
+            SmallVec::from_buf_and_len([[0, 1, 2]; 2], 1),
+        ));
     }
     let c = &pts[k];
     let off_plane =
@@ -139,8 +158,8 @@ pub(crate) fn shape(
     let tris = axes
         .iter()
         .find_map(|&axis| match off_plane {
-            None => triangulate_along(&pts, axis).ok(),
-            Some(_) => canonical_split(&idx, &pts, axis),
+            None => triangulate_along(&pts, axis).ok().map(SmallVec::from_vec),
+            Some(_) => canonical_split(&idx, &pts, axis).map(SmallVec::from_vec),
         })
         .ok_or(MeshError::NotSimple { face: fi })?;
     Ok(match off_plane {
@@ -180,11 +199,11 @@ fn canonical_split(idx: &[u32], pts: &[Point3], axis: usize) -> Option<Vec<[usiz
 /// and `polygon` is the input polygon it comes from.
 pub(crate) fn face(
     vertices: &[Point3],
-    (idx, diagonals, polygon): (Vec<u32>, u8, u32),
+    (idx, diagonals, polygon): (Loop, u8, u32),
     local: &[[usize; 3]],
     first_triangle: usize,
-) -> (Face, Vec<[u32; 3]>) {
-    let pts: Vec<Point3> = idx.iter().map(|&i| vertices[i as usize]).collect();
+) -> (Face, Triangles) {
+    let pts: Points = idx.iter().map(|&i| vertices[i as usize]).collect();
     let e = normalising_exponent(largest_coordinate(&pts), SAFE);
     let q = scaled(&pts, e);
     let n2 = newell_normal(&q);
@@ -200,10 +219,9 @@ pub(crate) fn face(
     let centroid = q.iter().fold(Vector3::zeros(), |s, p| s + p.coords) / q.len() as f64;
     let d = times_power_of_two(-normal.dot(&centroid), -e);
     let area = times_power_of_two(len / 2.0, -2 * e);
-    let tris: Vec<[u32; 3]> = local.iter().map(|t| t.map(|k| idx[k])).collect();
-    let horizontal = pts.iter().all(|p| p.z == pts[0].z);
+    let tris: Triangles = local.iter().map(|t| t.map(|k| idx[k])).collect();
     let face = Face {
-        texture: TextureFrame::new(&normal, d, horizontal),
+        horizontal: pts.iter().all(|p| p.z == pts[0].z),
         plane: Plane::new(normal, d),
         area,
         triangles: first_triangle..first_triangle + tris.len(),
@@ -259,34 +277,22 @@ pub(crate) fn merge_duplicates(
         if p.iter().any(|c| !c.is_finite()) {
             return Err(MeshError::NonFinite { vertex: i });
         }
-        // Adding +0.0 turns -0.0 into +0.0, so both sort and compare as one value.
+        // Adding +0.0 turns -0.0 into +0.0, so both hash and compare as one value.
         p.apply(|c| *c += 0.0);
     }
-    let key = |p: &Point3| (p.x.to_bits(), p.y.to_bits(), p.z.to_bits());
-    let mut order: Vec<u32> = (0..vertices.len() as u32).collect();
-    order.sort_unstable_by(|&a, &b| {
-        let (pa, pb) = (&vertices[a as usize], &vertices[b as usize]);
-        pa.x.total_cmp(&pb.x)
-            .then(pa.y.total_cmp(&pb.y))
-            .then(pa.z.total_cmp(&pb.z))
-            .then(a.cmp(&b))
-    });
-    // Representative of each vertex: the first (lowest index) with the same coordinates.
-    let mut rep: Vec<u32> = (0..vertices.len() as u32).collect();
-    for w in order.chunk_by(|&a, &b| key(&vertices[a as usize]) == key(&vertices[b as usize])) {
-        for &i in w {
-            rep[i as usize] = w[0];
-        }
-    }
+    // Each vertex is the first one (lowest index) with its coordinates, or a copy of it:
+    // found with a hash of the coordinates' bits (equal doubles have equal bits once -0.0
+    // is gone), in input order, so the result does not depend on the hash.
+    let key = |p: &Point3| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
+    let mut first: HashMap<[u64; 3], u32, FixedState> =
+        HashMap::with_capacity_and_hasher(vertices.len(), FixedState::default());
     let mut remap = vec![0u32; vertices.len()];
     let mut out = Vec::with_capacity(vertices.len());
-    for i in 0..vertices.len() {
-        if rep[i] as usize == i {
-            remap[i] = out.len() as u32;
-            out.push(vertices[i]);
-        } else {
-            remap[i] = remap[rep[i] as usize];
-        }
+    for (i, p) in vertices.iter().enumerate() {
+        remap[i] = *first.entry(key(p)).or_insert_with(|| {
+            out.push(*p);
+            (out.len() - 1) as u32
+        });
     }
     let merged = vertices.len() - out.len();
     Ok((out, remap, merged))

@@ -201,17 +201,24 @@ impl TextureFrame {
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct Face {
-    pub(crate) vertices: Vec<u32>,
+    pub(crate) vertices: Loop,
     pub(crate) plane: Plane,
-    pub(crate) texture: TextureFrame,
     pub(crate) area: f64,
     pub(crate) triangles: std::ops::Range<usize>,
     /// The sides that are diagonals of a split polygon, not edges of the input polygon (bit
     /// `i`: the side from vertex `i`).
     pub(crate) diagonals: u8,
+    /// Whether the face's vertices all have exactly the same z (its texture frame then has
+    /// the paper's fixed axes): the frame is computed from this and the plane when asked for,
+    /// rather than stored (96 bytes a face).
+    pub(crate) horizontal: bool,
     /// The input polygon the face is (part of).
     pub(crate) polygon: u32,
 }
+
+/// A face's vertex loop: inline for triangles and quads, so that most faces need no
+/// allocation of their own.
+pub(crate) type Loop = smallvec::SmallVec<[u32; 4]>;
 
 impl Face {
     /// Indices of the face's vertices in the mesh, in order.
@@ -240,8 +247,8 @@ impl Face {
     /// let c = kepler::solids::cube(2.0).unwrap();
     /// assert!(c.faces().iter().all(|f| f.texture().y_axis().z >= 0.0));
     /// ```
-    pub fn texture(&self) -> &TextureFrame {
-        &self.texture
+    pub fn texture(&self) -> TextureFrame {
+        TextureFrame::new(&self.plane.normal, self.plane.d, self.horizontal)
     }
 
     /// The face's area.

@@ -43,6 +43,7 @@ mod tree;
 pub use containment::{
     Containment, classify_among, classify_point, classify_point_brute_force, crosses_column,
 };
+pub(crate) use face::Loop;
 pub use face::{Face, Plane, TextureFrame};
 pub use topology::Topology;
 pub use tree::TriangleTree;
@@ -189,7 +190,7 @@ const PARALLEL_POLYGONS: usize = 4096;
 
 /// A polygon to become faces: its vertex loop, which of its sides are diagonals of a split
 /// polygon (bit `i`: the side from vertex `i`), and the input polygon it is (part of).
-type Polygon = (Vec<u32>, u8, u32);
+type Polygon = (Loop, u8, u32);
 
 impl Mesh {
     /// Builds a mesh from vertices and faces (each a loop of vertex indices, counter-clockwise
@@ -227,25 +228,35 @@ impl Mesh {
         faces: Vec<Vec<u32>>,
         validation: Validation,
     ) -> Result<Mesh, MeshError> {
+        let loops = faces.iter().map(|f| Loop::from_slice(f)).collect();
+        Mesh::from_loops_with(vertices, loops, validation)
+    }
+
+    /// [`Mesh::from_polygons_with`] for faces whose loops are already [`Loop`]s (what the
+    /// file readers make): a face's loop is renumbered in place, not copied.
+    pub(crate) fn from_loops_with(
+        vertices: Vec<Point3>,
+        faces: Vec<Loop>,
+        validation: Validation,
+    ) -> Result<Mesh, MeshError> {
         let (vertices, remap, merged_vertices) = build::merge_duplicates(vertices)?;
         let mut polygons = Vec::with_capacity(faces.len());
-        for (fi, face) in faces.into_iter().enumerate() {
-            if face.len() < 3 {
+        for (fi, mut idx) in faces.into_iter().enumerate() {
+            if idx.len() < 3 {
                 return Err(MeshError::TooFewVertices {
                     face: fi,
-                    count: face.len(),
+                    count: idx.len(),
                 });
             }
-            let mut idx = Vec::with_capacity(face.len());
-            for &i in &face {
-                let Some(&j) = remap.get(i as usize) else {
+            for i in idx.iter_mut() {
+                let Some(&j) = remap.get(*i as usize) else {
                     return Err(MeshError::IndexOutOfRange {
                         face: fi,
-                        index: i64::from(i),
+                        index: i64::from(*i),
                         vertex_count: remap.len(),
                     });
                 };
-                idx.push(j);
+                *i = j;
             }
             polygons.push((idx, 0, fi as u32));
         }
@@ -265,13 +276,17 @@ impl Mesh {
         // Each polygon validated and made into faces independently, in parallel; the first
         // error by polygon index is reported, whatever the threads; the triangle ranges are
         // assigned in order afterwards.
-        type Built = (bool, bool, Vec<(Face, Vec<[u32; 3]>)>);
+        type Built = (
+            bool,
+            bool,
+            smallvec::SmallVec<[(Face, build::Triangles); 1]>,
+        );
         let one = |(fi, (idx, diagonals, polygon)): (usize, Polygon)| -> Result<Built, MeshError> {
             Ok(match build::shape(&vertices, idx, fi, validation)? {
-                Shape::Degenerate => (true, false, Vec::new()),
+                Shape::Degenerate => (true, false, smallvec::SmallVec::new()),
                 Shape::Planar(idx, local) => {
                     let face = build::face(&vertices, (idx, diagonals, polygon), &local, 0);
-                    (false, false, vec![face])
+                    (false, false, smallvec::smallvec![face])
                 }
                 Shape::Split(idx, local) => {
                     let faces = local
@@ -319,8 +334,7 @@ impl Mesh {
                 }
             }
         }
-        let junctions = topology::junctions(&vertices, &faces);
-        let topology = Topology::of_mesh_faces(&faces, &junctions);
+        let (junctions, topology) = topology::junctions_and_topology(&vertices, &faces);
         Ok(Mesh {
             vertices,
             faces,
@@ -597,7 +611,7 @@ impl Mesh {
                 let [face] = faces else {
                     return polygon_loop(faces);
                 };
-                face.vertices.clone()
+                face.vertices.to_vec()
             })
             .collect()
     }

@@ -78,7 +78,12 @@ impl Topology {
 
     /// The topology of the edge uses ([`edge_use`]).
     fn of_uses(mut uses: Vec<(u64, u32)>) -> Topology {
-        uses.sort_unstable();
+        sort(&mut uses);
+        Topology::of_sorted_uses(&uses)
+    }
+
+    /// The topology of sorted edge uses (only their keys and direction bits count).
+    fn of_sorted_uses(uses: &[(u64, u32)]) -> Topology {
         let mut t = Topology {
             edges: 0,
             boundary_edges: 0,
@@ -109,6 +114,38 @@ impl Topology {
     }
 }
 
+/// Sorts edge uses: by their lower vertex in one counting pass (linear in the uses and the
+/// vertices), then each vertex's few uses by comparison; the same order as a comparison sort
+/// of the whole, which costs several times more on a large mesh.
+fn sort(uses: &mut Vec<(u64, u32)>) {
+    let lower = |u: &(u64, u32)| (u.0 >> 32) as usize;
+    let Some(vertices) = uses.iter().map(lower).max().map(|m| m + 1) else {
+        return;
+    };
+    if uses.len() < 64 || vertices > 4 * uses.len() {
+        uses.sort_unstable();
+        return;
+    }
+    let mut start = vec![0usize; vertices + 1];
+    for u in uses.iter() {
+        start[lower(u) + 1] += 1;
+    }
+    for v in 0..vertices {
+        start[v + 1] += start[v];
+    }
+    let mut next = start.clone();
+    let mut sorted = vec![(0, 0); uses.len()];
+    for u in uses.iter() {
+        let slot = &mut next[lower(u)];
+        sorted[*slot] = *u;
+        *slot += 1;
+    }
+    for v in 0..vertices {
+        sorted[start[v]..start[v + 1]].sort_unstable();
+    }
+    *uses = sorted;
+}
+
 /// A use of the edge from `a` to `b` by side `index` of the mesh's faces: the undirected key
 /// (low vertex, high vertex) and the index with the direction in its low bit (1 when `a < b`).
 fn edge_use(a: u32, b: u32, index: u32) -> (u64, u32) {
@@ -134,11 +171,27 @@ pub(crate) struct Junction {
     pub inner: Vec<u32>,
 }
 
+/// The T-junctions of the faces ([`junctions_and_uses`]) and the topology of the faces cut
+/// at them: for a mesh without T-junctions (most), from the same sorted sides.
+pub(crate) fn junctions_and_topology(
+    vertices: &[Point3],
+    faces: &[Face],
+) -> (Vec<Junction>, Topology) {
+    let (junctions, uses) = junctions_and_uses(vertices, faces);
+    let topology = if junctions.is_empty() {
+        Topology::of_sorted_uses(&uses)
+    } else {
+        Topology::of_mesh_faces(faces, &junctions)
+    };
+    (junctions, topology)
+}
+
 /// The T-junctions of the faces, by face and side: where a side used by one face only has
 /// vertices exactly inside it that are ends of such sides too (the sides that cover it from the
 /// other face). Only unmatched sides are searched, their candidate vertices in an R-tree, so
 /// a mesh without them costs one sort of its sides.
-pub(crate) fn junctions(vertices: &[Point3], faces: &[Face]) -> Vec<Junction> {
+/// Returns them with the faces' sides as sorted edge uses.
+fn junctions_and_uses(vertices: &[Point3], faces: &[Face]) -> (Vec<Junction>, Vec<(u64, u32)>) {
     let mut first_use = Vec::with_capacity(faces.len() + 1);
     let mut uses = Vec::new();
     for f in faces {
@@ -148,7 +201,7 @@ pub(crate) fn junctions(vertices: &[Point3], faces: &[Face]) -> Vec<Junction> {
             uses.push(edge_use(a, v[(i + 1) % v.len()], uses.len() as u32));
         }
     }
-    uses.sort_unstable();
+    sort(&mut uses);
     let side_of = |u: u32| {
         let u = (u >> 1) as usize;
         let f = first_use.partition_point(|&first| first <= u) - 1;
@@ -162,7 +215,7 @@ pub(crate) fn junctions(vertices: &[Point3], faces: &[Face]) -> Vec<Junction> {
         .map(|group| side_of(group[0].1))
         .collect();
     if unmatched.is_empty() {
-        return Vec::new();
+        return (Vec::new(), uses);
     }
     let mut candidates: Vec<u32> = unmatched.iter().flat_map(|s| [s.2, s.3]).collect();
     candidates.sort_unstable();
@@ -205,5 +258,42 @@ pub(crate) fn junctions(vertices: &[Point3], faces: &[Face]) -> Vec<Junction> {
         })
         .collect();
     found.sort_unstable_by_key(|j| (j.face, j.side));
-    found
+    (found, uses)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The counting sort gives the comparison sort's order: on uses of few and of many
+    /// vertices, with repeated keys (an edge used by several faces) and equal uses.
+    #[test]
+    fn sorting_uses_by_lower_vertex_first_is_a_full_sort() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut below = |n: u64| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state % n
+        };
+        for (len, vertices) in [
+            (0, 1),
+            (10, 3),
+            (100, 5),
+            (1000, 40),
+            (5000, 3000),
+            (300, 5000),
+        ] {
+            let mut uses: Vec<(u64, u32)> = (0..len)
+                .map(|i| {
+                    let (a, b) = (below(vertices) as u32, below(vertices) as u32);
+                    edge_use(a, b, if i % 7 == 0 { 0 } else { below(1 << 20) as u32 })
+                })
+                .collect();
+            let mut expected = uses.clone();
+            expected.sort_unstable();
+            sort(&mut uses);
+            assert_eq!(uses, expected, "{len} uses of {vertices} vertices");
+        }
+    }
 }

@@ -480,7 +480,7 @@ fn visfac_among(
             break;
         }
     }
-    let frame = mesh.faces()[face].texture();
+    let frame = &mesh.faces()[face].texture();
     if all_hidden {
         return Ok((
             answer(Status::Hidden, nothing.clone(), exits, false),
