@@ -156,6 +156,41 @@ impl Voxels {
         }
     }
 
+    /// The cells of box `b` (widened by the margin), appended to `out`, when there are at
+    /// most `most` of them; otherwise nothing is appended and `false` returned. A triangle
+    /// inside the box meets only some of them: listing them all is the cheaper filter when
+    /// they are few, and needs only the box.
+    ///
+    /// ```
+    /// use kepler::{geometry::{Aabb, Point3}, grid::Voxels};
+    /// let g = Voxels::new(Aabb::new(Point3::origin(), Point3::new(3.0, 3.0, 1.0)), 1.0);
+    /// let b = Aabb::new(Point3::new(0.5, 0.5, 0.5), Point3::new(1.5, 0.7, 0.5));
+    /// let mut cells = Vec::new();
+    /// assert!(g.box_cells(&b, 4, &mut cells));
+    /// assert_eq!(cells, vec![0, 1]);
+    /// assert!(!g.box_cells(&Aabb::new(Point3::origin(), Point3::new(3.0, 3.0, 1.0)), 4, &mut cells));
+    /// assert_eq!(cells.len(), 2);
+    /// ```
+    pub fn box_cells(&self, b: &Aabb, most: usize, out: &mut Vec<u64>) -> bool {
+        let r = [0, 1, 2].map(|k| {
+            [
+                self.index(k, b.min[k] - self.margin),
+                self.index(k, b.max[k] + self.margin),
+            ]
+        });
+        if r.iter().map(|[lo, hi]| hi - lo + 1).product::<usize>() > most {
+            return false;
+        }
+        for iz in r[2][0]..=r[2][1] {
+            for iy in r[1][0]..=r[1][1] {
+                for ix in r[0][0]..=r[0][1] {
+                    out.push(self.number([ix, iy, iz]));
+                }
+            }
+        }
+        true
+    }
+
     /// The cell number of the indices `c`.
     fn number(&self, c: [usize; 3]) -> u64 {
         ((c[2] * self.shape[1] + c[1]) * self.shape[0] + c[0]) as u64
@@ -288,6 +323,12 @@ mod tests {
                 assert_eq!(listed.len(), n, "a cell listed twice");
                 for c in sampled_cells(&g, &t, 40) {
                     assert!(listed.binary_search(&c).is_ok(), "cell {c} of {t:?} missed");
+                }
+                // The box's cells, when few enough to be listed, hold those the triangle meets.
+                let mut boxed = Vec::new();
+                if g.box_cells(&Aabb::from_points(&t), 64, &mut boxed) {
+                    boxed.sort_unstable();
+                    assert!(listed.iter().all(|c| boxed.binary_search(c).is_ok()));
                 }
             }
         }

@@ -394,6 +394,10 @@ impl Mesh {
     /// assert_eq!((cube.face_of(0), cube.face_of(1), cube.face_of(11)), (0, 0, 5));
     /// ```
     pub fn face_of(&self, t: usize) -> usize {
+        // Every face has at least one triangle: as many faces as triangles means one each.
+        if self.faces.len() == self.triangles.len() {
+            return t;
+        }
         self.faces.partition_point(|f| f.triangle_range().end <= t)
     }
 

@@ -206,14 +206,22 @@ fn merged(group: &[Piece], eye: &Eye) -> Vec<Segment> {
 /// each other at all: only with the rest, so ten thousand edges at one point cost no more
 /// than ten thousand elsewhere.
 fn candidate_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32)> {
-    let boxes = |m: &Mesh| -> Vec<Aabb> {
-        (0..m.triangles().len())
+    // Each triangle read once for its box and its size (the square root of twice its area).
+    let boxes = |m: &Mesh| -> (Vec<Aabb>, f64) {
+        let (boxes, sizes): (Vec<Aabb>, Vec<f64>) = (0..m.triangles().len())
             .into_par_iter()
-            .map(|t| Aabb::from_points(&m.triangle(t)))
-            .collect()
+            .map(|t| {
+                let [a, b, c] = m.triangle(t);
+                (
+                    Aabb::from_points(&[a, b, c]),
+                    (b - a).cross(&(c - a)).norm().sqrt(),
+                )
+            })
+            .unzip();
+        (boxes, sizes.iter().sum())
     };
-    let b0 = boxes(m0);
-    let b1 = if same { Vec::new() } else { boxes(m1) };
+    let (b0, s0) = boxes(m0);
+    let (b1, s1) = if same { (Vec::new(), 0.0) } else { boxes(m1) };
     if b0.len() * if same { b0.len() } else { b1.len() } <= FEW_PAIRS {
         return few_pairs(m0, &b0, if same { &b0 } else { &b1 }, same);
     }
@@ -227,10 +235,7 @@ fn candidate_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32)> {
     if (0..3).any(|k| region.min[k] > region.max[k]) {
         return Vec::new();
     }
-    let grid = Voxels::new(
-        region,
-        cell_side(m0, &b0, if same { None } else { Some((m1, &b1)) }),
-    );
+    let grid = Voxels::new(region, cell_side(&[&b0, &b1], s0 + s1));
     let list = |m: &Mesh, b: &[Aabb], mesh: u32| -> Vec<(u64, u32)> {
         b.par_iter()
             .enumerate()
@@ -241,7 +246,9 @@ fn candidate_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32)> {
                         return (out, cells);
                     }
                     cells.clear();
-                    grid.triangle_cells(&m.triangle(t), &mut cells);
+                    if !grid.box_cells(bx, BOX_CELLS, &mut cells) {
+                        grid.triangle_cells(&m.triangle(t), &mut cells);
+                    }
                     out.extend(cells.iter().map(|&c| (c, (mesh << 31) | t as u32)));
                     (out, cells)
                 },
@@ -298,34 +305,19 @@ fn candidate_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32)> {
     pairs
 }
 
-/// The side of the cells: twice the mean size of a triangle (the square root of twice its
-/// area), so that a cell holds a few triangles of a surface; no smaller than a sixteenth of
-/// the mean box, so that a mesh of slivers is not cut into more cells than its boxes are
-/// across.
-fn cell_side(m0: &Mesh, b0: &[Aabb], other: Option<(&Mesh, &[Aabb])>) -> f64 {
-    let mut meshes = vec![(m0, b0)];
-    meshes.extend(other);
-    let n = meshes.iter().map(|(_, b)| b.len()).sum::<usize>().max(1) as f64;
-    let size: f64 = meshes
+/// The side of the cells: twice the mean size of a triangle (`sizes` sums the square roots
+/// of twice their areas), so that a cell holds a few triangles of a surface; no smaller than
+/// a sixteenth of the mean box, so that a mesh of slivers is not cut into more cells than its
+/// boxes are across.
+fn cell_side(boxes: &[&[Aabb]], sizes: f64) -> f64 {
+    let n = boxes.iter().map(|b| b.len()).sum::<usize>().max(1) as f64;
+    let boxes: f64 = boxes
         .iter()
-        .map(|(m, _)| {
-            (0..m.triangles().len())
-                .into_par_iter()
-                .map(|t| {
-                    let [a, b, c] = m.triangle(t);
-                    ((b - a).cross(&(c - a)).norm()).sqrt()
-                })
-                .sum::<f64>()
-        })
-        .sum::<f64>()
-        / n;
-    let boxes: f64 = meshes
-        .iter()
-        .flat_map(|(_, b)| b.iter())
+        .flat_map(|b| b.iter())
         .map(|b| b.size().into_iter().fold(0.0, f64::max))
         .sum::<f64>()
         / n;
-    let side = (2.0 * size).max(boxes / 16.0);
+    let side = (2.0 * sizes / n).max(boxes / 16.0);
     if side.is_finite() { side } else { boxes }
 }
 
@@ -405,6 +397,10 @@ fn surely_apart(a: &[Point3; 3], b: &[Point3; 3]) -> bool {
         })
     })
 }
+
+/// A triangle whose box spans at most this many cells is listed in all of them (found from
+/// its box alone); a larger one only in the cells it meets.
+const BOX_CELLS: usize = 4;
 
 /// Up to this many triangle pairs, every pair is tested: no grid.
 const FEW_PAIRS: usize = 1 << 14;
