@@ -54,7 +54,7 @@ pub(crate) struct EdgeCounts {
 
 /// A face's side of an edge: the face's triangle with that side, its vertex off the edge, and
 /// whether the side is an edge of the input polygon.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, Default)]
 struct Side {
     key: u64,
     third: u32,
@@ -115,7 +115,7 @@ pub(crate) fn classify(
             })
         })
         .collect();
-    sides.par_sort_unstable_by_key(|s| s.key);
+    crate::mesh::sort_by_edge(&mut sides, |s| s.key);
     let groups: Vec<&[Side]> = sides.chunk_by(|x, y| x.key == y.key).collect();
     let vertices = mesh.vertices();
     let mut decided: Vec<Result<MeshEdge, Left>> = groups

@@ -46,6 +46,7 @@ pub use containment::{
 pub(crate) use face::Loop;
 pub use face::{Face, Plane, TextureFrame};
 pub use topology::Topology;
+pub(crate) use topology::sort_by_edge;
 pub use tree::TriangleTree;
 
 use crate::geometry::Point3;
@@ -561,19 +562,25 @@ impl Mesh {
         let Some(o) = self.vertices.first() else {
             return Ordering::Equal;
         };
-        let dets = || {
-            self.triangles.iter().map(|t| {
-                let [a, b, c] = t.map(|i| self.vertices[i as usize]);
-                Orient3d([a, b, c, *o])
-            })
+        let det = |t: &[u32; 3]| {
+            let [a, b, c] = t.map(|i| self.vertices[i as usize]);
+            Orient3d([a, b, c, *o])
         };
-        let (mut value, mut bound, mut magnitude) = (0.0f64, 0.0f64, 0.0f64);
-        for d in dets() {
-            let e = d.estimate();
-            value += e.value;
-            bound += e.bound;
-            magnitude += e.value.abs();
-        }
+        let dets = || self.triangles.iter().map(det);
+        // The estimates summed in any order (in parallel for a large mesh): the error bound
+        // of a sum of n terms holds for every order of the additions.
+        let add =
+            |(v, b, m): (f64, f64, f64), e: Estimate| (v + e.value, b + e.bound, m + e.value.abs());
+        let (value, bound, magnitude) = if self.triangles.len() >= PARALLEL_POLYGONS {
+            use rayon::prelude::*;
+            self.triangles
+                .par_iter()
+                .map(|t| det(t).estimate())
+                .fold(|| (0.0, 0.0, 0.0), add)
+                .reduce(|| (0.0, 0.0, 0.0), |x, y| (x.0 + y.0, x.1 + y.1, x.2 + y.2))
+        } else {
+            dets().map(|d| d.estimate()).fold((0.0, 0.0, 0.0), add)
+        };
         let bound = (bound + sum_error_bound(self.triangles.len() + 1, magnitude))
             * (1.0 + 1.0 / (1u64 << 20) as f64);
         let filtered = Estimate { value, bound }.sign();

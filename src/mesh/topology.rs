@@ -114,36 +114,43 @@ impl Topology {
     }
 }
 
-/// Sorts edge uses: by their lower vertex in one counting pass (linear in the uses and the
-/// vertices), then each vertex's few uses by comparison; the same order as a comparison sort
-/// of the whole, which costs several times more on a large mesh.
+/// Sorts edge uses ([`edge_use`]): their indices grow in the order they are made, so the
+/// stable sort by key is the sort of the pairs.
 fn sort(uses: &mut Vec<(u64, u32)>) {
-    let lower = |u: &(u64, u32)| (u.0 >> 32) as usize;
-    let Some(vertices) = uses.iter().map(lower).max().map(|m| m + 1) else {
+    sort_by_edge(uses, |u| u.0);
+}
+
+/// Sorts items by an edge key `(lower vertex << 32) | higher vertex`, stably: by their lower
+/// vertex in one counting pass (linear in the items and the vertices), then each vertex's few
+/// items by key. The result is that of a stable comparison sort, which costs several times
+/// more on a large mesh (and in parallel, more than the counting pass alone).
+pub(crate) fn sort_by_edge<T: Copy + Default>(items: &mut Vec<T>, key: impl Fn(&T) -> u64) {
+    let lower = |u: &T| (key(u) >> 32) as usize;
+    let Some(vertices) = items.iter().map(lower).max().map(|m| m + 1) else {
         return;
     };
-    if uses.len() < 64 || vertices > 4 * uses.len() {
-        uses.sort_unstable();
+    if items.len() < 64 || vertices > 4 * items.len() {
+        items.sort_by_key(&key);
         return;
     }
     let mut start = vec![0usize; vertices + 1];
-    for u in uses.iter() {
+    for u in items.iter() {
         start[lower(u) + 1] += 1;
     }
     for v in 0..vertices {
         start[v + 1] += start[v];
     }
     let mut next = start.clone();
-    let mut sorted = vec![(0, 0); uses.len()];
-    for u in uses.iter() {
+    let mut sorted = vec![T::default(); items.len()];
+    for u in items.iter() {
         let slot = &mut next[lower(u)];
         sorted[*slot] = *u;
         *slot += 1;
     }
     for v in 0..vertices {
-        sorted[start[v]..start[v + 1]].sort_unstable();
+        sorted[start[v]..start[v + 1]].sort_by_key(&key);
     }
-    *uses = sorted;
+    *items = sorted;
 }
 
 /// A use of the edge from `a` to `b` by side `index` of the mesh's faces: the undirected key
@@ -265,10 +272,10 @@ fn junctions_and_uses(vertices: &[Point3], faces: &[Face]) -> (Vec<Junction>, Ve
 mod tests {
     use super::*;
 
-    /// The counting sort gives the comparison sort's order: on uses of few and of many
-    /// vertices, with repeated keys (an edge used by several faces) and equal uses.
+    /// The counting sort gives the stable comparison sort's order: on uses of few and of many
+    /// vertices, with repeated keys (an edge used by several faces) in any input order.
     #[test]
-    fn sorting_uses_by_lower_vertex_first_is_a_full_sort() {
+    fn sorting_uses_by_lower_vertex_first_is_a_stable_sort() {
         let mut state = 0x2545_f491_4f6c_dd1du64;
         let mut below = |n: u64| {
             state ^= state << 13;
@@ -291,7 +298,7 @@ mod tests {
                 })
                 .collect();
             let mut expected = uses.clone();
-            expected.sort_unstable();
+            expected.sort_by_key(|u| u.0);
             sort(&mut uses);
             assert_eq!(uses, expected, "{len} uses of {vertices} vertices");
         }
