@@ -181,8 +181,18 @@ fn unscaled_inbox(mesh: &Mesh) -> Option<Inbox> {
 /// Whether every corner of `b` lies on the inner side of (or on) every triangle's plane;
 /// `outward` is the `orient3d` sign of a point outside (it depends on the mesh's orientation).
 fn in_kernel(mesh: &Mesh, b: &Aabb, outward: Ordering) -> bool {
-    (0..mesh.triangles().len()).all(|t| box_inside_plane(&mesh.triangle(t), b, outward))
+    use rayon::prelude::*;
+    let inside = |t: usize| box_inside_plane(&mesh.triangle(t), b, outward);
+    let n = mesh.triangles().len();
+    if n >= PARALLEL_TRIANGLES {
+        (0..n).into_par_iter().all(inside)
+    } else {
+        (0..n).all(inside)
+    }
 }
+
+/// From this many triangles on, a pass over them runs in parallel.
+const PARALLEL_TRIANGLES: usize = 1 << 14;
 
 /// Whether no corner of `b` lies strictly on the `outward` side of the plane of `t`, exactly.
 ///
@@ -244,8 +254,9 @@ fn looks_convex(mesh: &Mesh, flip: f64) -> bool {
             edges.push((v[e], v[(e + 1) % v.len()], i));
         }
     }
-    edges.sort_unstable();
-    edges.iter().all(|&(u, v, f)| {
+    use rayon::prelude::*;
+    edges.par_sort_unstable();
+    edges.par_iter().all(|&(u, v, f)| {
         let Ok(k) = edges.binary_search_by(|x| (x.0, x.1).cmp(&(v, u))) else {
             return false;
         };

@@ -111,6 +111,7 @@ impl ProjectionGrid {
     /// ```
     pub fn new(mesh: &Mesh) -> ProjectionGrid {
         let columns: Vec<Column> = (0..mesh.triangles().len())
+            .into_par_iter()
             .map(|t| {
                 let c = mesh.triangle(t);
                 let min = |k: usize| c[0][k].min(c[1][k]).min(c[2][k]);
@@ -223,7 +224,7 @@ impl ProjectionGrid {
     fn fill(&mut self) {
         let ranges: Vec<[[usize; 2]; 2]> = self
             .columns
-            .iter()
+            .par_iter()
             .map(|c| [0, 1].map(|k| [self.cells.index(k, c.min[k]), self.cells.index(k, c.max[k])]))
             .collect();
         let nx = self.cells.shape()[0];
