@@ -48,8 +48,7 @@ use std::sync::OnceLock;
 use rayon::prelude::*;
 use serde::{Serialize, Serializer};
 
-use crate::geometry::exact::{accurate_sum, filtered_sign, sum_sign, two_sum};
-use crate::geometry::kernel::sum_error_bound;
+use crate::geometry::exact::{accurate_sum, accurate_sum_array, sum_sign, sum_sign_array, two_sum};
 use crate::geometry::{Point3, Vector3};
 
 /// The 9 directions, in the paper's order, as integer vectors.
@@ -824,8 +823,9 @@ impl Accumulator {
     }
 }
 
-/// A local bound of a corner, as the operations of the boundary formulas need it: a double
-/// (no chamfer of the corner is clamped) or an [`Effective`] bound.
+/// A local bound of a corner, as the generic corner formulas ([`corner`]) need it: the
+/// tightened bounds of [`Tribox::cleaned`] ([`OffsetForm`]). [`Tribox::new`] evaluates the same
+/// formulas from tables of simplified forms instead ([`masked_corner`]).
 trait LocalBound: Copy {
     fn neg(self) -> Self;
     /// The value, for a principal bound (a single double).
@@ -854,139 +854,308 @@ trait LocalBound: Copy {
     }
 }
 
-impl LocalBound for f64 {
-    #[inline]
-    fn neg(self) -> Self {
-        -self
+/// A linear form in the six local bounds `[α_A, α_B, α_C, α_AB, α_AC, α_BC]` of a corner, with
+/// integer coefficients in −2..=2 (so that every term `coef · α` is an exact double).
+type Form = [i8; 6];
+
+/// A signed combination of local bounds: up to four (local plane, coefficient) pairs, unused
+/// pairs with coefficient 0.
+type Combination = [(usize, i8); 4];
+
+/// A combination of one local bound.
+const fn one(k: usize) -> Combination {
+    [(k, 1), (0, 0), (0, 0), (0, 0)]
+}
+
+/// The combination `α_k − α_l`.
+const fn minus(k: usize, l: usize) -> Combination {
+    [(k, 1), (l, -1), (0, 0), (0, 0)]
+}
+
+/// The combination `α_k + α_l + α_m` with the given signs.
+const fn three(k: (usize, i8), l: (usize, i8), m: (usize, i8)) -> Combination {
+    [k, l, m, (0, 0)]
+}
+
+/// The effective local bound k of a corner whose clamped chamfers are the set bits of `mask`
+/// (bit 0: AB, bit 1: AC, bit 2: BC) as a form: a clamped chamfer is the exact sum of its two
+/// principal bounds.
+const fn local_form(k: usize, mask: usize) -> Form {
+    let mut f = [0; 6];
+    if k >= AB && mask & (1 << (k - AB)) != 0 {
+        let [p, q] = [[A, B], [A, C], [B, C]][k - AB];
+        f[p] = 1;
+        f[q] = 1;
+    } else {
+        f[k] = 1;
     }
-    #[inline]
-    fn value(self) -> f64 {
-        self
+    f
+}
+
+/// A combination of effective local bounds as a form, the symbolic cancellations of clamped
+/// chamfers done (evaluated at compile time only).
+const fn form_of(combination: Combination, mask: usize) -> Form {
+    let mut f = [0i8; 6];
+    let mut i = 0;
+    while i < 4 {
+        let (k, c) = combination[i];
+        let l = local_form(k, mask);
+        let mut m = 0;
+        while m < 6 {
+            f[m] += c * l[m];
+            m += 1;
+        }
+        i += 1;
     }
-    #[inline]
-    fn sum2(a: Self, b: Self) -> f64 {
-        a + b
+    let mut m = 0;
+    while m < 6 {
+        assert!(
+            f[m] >= -2 && f[m] <= 2,
+            "a term would not be an exact double"
+        );
+        m += 1;
     }
-    #[inline]
-    fn sum3(a: Self, b: Self, c: Self) -> f64 {
-        accurate_sum(&[a, b, c])
-    }
-    #[inline]
-    fn positive5(a: Self, b: Self, c: Self, d: Self, e: Self) -> bool {
-        sum_sign(&[a, b, c, d, e]) == Ordering::Greater
-    }
-    /// The three tests share one static error bound: each is a sum of five terms
-    /// (±α_AB, ±α_AC, ±α_BC, −2α_X counted twice), whose magnitudes sum to at most
-    /// M = |α_AB| + |α_AC| + |α_BC| + 2 max(|α_A|, |α_B|, |α_C|), so the kernel's
-    /// [`sum_error_bound`] of five terms over M bounds the error of each. Only a sum within the
-    /// bound (or NaN on overflow) goes to the exact test.
-    #[inline]
-    fn case_of(al: [Self; 6]) -> usize {
-        let [a, b, c, ab, ac, bc] = al;
-        let m = ab.abs() + ac.abs() + bc.abs() + 2.0 * a.abs().max(b.abs()).max(c.abs());
-        let bound = sum_error_bound(5, m);
-        let positive = |d: f64, exact: &dyn Fn() -> bool| {
-            if d > bound {
-                true
-            } else if d < -bound {
-                false
-            } else {
-                exact()
+    f
+}
+
+/// The three case tests of the canonical corner (x_p > α_A, y_p > α_B, z_p > α_C), each a
+/// combination whose positivity is the test: α_AB + α_AC − α_BC − 2α_A > 0, and cyclically.
+const CASE_TESTS: [Combination; 3] = [
+    [(AB, 1), (AC, 1), (BC, -1), (A, -2)],
+    [(AB, 1), (AC, -1), (BC, 1), (B, -2)],
+    [(AB, -1), (AC, 1), (BC, 1), (C, -2)],
+];
+
+/// Case 1 vertex slots (v1, v2, v3, p; paper eqs 2–7), each coordinate a combination; the
+/// coordinates of p are half their combination.
+const CASE1_COORDS: [[Combination; 3]; 4] = [
+    [minus(AC, C), minus(BC, C), one(C)],
+    [one(A), minus(AB, A), minus(AC, A)],
+    [minus(AB, B), one(B), minus(BC, B)],
+    [
+        three((AB, 1), (AC, 1), (BC, -1)),
+        three((AB, 1), (AC, -1), (BC, 1)),
+        three((AB, -1), (AC, 1), (BC, 1)),
+    ],
+];
+
+/// Case 2 vertex slots (v1, v3, q2 = A∩AC∩BC, q3 = A∩AB∩BC; paper eqs 5, 7, 8, 9).
+const CASE2_COORDS: [[Combination; 3]; 4] = [
+    [minus(AC, C), minus(BC, C), one(C)],
+    [minus(AB, B), one(B), minus(BC, B)],
+    [one(A), three((BC, 1), (AC, -1), (A, 1)), minus(AC, A)],
+    [one(A), minus(AB, A), three((BC, 1), (AB, -1), (A, 1))],
+];
+
+/// Case 2's slots in the frame rotated by `sigma` ([`ROTATION`] or [`ROTATION2`]), with the
+/// coordinates `w` put back as `[w[perm[0]], w[perm[1]], w[perm[2]]]`: cases 3 and 4.
+const fn rotated_coords(sigma: [usize; 6], perm: [usize; 3]) -> [[Combination; 3]; 4] {
+    let mut t = CASE2_COORDS;
+    let mut s = 0;
+    while s < 4 {
+        let mut i = 0;
+        while i < 3 {
+            let mut combination = CASE2_COORDS[s][perm[i]];
+            let mut k = 0;
+            while k < 4 {
+                combination[k].0 = sigma[combination[k].0];
+                k += 1;
             }
-        };
-        if positive(ab + ac - bc - 2.0 * a, &|| {
-            Self::positive5(ab, ac, -bc, -a, -a)
-        }) {
-            2
-        } else if positive(ab - ac + bc - 2.0 * b, &|| {
-            Self::positive5(ab, -ac, bc, -b, -b)
-        }) {
-            3
-        } else if positive(-ab + ac + bc - 2.0 * c, &|| {
-            Self::positive5(-ab, ac, bc, -c, -c)
-        }) {
-            4
-        } else {
-            1
+            t[s][i] = combination;
+            i += 1;
         }
+        s += 1;
     }
+    t
 }
 
-/// An effective local bound: the bound itself, or for a clamped chamfer the symbolic sum of
-/// its two principal bounds (`lo` is 0 for an unclamped bound).
-#[derive(Clone, Copy)]
-struct Effective {
-    hi: f64,
-    lo: f64,
+/// The formulas of a corner with a given clamp mask: its case tests, and per case its four
+/// vertices (slot order of [`CASES`]) in the canonical frame, as forms.
+struct CornerForms {
+    tests: [Form; 3],
+    /// The sign of each test when the clamping alone decides it (see [`known_sign`]).
+    known: [Option<Ordering>; 3],
+    /// For each test, an earlier test of which it is the negation (its sign is then known).
+    negates: [Option<usize>; 3],
+    coords: [[[Form; 3]; 4]; 4],
 }
 
-impl LocalBound for Effective {
-    fn neg(self) -> Self {
-        Effective {
-            hi: -self.hi,
-            lo: -self.lo,
+/// The sign of a test form when the clamp mask decides it: the zero form is zero, and
+/// `±(α_P + α_Q − α_PQ)` for an unclamped chamfer PQ is positive (negative) since an unclamped
+/// chamfer bound is strictly below the sum of its principal bounds (see [`clamped_chamfers`]).
+const fn known_sign(f: Form, mask: usize) -> Option<Ordering> {
+    if forms_equal(f, [0; 6], 1) {
+        return Some(Ordering::Equal);
+    }
+    let mut k = AB;
+    while k <= BC {
+        if mask & (1 << (k - AB)) == 0 {
+            // α_P + α_Q − α_PQ, as the clamped form of PQ minus its own bound.
+            let mut g = local_form(k, 1 << (k - AB));
+            g[k] = -1;
+            if forms_equal(f, g, 1) {
+                return Some(Ordering::Greater);
+            }
+            if forms_equal(f, g, -1) {
+                return Some(Ordering::Less);
+            }
         }
+        k += 1;
     }
-    fn value(self) -> f64 {
-        self.hi + self.lo
-    }
-    #[inline]
-    fn sum2(a: Self, b: Self) -> f64 {
-        // Two exactly opposite terms (two zero `lo`, or a symbolic cancellation such as
-        // (α_A + α_C) − α_C) leave a two-term sum, which a single addition rounds correctly.
-        if a.lo == -b.lo {
-            a.hi + b.hi
-        } else if a.lo == -b.hi {
-            a.hi + b.lo
-        } else if a.hi == -b.lo {
-            a.lo + b.hi
-        } else if a.hi == -b.hi {
-            a.lo + b.lo
-        } else {
-            accurate_sum(&[a.hi, a.lo, b.hi, b.lo])
-        }
-    }
-    #[inline]
-    fn sum3(a: Self, b: Self, c: Self) -> f64 {
-        if a.lo == 0.0 && b.lo == 0.0 && c.lo == 0.0 {
-            accurate_sum(&[a.hi, b.hi, c.hi])
-        } else {
-            accurate_sum(&[a.hi, a.lo, b.hi, b.lo, c.hi, c.lo])
-        }
-    }
-    fn positive5(a: Self, b: Self, c: Self, d: Self, e: Self) -> bool {
-        let terms = [a.hi, a.lo, b.hi, b.lo, c.hi, c.lo, d.hi, d.lo, e.hi, e.lo];
-        match filtered_sign(&terms) {
-            Some(sign) => sign == Ordering::Greater,
-            None => positive_cancelled(terms),
-        }
-    }
+    None
 }
 
-/// Whether a sum the filter could not decide is positive: exactly opposite terms (the symbolic
-/// cancellations of clamped chamfers, which often make the sum exactly zero) and zeros are
-/// removed first, which leaves the exact sum unchanged and usually no term at all.
-#[cold]
-#[inline(never)]
-fn positive_cancelled(terms: [f64; 10]) -> bool {
-    let mut out = [0.0; 10];
+/// Whether `f = sign · g`.
+const fn forms_equal(f: Form, g: Form, sign: i8) -> bool {
+    let mut m = 0;
+    while m < 6 {
+        if f[m] != sign * g[m] {
+            return false;
+        }
+        m += 1;
+    }
+    true
+}
+
+/// `CORNER_FORMS[mask]`: the formulas of a corner whose clamped chamfers are the set bits of
+/// `mask` (see [`local_form`]).
+const CORNER_FORMS: [CornerForms; 8] = {
+    let cases = [
+        CASE1_COORDS,
+        CASE2_COORDS,
+        rotated_coords(ROTATION, [2, 0, 1]),
+        rotated_coords(ROTATION2, [1, 2, 0]),
+    ];
+    let mut t = [const {
+        CornerForms {
+            tests: [[0; 6]; 3],
+            known: [None; 3],
+            negates: [None; 3],
+            coords: [[[[0; 6]; 3]; 4]; 4],
+        }
+    }; 8];
+    let mut mask = 0;
+    while mask < 8 {
+        let mut i = 0;
+        while i < 3 {
+            t[mask].tests[i] = form_of(CASE_TESTS[i], mask);
+            t[mask].known[i] = known_sign(t[mask].tests[i], mask);
+            let mut j = 0;
+            while j < i {
+                if forms_equal(t[mask].tests[i], t[mask].tests[j], -1) {
+                    t[mask].negates[i] = Some(j);
+                }
+                j += 1;
+            }
+            i += 1;
+        }
+        let mut k = 0;
+        while k < 4 {
+            let mut s = 0;
+            while s < 4 {
+                let mut i = 0;
+                while i < 3 {
+                    t[mask].coords[k][s][i] = form_of(cases[k][s][i], mask);
+                    i += 1;
+                }
+                s += 1;
+            }
+            k += 1;
+        }
+        mask += 1;
+    }
+    t
+};
+
+/// The nonzero terms `coef_k · α_k` of a form (exact doubles) and their number.
+#[inline(always)]
+fn form_terms(f: &Form, al: &[f64; 6]) -> ([f64; 6], usize) {
+    let mut terms = [0.0; 6];
     let mut n = 0;
-    for t in terms {
-        if t == 0.0 {
-            continue;
-        }
-        match out[..n].iter().position(|&u| u == -t) {
-            Some(k) => {
-                n -= 1;
-                out[k] = out[n];
-            }
-            None => {
-                out[n] = t;
-                n += 1;
-            }
+    for (&c, &x) in f.iter().zip(al) {
+        if c != 0 {
+            terms[n] = f64::from(c) * x;
+            n += 1;
         }
     }
-    sum_sign(&out[..n]) == Ordering::Greater
+    (terms, n)
+}
+
+/// The exact sign of a form. The sum of at most two exact terms is rounded once, which keeps
+/// its sign; longer sums go through the filtered exact sign. The number of terms of a constant
+/// form is a constant, so one arm remains, on a fixed-length array (kept in registers).
+#[inline(always)]
+fn form_sign(f: &Form, al: &[f64; 6]) -> Ordering {
+    let (t, n) = form_terms(f, al);
+    match n {
+        0..=2 => (t[0] + t[1]).partial_cmp(&0.0).unwrap_or(Ordering::Equal),
+        3 => sum_sign_array([t[0], t[1], t[2]]),
+        4 => sum_sign_array([t[0], t[1], t[2], t[3]]),
+        5 => sum_sign_array([t[0], t[1], t[2], t[3], t[4]]),
+        _ => sum_sign_array(t),
+    }
+}
+
+/// The exact value of a form, correctly rounded (one addition for at most two terms; see
+/// [`form_sign`] for the arms).
+#[inline(always)]
+fn form_value(f: &Form, al: &[f64; 6]) -> f64 {
+    let (t, n) = form_terms(f, al);
+    match n {
+        0..=2 => t[0] + t[1],
+        3 => accurate_sum_array([t[0], t[1], t[2]]),
+        4 => accurate_sum_array([t[0], t[1], t[2], t[3]]),
+        5 => accurate_sum_array([t[0], t[1], t[2], t[3], t[4]]),
+        _ => accurate_sum_array(t),
+    }
+}
+
+/// The four vertices of a case from their forms (p halved in case 1; halving is exact but
+/// for subnormal results). Written out so that, the forms being constants, every coefficient
+/// test folds away.
+#[inline(always)]
+fn slots(coords: &[[Form; 3]; 4], al: &[f64; 6], halve_last: bool) -> [[f64; 3]; 4] {
+    let v = |s: usize, i: usize| form_value(&coords[s][i], al);
+    let h = if halve_last { 0.5 } else { 1.0 };
+    [
+        [v(0, 0), v(0, 1), v(0, 2)],
+        [v(1, 0), v(1, 1), v(1, 2)],
+        [v(2, 0), v(2, 1), v(2, 2)],
+        [h * v(3, 0), h * v(3, 1), h * v(3, 2)],
+    ]
+}
+
+/// The canonical corner with local bounds `al = [α_A, α_B, α_C, α_AB, α_AC, α_BC]` whose
+/// clamped chamfers are the set bits of `MASK`: its case (1..4) and its four vertices in the
+/// slot order of [`CASES`], each coordinate the correctly rounded exact value of its formula
+/// (halved for p). The formulas are the symbolically simplified forms of [`CORNER_FORMS`], so
+/// that exact cancellations of clamped chamfers cost no arithmetic, and tests whose sign the
+/// clamping decides ([`CornerForms::known`]) none either. The tests are taken in the paper's
+/// order, as [`LocalBound::case_of`] does.
+#[inline(always)]
+fn masked_corner<const MASK: usize>(al: [f64; 6]) -> (usize, [[f64; 3]; 4]) {
+    let forms = const { &CORNER_FORMS[MASK] };
+    // Written out (no loop, no closure) so that the constant tables fold.
+    #[inline(always)]
+    fn sign(forms: &CornerForms, i: usize, earlier: &[Ordering], al: &[f64; 6]) -> Ordering {
+        match (forms.known[i], forms.negates[i]) {
+            (Some(known), _) => known,
+            (None, Some(j)) => earlier[j].reverse(),
+            (None, None) => form_sign(&forms.tests[i], al),
+        }
+    }
+    let s0 = sign(forms, 0, &[], &al);
+    if s0 == Ordering::Greater {
+        return (2, slots(&forms.coords[1], &al, false));
+    }
+    let s1 = sign(forms, 1, &[s0], &al);
+    if s1 == Ordering::Greater {
+        return (3, slots(&forms.coords[2], &al, false));
+    }
+    if sign(forms, 2, &[s0, s1], &al) == Ordering::Greater {
+        return (4, slots(&forms.coords[3], &al, false));
+    }
+    (1, slots(&forms.coords[0], &al, true))
 }
 
 /// A tight bound as a linear form in the 18 offsets, in half-units: `Σ_k coef_k β_k / 2`.
@@ -1065,17 +1234,29 @@ fn case2<T: LocalBound>(al: [T; 6]) -> [[f64; 3]; 4] {
     [v1, v3, q2, q3]
 }
 
+/// Writes the vertices `v` of corner `c`, computed in its canonical frame, in world
+/// coordinates (each coordinate times the corner's sign; adding +0 turns the −0 of a reflected
+/// zero into +0).
+#[inline(always)]
+fn store_reflected(c: usize, v: &[[f64; 3]; 4], out: &mut [Point3; 4]) {
+    let s = CORNER_SIGNS[c];
+    for (o, v) in out.iter_mut().zip(v) {
+        *o = Point3::new(s[0] * v[0] + 0.0, s[1] * v[1] + 0.0, s[2] * v[2] + 0.0);
+    }
+}
+
 /// Which chamfer bounds are clamped: β_j ≥ β_p1 + β_p2 for its parent principal planes.
+#[inline]
 fn clamped_chamfers(beta: &[f64; 18]) -> [bool; 18] {
-    std::array::from_fn(|j| {
-        j >= 6 && {
-            let [p1, p2] = CHAMFER_PARENTS[j].map(usize::from);
-            // β_p1 + β_p2 = s + e exactly, and rounding to nearest puts s + e strictly between
-            // the neighbours of s: so β_j ≥ s + e ⇔ β_j > s, or β_j = s and e ≤ 0.
-            let (s, e) = two_sum(beta[p1], beta[p2]);
-            beta[j] > s || (beta[j] == s && e <= 0.0)
-        }
-    })
+    let mut clamped = [false; 18];
+    for j in 6..18 {
+        let [p1, p2] = CHAMFER_PARENTS[j];
+        // β_p1 + β_p2 = s + e exactly, and rounding to nearest puts s + e strictly between
+        // the neighbours of s: so β_j ≥ s + e ⇔ β_j > s, or β_j = s and e ≤ 0.
+        let (s, e) = two_sum(beta[usize::from(p1)], beta[usize::from(p2)]);
+        clamped[j] = beta[j] > s || (beta[j] == s && e <= 0.0);
+    }
+    clamped
 }
 
 /// The boundary of a tribox: at most 32 vertices and one face per bounding plane.
@@ -1143,38 +1324,42 @@ impl Tribox {
     /// assert_eq!(Tribox::new(&b), b.boundary());
     /// assert!(Tribox::new(&TriboxBounds::empty()).is_empty());
     /// ```
-    #[inline]
+    #[inline(never)]
     pub fn new(bounds: &TriboxBounds) -> Tribox {
-        if bounds.is_empty() {
-            return Tribox::blank(bounds);
+        // One boundary, filled in place in the caller's slot (not inlined: inlined, it was
+        // built aside and copied).
+        let mut t = Tribox::blank(bounds);
+        if !bounds.is_empty() {
+            t.fill_new(bounds);
         }
+        t
+    }
+
+    /// The corners of [`new`](Self::new), for non-empty bounds.
+    #[inline(never)]
+    fn fill_new(&mut self, bounds: &TriboxBounds) {
         let beta = bounds.offsets();
         let clamped = clamped_chamfers(&beta);
-        Tribox::from_corners(bounds, |c| {
+        self.fill_corners(|c, out| {
             let planes = CORNER_PLANES[c];
-            if clamped[planes[AB] as usize]
-                || clamped[planes[AC] as usize]
-                || clamped[planes[BC] as usize]
-            {
-                corner(std::array::from_fn(|k| {
-                    let j = planes[k] as usize;
-                    if clamped[j] {
-                        let [p1, p2] = CHAMFER_PARENTS[j];
-                        Effective {
-                            hi: beta[p1 as usize],
-                            lo: beta[p2 as usize],
-                        }
-                    } else {
-                        Effective {
-                            hi: beta[j],
-                            lo: 0.0,
-                        }
-                    }
-                }))
-            } else {
-                corner(std::array::from_fn(|k| beta[planes[k] as usize]))
-            }
-        })
+            let b = |k: usize| beta[usize::from(planes[k])];
+            let al = [b(A), b(B), b(C), b(AB), b(AC), b(BC)];
+            let mask = usize::from(clamped[usize::from(planes[AB])])
+                | usize::from(clamped[usize::from(planes[AC])]) << 1
+                | usize::from(clamped[usize::from(planes[BC])]) << 2;
+            let (case, v) = match mask {
+                0 => masked_corner::<0>(al),
+                1 => masked_corner::<1>(al),
+                2 => masked_corner::<2>(al),
+                3 => masked_corner::<3>(al),
+                4 => masked_corner::<4>(al),
+                5 => masked_corner::<5>(al),
+                6 => masked_corner::<6>(al),
+                _ => masked_corner::<7>(al),
+            };
+            store_reflected(c, &v, out);
+            case
+        });
     }
 
     /// A boundary with no vertex and no face.
@@ -1182,7 +1367,8 @@ impl Tribox {
     fn blank(bounds: &TriboxBounds) -> Tribox {
         Tribox {
             bounds: *bounds,
-            vertices: [[Point3::origin(); 4]; 8],
+            // A constant (all bits zero), so that filling it costs a memset.
+            vertices: [[const { Point3::new(0.0, 0.0, 0.0) }; 4]; 8],
             vertex_planes: [[[0; 3]; 4]; 8],
             vertex_count: 0,
             faces: [[0; MAX_FACE]; 18],
@@ -1191,32 +1377,37 @@ impl Tribox {
         }
     }
 
-    /// The boundary from each corner's case and four vertices (canonical frame): vertices in
-    /// world coordinates, and each face's loop, its corners' sub-lists concatenated
-    /// counter-clockwise around it (tabulated for every combination of cases).
-    #[inline(always)]
+    /// The boundary from each corner's case and four vertices (see
+    /// [`fill_corners`](Self::fill_corners)).
     fn from_corners(
         bounds: &TriboxBounds,
-        mut corner: impl FnMut(usize) -> (usize, [[f64; 3]; 4]),
+        corner: impl FnMut(usize, &mut [Point3; 4]) -> usize,
     ) -> Tribox {
-        // Each corner is evaluated straight into its slots (no intermediate array).
-        let mut cases = [0u8; 8];
-        let mut t = Tribox {
-            bounds: *bounds,
-            vertices: std::array::from_fn(|c| {
-                let (case, v) = corner(c);
-                cases[c] = case as u8;
-                let s = CORNER_SIGNS[c];
-                // Adding +0 turns the -0 of a reflected zero into +0.
-                v.map(|v| Point3::new(s[0] * v[0] + 0.0, s[1] * v[1] + 0.0, s[2] * v[2] + 0.0))
-            }),
-            vertex_planes: [[[0; 3]; 4]; 8],
-            vertex_count: MAX_VERTICES as u8,
-            faces: [[0; MAX_FACE]; 18],
-            face_len: [0; 18],
-            cases,
-        };
-        t.vertex_planes = std::array::from_fn(|c| VERTEX_PLANES[c][usize::from(cases[c]) - 1]);
+        let mut t = Tribox::blank(bounds);
+        t.fill_corners(corner);
+        t
+    }
+
+    /// Fills a blank boundary from each corner's case and four vertices (`corner` writes them,
+    /// in world coordinates, with [`store_reflected`], and returns the case), and each face's
+    /// loop, its corners' sub-lists concatenated counter-clockwise around it (tabulated for
+    /// every combination of cases).
+    #[inline(always)]
+    fn fill_corners(&mut self, mut corner: impl FnMut(usize, &mut [Point3; 4]) -> usize) {
+        let t = self;
+        t.vertex_count = MAX_VERTICES as u8;
+        // Each corner writes its world vertices straight into its slots.
+        for (c, slots) in t.vertices.iter_mut().enumerate() {
+            t.cases[c] = corner(c, slots) as u8;
+        }
+        let cases = t.cases;
+        for (planes, (table, &case)) in t
+            .vertex_planes
+            .iter_mut()
+            .zip(VERTEX_PLANES.iter().zip(&cases))
+        {
+            *planes = table[usize::from(case) - 1];
+        }
         // Two bits per corner: its case − 1.
         let cases = t.cases.map(|k| usize::from(k - 1));
         for j in 0..18 {
@@ -1230,7 +1421,6 @@ impl Tribox {
             t.faces[j] = packed.to_le_bytes();
             t.face_len[j] = len;
         }
-        t
     }
 
     /// The bounds this boundary was evaluated from.
@@ -1454,12 +1644,14 @@ impl Tribox {
         let raw = if only_clamps {
             Tribox::new(&self.bounds)
         } else {
-            Tribox::from_corners(&self.bounds, |c| {
+            Tribox::from_corners(&self.bounds, |c, out| {
                 let planes = CORNER_PLANES[c];
-                corner(std::array::from_fn(|k| OffsetForm {
+                let (case, v) = corner(std::array::from_fn(|k| OffsetForm {
                     coef: tight[planes[k] as usize],
                     beta: &beta,
-                }))
+                }));
+                store_reflected(c, &v, out);
+                case
             })
         };
         let n = raw.vertex_count as usize;
@@ -1861,4 +2053,133 @@ fn round_up_form(f: &DualBasis, beta: &[f64; 18]) -> f64 {
         r = r.next_up();
     }
     r
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A xorshift generator.
+    struct Rng(u64);
+
+    impl Rng {
+        fn next(&mut self) -> u64 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            self.0
+        }
+
+        fn unit(&mut self) -> f64 {
+            (self.next() >> 11) as f64 / (1u64 << 53) as f64
+        }
+
+        fn below(&mut self, n: u64) -> u64 {
+            self.next() % n
+        }
+    }
+
+    /// The boundary by the generic corner formulas on exact forms (every clamped chamfer the
+    /// form of its two principal bounds): each sign exact, each coordinate correctly rounded.
+    fn reference(bounds: &TriboxBounds) -> Tribox {
+        let beta = bounds.offsets();
+        let clamped = clamped_chamfers(&beta);
+        let forms: [[i32; 18]; 18] = std::array::from_fn(|j| {
+            let mut f = [0; 18];
+            if clamped[j] {
+                for p in CHAMFER_PARENTS[j] {
+                    f[usize::from(p)] = 2;
+                }
+            } else {
+                f[j] = 2;
+            }
+            f
+        });
+        Tribox::from_corners(bounds, |c, out| {
+            let planes = CORNER_PLANES[c];
+            let (case, v) = corner(std::array::from_fn(|k| OffsetForm {
+                coef: forms[usize::from(planes[k])],
+                beta: &beta,
+            }));
+            store_reflected(c, &v, out);
+            case
+        })
+    }
+
+    /// Bit-for-bit equality of two boundaries (a zero's sign included).
+    fn assert_same(t: &Tribox, r: &Tribox, b: &TriboxBounds) {
+        assert_eq!(t.corner_cases(), r.corner_cases(), "{b:?}");
+        let bits = |t: &Tribox| -> Vec<u64> {
+            t.vertices()
+                .iter()
+                .flat_map(|p| [p.x, p.y, p.z].map(f64::to_bits))
+                .collect()
+        };
+        assert_eq!(bits(t), bits(r), "{b:?}");
+        assert_eq!(t.vertex_planes(), r.vertex_planes(), "{b:?}");
+        for j in 0..18 {
+            assert_eq!(t.face(j), r.face(j), "{b:?}");
+        }
+    }
+
+    /// A random cloud of a few points: generic, on a coarse grid (many exact ties and clamped
+    /// chamfers whose sums cancel exactly), or of wildly different magnitudes; scaled by a
+    /// power of ten from 1e-310 to 1e300, mixed signs (and no sum of bounds overflows).
+    fn cloud(rng: &mut Rng) -> Vec<Point3> {
+        const SCALES: [f64; 8] = [1.0, 1e-300, 1e300, 1e-160, 3e150, 1e-310, 0.1, -7.0];
+        let scale = SCALES[rng.below(8) as usize];
+        let kind = rng.below(6);
+        let n = 1 + rng.below(9) as usize;
+        (0..n)
+            .map(|_| {
+                let mut c = [0.0; 3];
+                for x in &mut c {
+                    *x = scale
+                        * match kind {
+                            0 => 2.0 * rng.unit() - 1.0,
+                            1 => (rng.below(5) as f64 - 2.0) * 0.5,
+                            2 => rng.below(3) as f64,
+                            3 => (rng.unit() - 0.5) * 2f64.powi(rng.below(120) as i32 - 100),
+                            4 => rng.below(4) as f64 * 0.1 + [0.0, 1e-17][rng.below(2) as usize],
+                            _ => rng.unit(),
+                        };
+                }
+                Point3::new(c[0], c[1], c[2])
+            })
+            .collect()
+    }
+
+    #[test]
+    fn simplified_forms_match_the_exact_formulas() {
+        let mut rng = Rng(0x1234_5678_9abc_def1);
+        let mut masks = [0usize; 8];
+        let mut cases = [0usize; 5];
+        for it in 0..100_000 {
+            let mut b = TriboxBounds::from_points(&cloud(&mut rng));
+            if it % 3 == 2 {
+                // Bounds of no point set: random cuts across random directions.
+                for _ in 0..1 + rng.below(4) {
+                    let d = rng.below(9) as usize;
+                    let (lo, hi) = (b.min()[d], b.max()[d]);
+                    let pick = b.split(d, lo + (hi - lo) * rng.unit())[rng.below(2) as usize];
+                    if !pick.is_empty() {
+                        b = pick;
+                    }
+                }
+            }
+            let t = Tribox::new(&b);
+            assert_same(&t, &reference(&b), &b);
+            let clamped = clamped_chamfers(&b.offsets());
+            for (c, planes) in CORNER_PLANES.iter().enumerate() {
+                let mask = (3..6).fold(0, |m, k| {
+                    m | usize::from(clamped[usize::from(planes[k])]) << (k - 3)
+                });
+                masks[mask] += 1;
+                cases[usize::from(t.corner_cases()[c])] += 1;
+            }
+        }
+        // Every clamp mask and every case is exercised.
+        assert!(masks.iter().all(|&m| m > 100), "{masks:?}");
+        assert!(cases[1..].iter().all(|&m| m > 100), "{cases:?}");
+    }
 }

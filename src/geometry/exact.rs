@@ -410,7 +410,25 @@ pub fn add_round_down(a: f64, b: f64) -> f64 {
 /// ```
 #[inline]
 pub fn sum_sign(terms: &[f64]) -> Ordering {
-    match filtered_sign(terms) {
+    sum_sign_inline(terms)
+}
+
+/// [`sum_sign`] of a fixed number of terms, always inlined (the same result): for hot callers
+/// of short sums, whose terms then stay in registers unless the filter fails.
+///
+/// ```
+/// use kepler::geometry::exact::{sum_sign, sum_sign_array};
+/// let terms = [0.1, 0.2, -0.3];
+/// assert_eq!(sum_sign_array(terms), sum_sign(&terms));
+/// ```
+#[inline(always)]
+pub fn sum_sign_array<const N: usize>(terms: [f64; N]) -> Ordering {
+    sum_sign_inline(&terms)
+}
+
+#[inline(always)]
+fn sum_sign_inline(terms: &[f64]) -> Ordering {
+    match filtered_sign_inline(terms) {
         Some(sign) => sign,
         None => exact_sign(terms),
     }
@@ -428,6 +446,11 @@ pub fn sum_sign(terms: &[f64]) -> Ordering {
 /// ```
 #[inline]
 pub fn filtered_sign(terms: &[f64]) -> Option<Ordering> {
+    filtered_sign_inline(terms)
+}
+
+#[inline(always)]
+fn filtered_sign_inline(terms: &[f64]) -> Option<Ordering> {
     let mut sum = 0.0;
     let mut magnitude = 0.0;
     for &t in terms {
@@ -446,10 +469,19 @@ pub fn filtered_sign(terms: &[f64]) -> Option<Ordering> {
     }
 }
 
-/// The sign of the exact expansion of the sum (the filter's fallback).
+/// The exact sign of the sum (the filter's fallback): by the TwoSum cascade of
+/// [`accurate_sum`] when it leaves no residual (the exact sum is then `sum + err`, two doubles,
+/// whose rounded sum has its sign since a sum of doubles rounds to zero only when it is zero),
+/// otherwise by the sign of the exact expansion.
 #[cold]
 #[inline(never)]
 fn exact_sign(terms: &[f64]) -> Ordering {
+    if let [a, b, ref rest @ ..] = *terms {
+        let (sum, err, residual) = cascade(a, b, rest);
+        if residual == 0.0 {
+            return sign_of(sum + err);
+        }
+    }
     with_expansion(terms, |e| sign_of(e.last().copied().unwrap_or(0.0)))
 }
 
@@ -471,22 +503,30 @@ fn exact_sign(terms: &[f64]) -> Ordering {
 /// ```
 #[inline]
 pub fn accurate_sum(terms: &[f64]) -> f64 {
+    accurate_sum_inline(terms)
+}
+
+/// [`accurate_sum`] of a fixed number of terms, always inlined (the same result): for hot
+/// callers of short sums, whose terms then stay in registers unless the certification fails.
+///
+/// ```
+/// use kepler::geometry::exact::{accurate_sum, accurate_sum_array};
+/// let terms = [0.1, 0.2, -0.3];
+/// assert_eq!(accurate_sum_array(terms), accurate_sum(&terms));
+/// ```
+#[inline(always)]
+pub fn accurate_sum_array<const N: usize>(terms: [f64; N]) -> f64 {
+    accurate_sum_inline(&terms)
+}
+
+#[inline(always)]
+fn accurate_sum_inline(terms: &[f64]) -> f64 {
     match *terms {
         [] => 0.0,
         [a] => a,
         [a, b] => a + b,
         [a, b, ref rest @ ..] => {
-            // TwoSum cascade: exact sum = sum + (sum of the errors e_i); the errors are added
-            // with TwoSum too, so exact sum = sum + err + (sum of the residuals d_i).
-            let (mut sum, mut err) = two_sum(a, b);
-            let mut residual = 0.0;
-            for &t in rest {
-                let (s, e) = two_sum(sum, t);
-                sum = s;
-                let (r, d) = two_sum(err, e);
-                err = r;
-                residual += d.abs();
-            }
+            let (sum, err, residual) = cascade(a, b, rest);
             // With no residual, sum + err is the exact sum and its IEEE rounding is correct
             // (ties included).
             if residual == 0.0 {
@@ -503,6 +543,24 @@ pub fn accurate_sum(terms: &[f64]) -> f64 {
             }
         }
     }
+}
+
+/// The TwoSum cascade of `a`, `b` and `rest`: `(sum, err, residual)` with exact sum =
+/// sum + (sum of the errors e_i); the errors are added with TwoSum too, so exact sum = sum +
+/// err + (sum of the residuals d_i), and `residual` is the sum of their magnitudes, rounded
+/// (zero exactly when every d_i is).
+#[inline(always)]
+fn cascade(a: f64, b: f64, rest: &[f64]) -> (f64, f64, f64) {
+    let (mut sum, mut err) = two_sum(a, b);
+    let mut residual = 0.0;
+    for &t in rest {
+        let (s, e) = two_sum(sum, t);
+        sum = s;
+        let (r, d) = two_sum(err, e);
+        err = r;
+        residual += d.abs();
+    }
+    (sum, err, residual)
 }
 
 /// Half the smaller of the two gaps between `x` and its neighbouring doubles, when `x` is
@@ -658,6 +716,63 @@ mod tests {
             accurate_sum(&[1.0, 2f64.powi(-53), -(2f64.powi(-200)), 0.0]),
             1.0
         );
+    }
+
+    /// The sign of the exact expansion, without the cascade of `exact_sign`.
+    fn expansion_sign(terms: &[f64]) -> Ordering {
+        with_expansion(terms, |e| sign_of(e.last().copied().unwrap_or(0.0)))
+    }
+
+    #[test]
+    fn cascade_signs_and_fixed_arrays_agree_with_the_expansion() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        // Terms that cancel exactly or nearly: shared magnitudes, halves, tiny tails, zeros,
+        // from 1e-300 to 1e300 and mixed signs.
+        let pool = [
+            0.0,
+            1.0,
+            0.1,
+            0.2,
+            0.3,
+            0.5,
+            0.75,
+            1e-17,
+            2f64.powi(-53),
+            2f64.powi(-60),
+            1e300,
+            1e-300,
+            3e299,
+            5e-324,
+            1e16,
+            1.5,
+        ];
+        for _ in 0..200_000 {
+            let mut t = [0.0; 5];
+            for x in &mut t {
+                let v = pool[(next() % pool.len() as u64) as usize];
+                *x = if next() % 2 == 0 { v } else { -v };
+            }
+            // Often make the sum cancel: the last term undoes the first ones' rounded sum.
+            if next() % 2 == 0 {
+                t[4] = -(t[0] + t[1] + t[2] + t[3]);
+            }
+            assert_eq!(exact_sign(&t), expansion_sign(&t), "{t:?}");
+            assert_eq!(exact_sign(&t[..3]), expansion_sign(&t[..3]), "{t:?}");
+            assert_eq!(sum_sign_array(t), sum_sign(&t), "{t:?}");
+            assert_eq!(sum_sign_array([t[0], t[1], t[2]]), sum_sign(&t[..3]));
+            assert_eq!(accurate_sum_array(t).to_bits(), accurate_sum(&t).to_bits());
+            assert_eq!(
+                accurate_sum(&t).to_bits(),
+                exact_round(&t).to_bits(),
+                "{t:?}"
+            );
+        }
     }
 
     #[test]
