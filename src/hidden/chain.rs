@@ -1,6 +1,7 @@
 //! Chaining pieces into maximal polylines.
 
 use super::{EdgeClass, Polyline};
+use foldhash::fast::FixedState;
 use rayon::prelude::*;
 use std::collections::HashMap;
 
@@ -64,17 +65,24 @@ fn key(p: [f64; 2]) -> [u64; 2] {
 
 /// Chains one group's segments.
 fn chain_group(segments: &[Segment]) -> Vec<Vec<[f64; 2]>> {
-    let mut at: HashMap<[u64; 2], Vec<usize>> = HashMap::with_capacity(segments.len() * 2);
+    // At each point, how many segment ends lie there and the first two segments: only a point
+    // with exactly two is chained through.
+    let mut at: HashMap<[u64; 2], (usize, [usize; 2]), FixedState> =
+        HashMap::with_capacity_and_hasher(segments.len() * 2, FixedState::default());
     for (i, s) in segments.iter().enumerate() {
         for p in s {
-            at.entry(key(*p)).or_default().push(i);
+            let (count, first) = at.entry(key(*p)).or_insert((0, [i, i]));
+            if *count < 2 {
+                first[*count] = i;
+            }
+            *count += 1;
         }
     }
     let mut used = vec![false; segments.len()];
     // The one other unused segment at point p, when exactly two segments end there.
     let next = |p: [f64; 2], from: usize, used: &[bool]| -> Option<usize> {
-        match at.get(&key(p)).map(Vec::as_slice) {
-            Some(&[x, y]) => {
+        match at.get(&key(p)) {
+            Some(&(2, [x, y])) => {
                 let other = if x == from { y } else { x };
                 (other != from && !used[other]).then_some(other)
             }
@@ -109,9 +117,13 @@ fn chain_group(segments: &[Segment]) -> Vec<Vec<[f64; 2]>> {
             backward.push(p);
             s = n;
         }
-        backward.reverse();
-        backward.extend(forward);
-        out.push(backward);
+        if backward.is_empty() {
+            out.push(forward);
+        } else {
+            backward.reverse();
+            backward.extend(forward);
+            out.push(backward);
+        }
     }
     out
 }

@@ -2,7 +2,7 @@
 
 use std::io::{self, Write};
 
-use crate::hidden::{Drawing, EdgeClass};
+use crate::hidden::{Drawing, EdgeClass, Polyline};
 
 /// The stroke colour of visible lines.
 const VISIBLE_COLOUR: &str = "#000000";
@@ -312,12 +312,12 @@ pub fn write_svg(drawing: &Drawing, options: &SvgOptions, out: &mut impl Write) 
     )?;
     for visible in [false, true] {
         for (class, stroke_width) in EdgeClass::ALL.into_iter().zip(widths) {
-            let mut paths = drawing
+            let paths: Vec<&Polyline> = drawing
                 .polylines
                 .iter()
                 .filter(|p| p.class == class && p.visible == visible && !p.points.is_empty())
-                .peekable();
-            if paths.peek().is_none() {
+                .collect();
+            if paths.is_empty() {
                 continue;
             }
             let name = class.name();
@@ -333,18 +333,43 @@ pub fn write_svg(drawing: &Drawing, options: &SvgOptions, out: &mut impl Write) 
                     dash[0], dash[1]
                 )?;
             }
-            for polyline in paths {
-                out.write_all(b"<path d=\"")?;
-                for (i, [x, y]) in polyline.points.iter().enumerate() {
-                    let command = if i == 0 { "M" } else { " L" };
-                    write!(out, "{command} {x} {y}")?;
-                }
-                out.write_all(b"\"/>\n")?;
-            }
+            write_paths(&paths, &mut out)?;
             writeln!(out, "</g>")?;
         }
     }
     writeln!(out, "</g>")?;
     writeln!(out, "</svg>")?;
     out.flush()
+}
+
+/// Writes one `<path>` per polyline, in order. Formatting the numbers (shortest round trip)
+/// is most of the work of a large drawing: windows of polylines are formatted in parallel
+/// pieces and written in order, so the bytes are those of writing them one by one, and the
+/// memory held is one window's text.
+fn write_paths(paths: &[&Polyline], out: &mut impl Write) -> io::Result<()> {
+    use rayon::prelude::*;
+    const WINDOW: usize = 1 << 16;
+    const PIECE: usize = 1 << 11;
+    for window in paths.chunks(WINDOW) {
+        let pieces: Vec<Vec<u8>> = window
+            .par_chunks(PIECE)
+            .map(|piece| {
+                let mut text = Vec::new();
+                for polyline in piece {
+                    text.extend_from_slice(b"<path d=\"");
+                    for (i, [x, y]) in polyline.points.iter().enumerate() {
+                        let command = if i == 0 { "M" } else { " L" };
+                        // Writing into a vector cannot fail.
+                        let _ = write!(text, "{command} {x} {y}");
+                    }
+                    text.extend_from_slice(b"\"/>\n");
+                }
+                text
+            })
+            .collect();
+        for text in pieces {
+            out.write_all(&text)?;
+        }
+    }
+    Ok(())
 }
