@@ -373,3 +373,34 @@ fn write_paths(paths: &[&Polyline], out: &mut impl Write) -> io::Result<()> {
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Many polylines (several windows and pieces) are written as one by one, in order.
+    #[test]
+    fn paths_formatted_in_parallel_are_written_in_order() {
+        let polylines: Vec<Polyline> = (0..150_000u32)
+            .map(|i| Polyline {
+                class: EdgeClass::Smooth,
+                visible: true,
+                points: (0..1 + i % 4)
+                    .map(|k| [f64::from(i) / 7.0, -f64::from(k) * 1e-300])
+                    .collect(),
+            })
+            .collect();
+        let refs: Vec<&Polyline> = polylines.iter().collect();
+        let mut parallel = Vec::new();
+        write_paths(&refs, &mut parallel).unwrap();
+        let mut one_by_one = String::new();
+        for p in &polylines {
+            one_by_one += "<path d=\"";
+            for (i, [x, y]) in p.points.iter().enumerate() {
+                one_by_one += &format!("{} {x} {y}", if i == 0 { "M" } else { " L" });
+            }
+            one_by_one += "\"/>\n";
+        }
+        assert_eq!(String::from_utf8(parallel).unwrap(), one_by_one);
+    }
+}
