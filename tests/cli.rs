@@ -730,9 +730,11 @@ fn json_file(path: &str) -> Value {
     serde_json::from_str(&std::fs::read_to_string(path).expect("the JSON")).expect("JSON")
 }
 
-/// A path for a test's output file in the temporary directory.
+/// A path for a test's output file in the build's directory for test files (not the
+/// system's temporary directory, where each run would leave one behind).
 fn temp_path(name: &str) -> String {
-    let dir = std::env::temp_dir().join(format!("kepler-cli-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("kepler-cli-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temporary directory");
     dir.join(name).to_string_lossy().into_owned()
 }
@@ -1304,7 +1306,8 @@ fn render_verify_reports_its_checks() {
 /// A unit cube as OBJ with a zero-area sliver along an edge, a face repeating a vertex, and
 /// its top quad bent by one ulp (not exactly planar), written to a temporary file.
 fn repaired_cube() -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("kepler-cli-issue14-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("kepler-cli-issue14-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("repaired.obj");
     let mut text = String::new();
@@ -1359,7 +1362,8 @@ fn render_stats_count_the_repairs_and_strict_refuses_them() {
 
 #[test]
 fn an_unknown_scene_key_of_a_megabyte_is_not_echoed_whole() {
-    let dir = std::env::temp_dir().join(format!("kepler-cli-issue14-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("kepler-cli-issue14-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("huge-key.toml");
     let key = "k".repeat(1 << 20);
