@@ -32,8 +32,8 @@ fn obj_text(v: &[[f64; 3]], t: &[[u32; 3]]) -> Vec<u8> {
     s.into_bytes()
 }
 
-fn off_text(v: &[[f64; 3]], t: &[[u32; 3]]) -> Vec<u8> {
-    let mut s = format!("OFF\n{} {} 0\n", v.len(), t.len());
+/// The body OFF and ASCII PLY share: a line per vertex, then `3 i j k` per triangle.
+fn counted_lines(mut s: String, v: &[[f64; 3]], t: &[[u32; 3]]) -> Vec<u8> {
     for p in v {
         let _ = writeln!(s, "{:?} {:?} {:?}", p[0], p[1], p[2]);
     }
@@ -41,6 +41,10 @@ fn off_text(v: &[[f64; 3]], t: &[[u32; 3]]) -> Vec<u8> {
         let _ = writeln!(s, "3 {} {} {}", f[0], f[1], f[2]);
     }
     s.into_bytes()
+}
+
+fn off_text(v: &[[f64; 3]], t: &[[u32; 3]]) -> Vec<u8> {
+    counted_lines(format!("OFF\n{} {} 0\n", v.len(), t.len()), v, t)
 }
 
 fn stl_ascii(v: &[[f64; 3]], t: &[[u32; 3]]) -> Vec<u8> {
@@ -80,14 +84,7 @@ fn ply_header(format: &str, v: usize, t: usize) -> String {
 }
 
 fn ply_ascii(v: &[[f64; 3]], t: &[[u32; 3]]) -> Vec<u8> {
-    let mut s = ply_header("ascii", v.len(), t.len());
-    for p in v {
-        let _ = writeln!(s, "{:?} {:?} {:?}", p[0], p[1], p[2]);
-    }
-    for f in t {
-        let _ = writeln!(s, "3 {} {} {}", f[0], f[1], f[2]);
-    }
-    s.into_bytes()
+    counted_lines(ply_header("ascii", v.len(), t.len()), v, t)
 }
 
 fn ply_binary(v: &[[f64; 3]], t: &[[u32; 3]]) -> Vec<u8> {
