@@ -253,11 +253,11 @@ impl SegmentGrid {
             start: Vec::new(),
             items: Vec::new(),
         };
-        // Every (cell, segment) of the walks, gathered per thread in one pass over the input,
-        // then sorted by cell: the cells' lists.
-        // Sorting (cell, segment) as integers is cheaper than moving whole items; the items,
-        // with their coordinates, are then gathered in cell order.
-        let mut keys: Vec<u64> = segments
+        // Every (cell, segment) of the walks, gathered per thread in one pass over the input
+        // (in the order of the segments), then placed by cell with a counting pass (the cells
+        // are at most 4n + 1): within a cell, in the order of the segments, as a sort of the
+        // (cell, segment) pairs would leave them, and in one pass instead of a sort.
+        let keys: Vec<u64> = segments
             .par_iter()
             .enumerate()
             .fold(Vec::new, |mut out, (i, s)| {
@@ -268,32 +268,38 @@ impl SegmentGrid {
                 x.append(&mut y);
                 x
             });
-        keys.par_sort_unstable();
-        let mut items: Vec<Item> = keys
-            .par_iter()
-            .map(|&k| {
-                let s = &segments[(k & 0xffff_ffff) as usize];
-                let (a, b) = (xy(s.start), xy(s.end));
-                let (a, b) = if a[0] <= b[0] { (a, b) } else { (b, a) };
-                Item {
-                    cell: (k >> 32) as u32,
-                    segment: k as u32,
-                    a,
-                    b,
-                }
-            })
-            .collect();
-        // Within a cell, by the left end's x: a cell's pairs are then found by a sweep.
-        items
-            .par_chunk_by_mut(|x, y| x.cell == y.cell)
-            .for_each(|cell| cell.sort_unstable_by(|x, y| x.a[0].total_cmp(&y.a[0])));
         let mut start = vec![0u32; grid.cells.count() + 1];
-        for item in &items {
-            start[item.cell as usize + 1] += 1;
+        for &k in &keys {
+            start[(k >> 32) as usize + 1] += 1;
         }
         for c in 1..start.len() {
             start[c] += start[c - 1];
         }
+        let blank = Item {
+            cell: 0,
+            segment: 0,
+            a: [0.0; 2],
+            b: [0.0; 2],
+        };
+        let mut items = vec![blank; keys.len()];
+        let mut next = start.clone();
+        for &k in &keys {
+            let s = &segments[(k & 0xffff_ffff) as usize];
+            let (a, b) = (xy(s.start), xy(s.end));
+            let (a, b) = if a[0] <= b[0] { (a, b) } else { (b, a) };
+            let slot = &mut next[(k >> 32) as usize];
+            items[*slot as usize] = Item {
+                cell: (k >> 32) as u32,
+                segment: k as u32,
+                a,
+                b,
+            };
+            *slot += 1;
+        }
+        // Within a cell, by the left end's x: a cell's pairs are then found by a sweep.
+        items
+            .par_chunk_by_mut(|x, y| x.cell == y.cell)
+            .for_each(|cell| cell.sort_unstable_by(|x, y| x.a[0].total_cmp(&y.a[0])));
         grid.start = start;
         grid.items = items;
         grid
