@@ -184,15 +184,12 @@ fn in_kernel(mesh: &Mesh, b: &Aabb, outward: Ordering) -> bool {
     use rayon::prelude::*;
     let inside = |t: usize| box_inside_plane(&mesh.triangle(t), b, outward);
     let n = mesh.triangles().len();
-    if n >= PARALLEL_TRIANGLES {
+    if n >= crate::mesh::PARALLEL_POLYGONS {
         (0..n).into_par_iter().all(inside)
     } else {
         (0..n).all(inside)
     }
 }
-
-/// From this many triangles on, a pass over them runs in parallel.
-const PARALLEL_TRIANGLES: usize = 1 << 14;
 
 /// Whether no corner of `b` lies strictly on the `outward` side of the plane of `t`, exactly.
 ///

@@ -31,6 +31,7 @@ mod cells;
 mod voxels;
 
 pub use cells::{CellLists, Cells};
+pub(crate) use voxels::MARGIN as CELL_MARGIN;
 pub use voxels::Voxels;
 
 use crate::geometry::exact::{accurate_sum, product_terms, two_sum};

@@ -32,8 +32,9 @@
 
 use crate::geometry::{Aabb, Point3};
 
-/// The relative margin of the clipping: 2⁻⁴⁰ of the grid's largest coordinate.
-const MARGIN: f64 = 1.0 / (1u64 << 40) as f64;
+/// The relative margin of the clipping: 2⁻⁴⁰ of the grid's largest coordinate (also the
+/// margin of the picture cells' lists, `hidden::cover`).
+pub(crate) const MARGIN: f64 = 1.0 / (1u64 << 40) as f64;
 
 /// The most cells along one axis (cell numbers fit in 63 bits).
 const MAX_CELLS: usize = 1 << 20;

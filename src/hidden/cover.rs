@@ -28,8 +28,8 @@ use rstar::{AABB, RTree};
 use slotmap::SecondaryMap;
 use std::cmp::Ordering;
 
-/// The relative margin of the cells' lists: 2⁻⁴⁰.
-const MARGIN: f64 = 1.0 / (1u64 << 40) as f64;
+/// The relative margin of the cells' lists: the space grid's, 2⁻⁴⁰.
+use crate::grid::CELL_MARGIN as MARGIN;
 
 /// The triangles of one mesh listed by picture cells.
 #[derive(Debug)]

@@ -186,8 +186,8 @@ pub struct Mesh {
     junctions: Vec<Junction>,
 }
 
-/// From this many polygons on, a mesh's polygons are validated in parallel.
-const PARALLEL_POLYGONS: usize = 4096;
+/// From this many polygons (or triangles) on, a pass over a mesh runs in parallel.
+pub(crate) const PARALLEL_POLYGONS: usize = 4096;
 
 /// A polygon to become faces: its vertex loop, which of its sides are diagonals of a split
 /// polygon (bit `i`: the side from vertex `i`), and the input polygon it is (part of).
