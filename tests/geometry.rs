@@ -1,6 +1,8 @@
 //! Exact predicates and polygon triangulation against independent references.
 
-use kepler::geometry::polygon::{is_simple, newell_normal, segments_meet, triangulate};
+use kepler::geometry::polygon::{
+    is_simple, newell_normal, segments_meet, surely_farther, triangulate,
+};
 use kepler::geometry::predicates::triangle_meets_open_box;
 use kepler::geometry::{Aabb, Point3};
 use num_bigint::BigInt;
@@ -276,4 +278,106 @@ fn collinear_dropped(tris: &[[usize; 3]], n: usize) -> usize {
         .flatten()
         .collect::<std::collections::HashSet<_>>()
         .len()
+}
+
+/// The exact squared distance from `p` to the closed triangle `t` (rationals): zero inside,
+/// else the least over the sides of the distance to the closed segment.
+fn distance2_q(t: &[[f64; 2]; 3], p: [f64; 2]) -> Q {
+    let v = |a: [f64; 2]| [q(a[0]), q(a[1])];
+    let (p, t) = (v(p), t.map(v));
+    let cross = |a: &[Q; 2], b: &[Q; 2], c: &[Q; 2]| {
+        (&b[0] - &a[0]) * (&c[1] - &a[1]) - (&b[1] - &a[1]) * (&c[0] - &a[0])
+    };
+    let signs: Vec<Q> = (0..3).map(|i| cross(&t[i], &t[(i + 1) % 3], &p)).collect();
+    let area = cross(&t[0], &t[1], &t[2]);
+    let inside = !area.is_zero()
+        && (signs.iter().all(|s| !s.is_negative()) || signs.iter().all(|s| !s.is_positive()));
+    if inside {
+        return Q::zero();
+    }
+    (0..3)
+        .map(|i| {
+            let (a, b) = (&t[i], &t[(i + 1) % 3]);
+            let d = [&b[0] - &a[0], &b[1] - &a[1]];
+            let w = [&p[0] - &a[0], &p[1] - &a[1]];
+            let len2 = &d[0] * &d[0] + &d[1] * &d[1];
+            let mut s = if len2.is_zero() {
+                Q::zero()
+            } else {
+                (&w[0] * &d[0] + &w[1] * &d[1]) / &len2
+            };
+            if s.is_negative() {
+                s = Q::zero();
+            } else if s > Q::from_integer(1.into()) {
+                s = Q::from_integer(1.into());
+            }
+            let e = [&w[0] - &s * &d[0], &w[1] - &s * &d[1]];
+            &e[0] * &e[0] + &e[1] * &e[1]
+        })
+        .min()
+        .expect("three sides")
+}
+
+/// A plane point on a small lattice scaled by `scale` and moved by `at` (so that points fall
+/// exactly on sides and corners, and triangles are often flat).
+fn lattice_point(scale: f64, at: f64) -> impl Strategy<Value = [f64; 2]> {
+    (-4i32..=4, -4i32..=4)
+        .prop_map(move |(x, y)| [at + scale * f64::from(x), at + scale * f64::from(y)])
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(3000))]
+
+    /// The filter is never wrong: a point it calls farther than `d` is, exactly.
+    #[test]
+    fn surely_farther_never_rejects_a_point_within_reach(
+        (scale, at) in prop::sample::select(vec![(1.0, 0.0), (1e-90, 0.0), (1e90, 0.0), (1.0, 1e8), (1e-3, -1e8), (3e-170, 0.0)]),
+        k in 0usize..6,
+        seed in any::<u64>(),
+    ) {
+        let mut r = seed;
+        let mut next = || { r ^= r << 13; r ^= r >> 7; r ^= r << 17; ((r >> 11) as f64 / (1u64 << 53) as f64) * 8.0 - 4.0 };
+        let mut point = |snap: bool| {
+            let (x, y) = (next(), next());
+            if snap { [at + scale * x.round(), at + scale * y.round()] } else { [at + scale * x, at + scale * y] }
+        };
+        let snap = k % 2 == 0;
+        let t = [point(snap), point(snap), point(snap)];
+        let p = point(snap);
+        let d = scale * [0.0, 0.5, 1.0, 0.01, 2.0, 1e-9][k];
+        if surely_farther(&t, p, d) {
+            prop_assert!(distance2_q(&t, p) > q(d) * q(d), "{t:?} {p:?} {d}");
+        }
+    }
+
+    /// On a lattice (points on sides and corners, flat triangles): never wrong either.
+    #[test]
+    fn surely_farther_is_exact_on_a_lattice(
+        a in lattice_point(1.0, 0.0), b in lattice_point(1.0, 0.0), c in lattice_point(1.0, 0.0),
+        p in lattice_point(1.0, 0.0), d in prop::sample::select(vec![0.0, 1.0, 2.0, 0.5]),
+    ) {
+        let t = [a, b, c];
+        if surely_farther(&t, p, d) {
+            prop_assert!(distance2_q(&t, p) > q(d) * q(d));
+        }
+    }
+}
+
+/// The filter decides the easy cases: far points are rejected, at every scale.
+#[test]
+fn surely_farther_rejects_far_points() {
+    for (scale, at) in [(1.0, 0.0), (1e-90, 0.0), (1e90, 0.0), (1.0, 1e8)] {
+        let t =
+            [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]].map(|v| [at + scale * v[0], at + scale * v[1]]);
+        let p = |x: f64, y: f64| [at + scale * x, at + scale * y];
+        assert!(surely_farther(&t, p(3.0, 3.0), scale));
+        assert!(surely_farther(&t, p(0.8, 0.8), 0.1 * scale)); // beyond the hypotenuse only
+        assert!(!surely_farther(&t, p(0.8, 0.8), 0.5 * scale));
+        assert!(!surely_farther(&t, p(0.2, 0.2), 0.0));
+        assert!(!surely_farther(&t, p(1.0, 0.0), 0.0)); // a corner
+        // A flat triangle (a segment): the box test still rejects points off its ends.
+        let flat = [p(0.0, 0.0), p(1.0, 1.0), p(2.0, 2.0)];
+        assert!(surely_farther(&flat, p(5.0, 5.0), scale));
+        assert!(!surely_farther(&flat, p(1.5, 1.5), 0.0));
+    }
 }

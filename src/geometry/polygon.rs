@@ -11,6 +11,7 @@
 //! assert_eq!(polygon::triangulate(&square, &n).unwrap().len(), 2);
 //! ```
 
+use super::kernel::UNIT_ROUNDOFF;
 use super::predicates::{orient2d, project};
 use super::{Point3, Vector3};
 use std::cmp::Ordering;
@@ -277,4 +278,55 @@ pub fn bounding_box(points: impl IntoIterator<Item = [f64; 2]>) -> [[f64; 2]; 2]
             ]
         },
     )
+}
+
+/// Whether the plane point `p` is certainly farther than `distance` from the closed triangle
+/// `tri`: a floating-point filter, `false` whenever it cannot be sure (non-finite values,
+/// a triangle too flat to tell its sides), never `true` for a point within `distance`.
+///
+/// Two tests, each conservative. The box: `p` lies beyond the triangle's bounding box grown by
+/// `distance` on some axis (a difference rounds by at most a relative `u`, covered by the
+/// factor `1 + 2⁻²⁰`). An edge `ab`: the estimates of `orient2d(a, b, p)` and
+/// `orient2d(a, b, c)` for the third vertex `c` have certain, opposite signs (each within
+/// Shewchuk's bound `(3 + 16u)u` times its permanent, plus a term for underflow), and the
+/// line `ab` is farther from `p` than `distance`: the distance is the exact `|orient2d|`
+/// over `|b − a|`, at least the estimate less its bound over `√2·max(|bₓ − aₓ|, |b_y − a_y|)`;
+/// comparing with `1.5` for `√2` leaves room for the few roundings of the comparison.
+///
+/// ```
+/// use kepler::geometry::polygon::surely_farther;
+/// let t = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
+/// assert!(surely_farther(&t, [2.0, 2.0], 0.5));
+/// assert!(!surely_farther(&t, [0.6, 0.6], 0.5)); // within 0.5 of the hypotenuse
+/// assert!(!surely_farther(&t, [0.25, 0.25], 0.0)); // inside
+/// ```
+pub fn surely_farther(tri: &[[f64; 2]; 3], p: [f64; 2], distance: f64) -> bool {
+    const GROWN: f64 = 1.0 + 1.0 / (1u64 << 20) as f64;
+    const BOUND: f64 = (3.0 + 16.0 * UNIT_ROUNDOFF) * UNIT_ROUNDOFF;
+    const TINY: f64 = 4.0 * f64::MIN_POSITIVE;
+    let reach = distance * GROWN;
+    for k in 0..2 {
+        let (lo, hi) = tri
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), q| {
+                (lo.min(q[k]), hi.max(q[k]))
+            });
+        if lo - p[k] > reach || p[k] - hi > reach {
+            return true;
+        }
+    }
+    // The estimate of orient2d(a, b, q) and its error bound.
+    let orient = |a: [f64; 2], e: [f64; 2], q: [f64; 2]| {
+        let w = [q[0] - a[0], q[1] - a[1]];
+        let (l, r) = (e[0] * w[1], e[1] * w[0]);
+        (l - r, BOUND * (l.abs() + r.abs()) + TINY)
+    };
+    (0..3).any(|i| {
+        let (a, b, c) = (tri[i], tri[(i + 1) % 3], tri[(i + 2) % 3]);
+        let e = [b[0] - a[0], b[1] - a[1]];
+        let (at_p, err_p) = orient(a, e, p);
+        let (at_c, err_c) = orient(a, e, c);
+        let opposite = (at_p > err_p && at_c < -err_c) || (at_p < -err_p && at_c > err_c);
+        opposite && at_p.abs() - err_p > 1.5 * reach * e[0].abs().max(e[1].abs())
+    })
 }

@@ -211,19 +211,27 @@ impl CellLists {
     /// let lists = kepler::grid::CellLists::new(1, Vec::new());
     /// assert!(lists.get(0).is_empty());
     /// ```
-    pub fn new(cells: usize, mut pairs: Vec<(u32, u32)>) -> CellLists {
+    pub fn new(cells: usize, pairs: Vec<(u32, u32)>) -> CellLists {
         use rayon::prelude::*;
-        pairs.par_sort_unstable();
-        let mut start = vec![0u32; cells + 1];
-        for &(c, _) in &pairs {
-            start[c as usize + 1] += 1;
+        // Placed by cell in one counting pass; a cell's items then come in the order of the
+        // pairs, usually increasing already (each is sorted only where it is not).
+        let (start, placed) = crate::mesh::by_bucket(cells, &pairs, |p| p.0 as usize);
+        let mut items: Vec<u32> = placed.into_iter().map(|(_, i)| i).collect();
+        let mut rest = items.as_mut_slice();
+        let mut lists = Vec::with_capacity(cells);
+        for c in 0..cells {
+            let (list, after) = rest.split_at_mut(start[c + 1] - start[c]);
+            lists.push(list);
+            rest = after;
         }
-        for c in 1..start.len() {
-            start[c] += start[c - 1];
-        }
+        lists.into_par_iter().for_each(|list| {
+            if !list.is_sorted() {
+                list.sort_unstable();
+            }
+        });
         CellLists {
-            start,
-            items: pairs.into_iter().map(|(_, i)| i).collect(),
+            start: start.into_iter().map(|s| s as u32).collect(),
+            items,
         }
     }
 
@@ -251,6 +259,28 @@ impl CellLists {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn cell_lists_hold_each_cells_items_in_increasing_order() {
+        let mut seed = 19u64;
+        let mut next = |n: u64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % n) as u32
+        };
+        for (cells, n) in [(1, 0), (1, 5), (7, 100), (300, 5000)] {
+            let pairs: Vec<(u32, u32)> = (0..n).map(|_| (next(cells), next(1000))).collect();
+            let lists = CellLists::new(cells as usize, pairs.clone());
+            assert_eq!(lists.entries(), n);
+            for c in 0..cells as u32 {
+                let mut expected: Vec<u32> =
+                    pairs.iter().filter(|p| p.0 == c).map(|p| p.1).collect();
+                expected.sort_unstable();
+                assert_eq!(lists.get(c as usize), expected.as_slice());
+            }
+        }
+    }
 
     #[test]
     fn covering_triangle_lists_every_cell_a_point_of_the_triangle_falls_in() {

@@ -269,39 +269,27 @@ impl SegmentGrid {
                 x.append(&mut y);
                 x
             });
-        let mut start = vec![0u32; grid.cells.count() + 1];
-        for &k in &keys {
-            start[(k >> 32) as usize + 1] += 1;
-        }
-        for c in 1..start.len() {
-            start[c] += start[c - 1];
-        }
-        let blank = Item {
-            cell: 0,
-            segment: 0,
-            a: [0.0; 2],
-            b: [0.0; 2],
-        };
-        let mut items = vec![blank; keys.len()];
-        let mut next = start.clone();
-        for &k in &keys {
-            let s = &segments[(k & 0xffff_ffff) as usize];
-            let (a, b) = (xy(s.start), xy(s.end));
-            let (a, b) = if a[0] <= b[0] { (a, b) } else { (b, a) };
-            let slot = &mut next[(k >> 32) as usize];
-            items[*slot as usize] = Item {
-                cell: (k >> 32) as u32,
-                segment: k as u32,
-                a,
-                b,
-            };
-            *slot += 1;
-        }
+        let (start, keys) =
+            crate::mesh::by_bucket(grid.cells.count(), &keys, |k| (k >> 32) as usize);
+        let mut items: Vec<Item> = keys
+            .par_iter()
+            .map(|&k| {
+                let s = &segments[(k & 0xffff_ffff) as usize];
+                let (a, b) = (xy(s.start), xy(s.end));
+                let (a, b) = if a[0] <= b[0] { (a, b) } else { (b, a) };
+                Item {
+                    cell: (k >> 32) as u32,
+                    segment: k as u32,
+                    a,
+                    b,
+                }
+            })
+            .collect();
         // Within a cell, by the left end's x: a cell's pairs are then found by a sweep.
         items
             .par_chunk_by_mut(|x, y| x.cell == y.cell)
             .for_each(|cell| cell.sort_unstable_by(|x, y| x.a[0].total_cmp(&y.a[0])));
-        grid.start = start;
+        grid.start = start.into_iter().map(|s| s as u32).collect();
         grid.items = items;
         grid
     }

@@ -46,6 +46,9 @@ pub struct Voxels {
     size: [f64; 3],
     shape: [usize; 3],
     margin: f64,
+    /// Whether only what lies in the region (widened by the margin) is listed
+    /// ([`Voxels::within`]); else the first and last cells hold everything beyond.
+    bounded: bool,
 }
 
 /// A convex polygon of at most 9 points (a triangle clipped by up to four planes).
@@ -81,6 +84,27 @@ impl Voxels {
             size,
             shape,
             margin: MARGIN * largest,
+            bounded: false,
+        }
+    }
+
+    /// [`Voxels::new`], except that [`Voxels::triangle_cells`] lists only the cells that the
+    /// part of a triangle inside the region (widened by the margin) meets: a grid over one
+    /// crowded cell of a larger grid, which need not list what lies in other cells.
+    ///
+    /// ```
+    /// use kepler::{geometry::{Aabb, Point3}, grid::Voxels};
+    /// let g = Voxels::within(Aabb::new(Point3::origin(), Point3::new(2.0, 2.0, 2.0)), 1.0);
+    /// // A triangle across x = 0, y = 0.5, z = 0.5, sloping up to z = 5 at x = 8.
+    /// let t = [Point3::new(-1.0, 0.5, 0.0), Point3::new(8.0, 0.5, 5.0), Point3::new(-1.0, 0.6, 0.0)];
+    /// let mut cells = Vec::new();
+    /// g.triangle_cells(&t, &mut cells);
+    /// assert_eq!(cells, vec![0, 1, 5]); // Voxels::new would list 0, 1, 5 and 4 beyond x = 2
+    /// ```
+    pub fn within(region: Aabb, side: f64) -> Voxels {
+        Voxels {
+            bounded: true,
+            ..Voxels::new(region, side)
         }
     }
 
@@ -131,7 +155,7 @@ impl Voxels {
         }
         let [x0, x1] = self.range(&whole, 0);
         for ix in x0..=x1 {
-            let slab = if x0 == x1 {
+            let slab = if x0 == x1 && !self.bounded {
                 whole
             } else {
                 self.slab(&whole, 0, ix)
@@ -141,12 +165,12 @@ impl Voxels {
             }
             let [y0, y1] = self.range(&slab, 1);
             for iy in y0..=y1 {
-                let row = if y0 == y1 {
+                let row = if y0 == y1 && !self.bounded {
                     slab
                 } else {
                     self.slab(&slab, 1, iy)
                 };
-                if row.len == 0 {
+                if row.len == 0 || (self.bounded && !self.reaches(&row, 2)) {
                     continue;
                 }
                 let [z0, z1] = self.range(&row, 2);
@@ -192,6 +216,28 @@ impl Voxels {
         true
     }
 
+    /// The box of cell `c` (as the division of the region gives it; the cell of a point is
+    /// decided by [`Voxels::cell_of`], which may round a point on a side either way).
+    ///
+    /// ```
+    /// use kepler::{geometry::{Aabb, Point3}, grid::Voxels};
+    /// let g = Voxels::new(Aabb::new(Point3::origin(), Point3::new(2.0, 2.0, 2.0)), 1.0);
+    /// assert_eq!(g.cell_box(7), Aabb::new(Point3::new(1.0, 1.0, 1.0), Point3::new(2.0, 2.0, 2.0)));
+    /// ```
+    pub fn cell_box(&self, c: u64) -> Aabb {
+        let c = c as usize;
+        let index = [
+            c % self.shape[0],
+            c / self.shape[0] % self.shape[1],
+            c / self.shape[0] / self.shape[1],
+        ];
+        let at = |k: usize, i: usize| self.low[k] + self.size[k] * i as f64 / self.shape[k] as f64;
+        Aabb::new(
+            Point3::from([0, 1, 2].map(|k| at(k, index[k]))),
+            Point3::from([0, 1, 2].map(|k| at(k, index[k] + 1))),
+        )
+    }
+
     /// The cell number of the indices `c`.
     fn number(&self, c: [usize; 3]) -> u64 {
         ((c[2] * self.shape[1] + c[1]) * self.shape[0] + c[0]) as u64
@@ -226,16 +272,26 @@ impl Voxels {
         ]
     }
 
+    /// Whether the piece's range along axis `k` reaches the region's, widened by the margin.
+    fn reaches(&self, piece: &Piece, k: usize) -> bool {
+        let points = &piece.points[..piece.len];
+        points.iter().any(|p| p[k] >= self.low[k] - self.margin)
+            && points
+                .iter()
+                .any(|p| p[k] <= self.low[k] + self.size[k] + self.margin)
+    }
+
     /// The part of `piece` in the slab of cells `i` across axis `k`, widened by the margin
-    /// (unbounded beyond the first and last cells, which hold everything outside the region).
+    /// (unbounded beyond the first and last cells, which hold everything outside the region,
+    /// unless the grid is bounded).
     fn slab(&self, piece: &Piece, k: usize, i: usize) -> Piece {
         let step = self.size[k] / self.shape[k] as f64;
         let mut out = *piece;
-        if i > 0 {
+        if i > 0 || self.bounded {
             let lo = self.low[k] + step * i as f64 - self.margin;
             out = clip(&out, k, lo, true);
         }
-        if i + 1 < self.shape[k] {
+        if i + 1 < self.shape[k] || self.bounded {
             let hi = self.low[k] + step * (i + 1) as f64 + self.margin;
             out = clip(&out, k, hi, false);
         }
@@ -293,6 +349,44 @@ mod tests {
         cells.sort_unstable();
         cells.dedup();
         cells
+    }
+
+    #[test]
+    fn a_bounded_grid_lists_the_cells_of_the_part_inside() {
+        let mut seed = 3u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let region = Aabb::new(Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 1.0, 1.0));
+        for side in [0.25, 0.3, 1.0] {
+            let (within, whole) = (Voxels::within(region, side), Voxels::new(region, side));
+            for _ in 0..300 {
+                // Triangles from well outside the region to well inside it.
+                let mut p =
+                    || Point3::new(4.0 * next() - 1.5, 4.0 * next() - 1.5, 4.0 * next() - 1.5);
+                let t = [p(), p(), p()];
+                let (mut listed, mut all) = (Vec::new(), Vec::new());
+                within.triangle_cells(&t, &mut listed);
+                whole.triangle_cells(&t, &mut all);
+                listed.sort_unstable();
+                all.sort_unstable();
+                assert!(listed.iter().all(|c| all.binary_search(c).is_ok()), "{t:?}");
+                // Every sample of the triangle inside the region lands in a listed cell.
+                for i in 0..=60 {
+                    for j in 0..=60 - i {
+                        let (a, b) = (i as f64 / 60.0, j as f64 / 60.0);
+                        let q = t[0] + (t[1] - t[0]) * a + (t[2] - t[0]) * b;
+                        if (0..3).all(|k| (0.0..=1.0).contains(&q[k])) {
+                            let c = within.cell_of(&q);
+                            assert!(listed.binary_search(&c).is_ok(), "{q:?} of {t:?}");
+                        }
+                    }
+                }
+            }
+        }
     }
 
     #[test]

@@ -12,7 +12,7 @@
 //! near it) is looked up in every cell within the reach of its picture's error
 //! ([`Picture::reach`]): nearly always the one cell.
 
-use crate::geometry::polygon::bounding_box;
+use crate::geometry::polygon::{bounding_box, surely_farther};
 use crate::geometry::{Aabb, Point3};
 use crate::grid::{CellLists, Cells};
 use crate::mesh::Mesh;
@@ -31,18 +31,25 @@ use std::cmp::Ordering;
 /// The relative margin of the cells' lists: the space grid's, 2⁻⁴⁰.
 use crate::grid::CELL_MARGIN as MARGIN;
 
-/// The triangles of one mesh listed by picture cells.
+/// The triangles of one mesh listed by picture cells, with what filters a cell's triangles
+/// before the exact test: the vertices' pictures and the listing's margin.
 #[derive(Debug)]
-pub(crate) struct PictureGrid {
+pub(crate) struct PictureGrid<'a> {
     cells: Cells,
     lists: CellLists,
+    triangles: &'a [[u32; 3]],
+    pictures: &'a [[f64; 2]],
+    /// Which vertices are in front of the eye, when the view clips (else empty: all are).
+    front: &'a [bool],
+    /// The margin the triangles were listed with (more than the rounding of any picture).
+    margin: f64,
 }
 
 /// The window of a view that clips (half its width and height, grown), with the picture map:
 /// only points whose pictures lie in it are asked about.
 pub(crate) type Window<'a> = (&'a Picture, [f64; 2]);
 
-impl PictureGrid {
+impl<'a> PictureGrid<'a> {
     /// Lists the triangles of `mesh` whose vertices' pictures are `pictures`, in cells sized
     /// for about `queries` queries (see [`cell_factor`]). When the view clips (`window`),
     /// `front` says which vertices are in front of the eye (the others' pictures mean
@@ -52,11 +59,11 @@ impl PictureGrid {
     /// the front part of one that crosses the plane of the eye is unbounded along the pictures
     /// of its edges towards the eye's plane (see [`Clip::framed`](crate::queries::frustum)).
     pub(crate) fn new(
-        mesh: &Mesh,
-        pictures: &[[f64; 2]],
-        (front, window): (&[bool], Option<Window>),
+        mesh: &'a Mesh,
+        pictures: &'a [[f64; 2]],
+        (front, window): (&'a [bool], Option<Window>),
         queries: usize,
-    ) -> PictureGrid {
+    ) -> PictureGrid<'a> {
         let in_front = |v: u32| front.get(v as usize).is_none_or(|&f| f);
         let boxes: Vec<Option<[[f64; 2]; 2]>> = mesh
             .triangles()
@@ -144,15 +151,35 @@ impl PictureGrid {
         PictureGrid {
             lists: CellLists::new(cells.count(), pairs),
             cells,
+            triangles: mesh.triangles(),
+            pictures,
+            front,
+            margin,
         }
     }
 
     /// The triangles that may hide a point whose picture lies within `reach` of `p`: those
-    /// listed in the cells within that reach (a triangle may come more than once).
+    /// listed in the cells within that reach, less those whose picture is certainly farther
+    /// than the reach from `p` (a triangle may come more than once).
+    ///
+    /// The filter is sound: the exact picture of the point is within `reach` of `p`, plus the
+    /// rounding of `p` (less than `MARGIN` of its largest coordinate), and the exact picture of
+    /// a triangle within the rounding of its vertices' pictures (less than the grid's margin)
+    /// of the triangle of their rounded pictures; a triangle farther than the sum cannot hide
+    /// the point. Triangles with a vertex behind the eye (whose picture means nothing) are
+    /// never filtered.
     pub(crate) fn near(&self, p: [f64; 2], reach: f64) -> impl Iterator<Item = &u32> {
+        let slack = reach + self.margin + MARGIN * p[0].abs().max(p[1].abs());
         self.cells
             .covering(p, p, reach)
             .flat_map(|c| self.lists.get(c))
+            .filter(move |&&t| {
+                let tri = &self.triangles[t as usize];
+                let whole = tri
+                    .iter()
+                    .all(|&v| self.front.get(v as usize).is_none_or(|&f| f));
+                !(whole && surely_farther(&tri.map(|v| self.pictures[v as usize]), p, slack))
+            })
     }
 
     /// The number of (cell, triangle) entries.
@@ -253,7 +280,7 @@ pub(crate) struct Occluders<'s> {
     eye: Eye,
     /// The picture map the grids' cells are in.
     picture: Picture,
-    grids: SecondaryMap<ObjectId, PictureGrid>,
+    grids: SecondaryMap<ObjectId, PictureGrid<'s>>,
     /// The mesh objects by the pictures of their CBOXes.
     pictured: RTree<GeomWithData<Rectangle<[f64; 2]>, ObjectId>>,
     /// The mesh objects whose CBOX has a corner not in front of a perspective eye: asked
@@ -271,7 +298,7 @@ impl<'s> Occluders<'s> {
         scene: &'s Scene,
         (eye, picture): (Eye, Picture),
         window: Option<[f64; 2]>,
-        meshes: &[PicturedMesh],
+        meshes: &[PicturedMesh<'s>],
         inbox_limit: usize,
         queries: usize,
     ) -> Occluders<'s> {
@@ -282,7 +309,7 @@ impl<'s> Occluders<'s> {
             .map(|m| m.1.triangles().len())
             .sum::<usize>()
             .max(1);
-        let built: Vec<(ObjectId, PictureGrid)> = meshes
+        let built: Vec<(ObjectId, PictureGrid<'s>)> = meshes
             .par_iter()
             .map(|&(id, mesh, pictures, front)| {
                 // The bounds VISP will ask for, built here in parallel (each is built once, on

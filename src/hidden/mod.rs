@@ -478,12 +478,7 @@ impl<'a> Pass<'a> {
 
     /// Records a stage for `--stats`.
     fn stage(&mut self, name: &'static str, clock: Instant, done: String, skipped: Option<String>) {
-        self.stages.push(StageReport {
-            name,
-            done,
-            skipped,
-            seconds: clock.elapsed().as_secs_f64(),
-        });
+        timed(&mut self.stages, name, clock, done, skipped);
     }
 
     /// Stage 1: every mesh's edges, classified, and its vertices' pictures; the lines to draw.
@@ -962,7 +957,7 @@ impl<'a> Pass<'a> {
                  cells answer directly)"
             )
         });
-        self.stage("occluders", clock, done, skipped);
+        timed(&mut self.stages, "occluders", clock, done, skipped);
 
         let clock = Instant::now();
         let cuts = &self.cuts;
@@ -1032,9 +1027,26 @@ impl<'a> Pass<'a> {
             counters.inbox,
             counters.faces
         );
-        self.stage("visibility", clock, done, None);
+        timed(&mut self.stages, "visibility", clock, done, None);
         all
     }
+}
+
+/// Records a stage that started at `clock` (a free function, for stages that hold borrows of
+/// the pass's other fields).
+fn timed(
+    stages: &mut Vec<StageReport>,
+    name: &'static str,
+    clock: Instant,
+    done: String,
+    skipped: Option<String>,
+) {
+    stages.push(StageReport {
+        name,
+        done,
+        skipped,
+        seconds: clock.elapsed().as_secs_f64(),
+    });
 }
 
 /// The cuts on `l` where its picture meets the picture of the contour `c`: a crossing (one

@@ -34,12 +34,14 @@
 //! assert!((tet.volume() - 1.0 / 6.0).abs() < 1e-15);
 //! ```
 
+mod buckets;
 mod build;
 mod containment;
 mod face;
 mod topology;
 mod tree;
 
+pub(crate) use buckets::by_bucket;
 pub use containment::{
     Containment, classify_among, classify_point, classify_point_brute_force, crosses_column,
 };

@@ -124,7 +124,7 @@ fn sort(uses: &mut Vec<(u64, u32)>) {
 /// vertex in one counting pass (linear in the items and the vertices), then each vertex's few
 /// items by key. The result is that of a stable comparison sort, which costs several times
 /// more on a large mesh (and in parallel, more than the counting pass alone).
-pub(crate) fn sort_by_edge<T: Copy + Default>(items: &mut Vec<T>, key: impl Fn(&T) -> u64) {
+pub(crate) fn sort_by_edge<T: Copy>(items: &mut Vec<T>, key: impl Fn(&T) -> u64) {
     let lower = |u: &T| (key(u) >> 32) as usize;
     let Some(vertices) = items.iter().map(lower).max().map(|m| m + 1) else {
         return;
@@ -133,20 +133,7 @@ pub(crate) fn sort_by_edge<T: Copy + Default>(items: &mut Vec<T>, key: impl Fn(&
         items.sort_by_key(&key);
         return;
     }
-    let mut start = vec![0usize; vertices + 1];
-    for u in items.iter() {
-        start[lower(u) + 1] += 1;
-    }
-    for v in 0..vertices {
-        start[v + 1] += start[v];
-    }
-    let mut next = start.clone();
-    let mut sorted = vec![T::default(); items.len()];
-    for u in items.iter() {
-        let slot = &mut next[lower(u)];
-        sorted[*slot] = *u;
-        *slot += 1;
-    }
+    let (start, mut sorted) = super::by_bucket(vertices, items, lower);
     for v in 0..vertices {
         sorted[start[v]..start[v + 1]].sort_by_key(&key);
     }

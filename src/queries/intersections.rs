@@ -26,7 +26,7 @@ use super::meet::{Meet, OnLine, reversed};
 use crate::geometry::predicates::{collinear, orient3d};
 use crate::geometry::{Aabb, Point3};
 use crate::grid::Voxels;
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, by_bucket};
 use crate::views::Eye;
 use rayon::prelude::*;
 use std::cmp::Ordering;
@@ -263,38 +263,42 @@ fn candidate_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32)> {
     if !same {
         items.extend(list(m1, &b1, 1));
     }
-    items.par_sort_unstable();
-    let runs: Vec<&[(u64, u32)]> = items.chunk_by(|x, y| x.0 == y.0).collect();
-    let of = |item: &(u64, u32)| item.1 & 0x7fff_ffff;
+    // By cell, then mesh, then triangle: in one counting pass where the cells are not many
+    // more than the entries (each list comes in the order of mesh and triangle), else sorted.
+    let cells = grid.shape().iter().map(|&n| n as u128).product::<u128>();
+    let placed;
+    let runs: Vec<&[(u64, u32)]> = if cells <= 4 * items.len() as u128 {
+        let start;
+        (start, placed) = by_bucket(cells as usize, &items, |x| x.0 as usize);
+        start
+            .windows(2)
+            .filter(|w| w[1] > w[0])
+            .map(|w| &placed[w[0]..w[1]])
+            .collect()
+    } else {
+        items.par_sort_unstable();
+        items.chunk_by(|x, y| x.0 == y.0).collect()
+    };
+    let pairing = Pairing {
+        meshes: [m0, m1],
+        boxes: [&b0, second],
+        same,
+    };
     let mut pairs: Vec<(u32, u32)> = runs
         .par_iter()
         .fold(
-            || (Vec::new(), Vec::new()),
-            |(mut out, mut tris): (Vec<(u32, u32)>, Vec<CellTriangle>), run| {
-                if same {
-                    // One buffer per thread for the cells' triangles, not one per cell.
-                    tris.clear();
-                    tris.extend(run.iter().map(|item| {
-                        let t = of(item);
-                        (t, m0.triangles()[t as usize], b0[t as usize])
-                    }));
-                    same_mesh_pairs(m0, &tris, &mut out);
-                } else {
-                    // Items sort by mesh within a cell (mesh 0 first): split there.
-                    let (firsts, seconds) = run.split_at(run.partition_point(|i| i.1 >> 31 == 0));
-                    for x in firsts {
-                        for y in seconds {
-                            let (i, j) = (of(x), of(y));
-                            if b0[i as usize].intersects(&b1[j as usize]) {
-                                out.push((i, j));
-                            }
-                        }
-                    }
-                }
-                (out, tris)
+            || (Vec::new(), Vec::new(), Vec::new()),
+            |(mut out, mut items, mut tris): (Vec<(u32, u32)>, Vec<u32>, Vec<CellTriangle>),
+             run| {
+                // One buffer per thread for the cells' items, not one per cell.
+                items.clear();
+                items.extend(run.iter().map(|x| x.1));
+                let cell = grid.cell_box(run[0].0);
+                pairing.cell(&items, &cell, 0, &mut out, &mut tris);
+                (out, items, tris)
             },
         )
-        .map(|(out, _)| out)
+        .map(|(out, ..)| out)
         .reduce(Vec::new, |mut x, mut y| {
             x.append(&mut y);
             x
@@ -325,43 +329,203 @@ fn cell_side(boxes: &[&[Aabb]], sizes: f64) -> f64 {
 /// together, so a cell's pairs read one small array instead of the whole mesh).
 type CellTriangle = (u32, [u32; 3], Aabb);
 
-/// The pairs among the triangles `tris` of one cell of mesh `m` whose boxes meet and that
-/// share no vertex and no face, appended to `out` as `(smaller, larger)`. Where at least a
-/// quarter of them share one vertex (a hub), those are paired only with the others, and the
-/// others among themselves the same way.
-fn same_mesh_pairs(m: &Mesh, tris: &[CellTriangle], out: &mut Vec<(u32, u32)>) {
-    let test = |x: &CellTriangle, y: &CellTriangle, out: &mut Vec<(u32, u32)>| {
-        if x.2.intersects(&y.2)
-            && !shares_vertex(&x.1, &y.1)
-            && m.face_of(x.0 as usize) != m.face_of(y.0 as usize)
-        {
-            out.push((x.0.min(y.0), x.0.max(y.0)));
-        }
-    };
-    if tris.len() > 16 {
-        let mut vertices: Vec<u32> = tris.iter().flat_map(|t| t.1).collect();
-        vertices.sort_unstable();
-        let (hub, count) = vertices
-            .chunk_by(|x, y| x == y)
-            .map(|run| (run[0], run.len()))
-            .max_by(|x, y| x.1.cmp(&y.1).then(y.0.cmp(&x.0)))
-            .unwrap_or((0, 0));
-        if 4 * count >= tris.len() {
-            let (at, rest): (Vec<CellTriangle>, Vec<CellTriangle>) =
-                tris.iter().partition(|t| t.1.contains(&hub));
-            for x in &at {
-                for y in &rest {
-                    test(x, y, out);
-                }
-            }
-            same_mesh_pairs(m, &rest, out);
+/// What the pairs of a cell are found from: the two meshes (the same one twice for `same`)
+/// and their triangles' boxes. An item is a triangle index with the mesh in its top bit.
+struct Pairing<'a> {
+    meshes: [&'a Mesh; 2],
+    boxes: [&'a [Aabb]; 2],
+    same: bool,
+}
+
+/// A crowded cell is split into this many cells along each axis.
+const SPLIT: f64 = 4.0;
+
+/// A cell of at least [`CROWD`] triangles is crowded when it has more than this many pairs
+/// to test per triangle (listing a triangle in smaller cells costs a few pair tests).
+const CROWDED: usize = 8;
+
+/// The fewest triangles of a crowded cell.
+const CROWD: usize = 24;
+
+/// A cell is split at most this many times over.
+const SPLITS: usize = 3;
+
+impl Pairing<'_> {
+    /// The mesh and index of an item.
+    fn of(&self, item: u32) -> (&Mesh, usize) {
+        (
+            self.meshes[(item >> 31) as usize],
+            (item & 0x7fff_ffff) as usize,
+        )
+    }
+
+    /// The box of an item's triangle.
+    fn bbox(&self, item: u32) -> &Aabb {
+        &self.boxes[(item >> 31) as usize][(item & 0x7fff_ffff) as usize]
+    }
+
+    /// Appends to `out` the pairs among the `items` of one cell (`region`, split `depth`
+    /// times already) whose boxes meet (in one mesh, those sharing no vertex and no face).
+    /// A crowded cell, one whose pairs would be many more than its triangles (the rims of
+    /// two fans that touch, slivers crossing), is split into smaller cells in which each
+    /// triangle is listed again (in the cells it meets), when that leaves fewer pairs to test:
+    /// a pair meeting at a point is listed together in that point's smaller cell.
+    fn cell(
+        &self,
+        items: &[u32],
+        region: &Aabb,
+        depth: usize,
+        out: &mut Vec<(u32, u32)>,
+        tris: &mut Vec<CellTriangle>,
+    ) {
+        if self.same {
+            let m = self.meshes[0];
+            tris.clear();
+            tris.extend(
+                items
+                    .iter()
+                    .map(|&t| (t, m.triangles()[t as usize], self.boxes[0][t as usize])),
+            );
+            self.same_mesh(tris, region, depth, out);
             return;
         }
-    }
-    for (n, x) in tris.iter().enumerate() {
-        for y in &tris[n + 1..] {
-            test(x, y, out);
+        // Items come by mesh within a cell (mesh 0 first): split there.
+        let (firsts, seconds) = items.split_at(items.partition_point(|i| i >> 31 == 0));
+        if items.len() >= CROWD
+            && firsts.len() * seconds.len() > CROWDED * items.len()
+            && self.split(items, region, depth, out, |sub| {
+                let firsts = sub.partition_point(|i| i >> 31 == 0);
+                firsts * (sub.len() - firsts)
+            })
+        {
+            return;
         }
+        for &x in firsts {
+            for &y in seconds {
+                if self.bbox(x).intersects(self.bbox(y)) {
+                    out.push((x, y & 0x7fff_ffff));
+                }
+            }
+        }
+    }
+
+    /// [`Pairing::cell`] in one mesh. Where at least a quarter of the triangles share one
+    /// vertex (a hub: a fan's apex, a pole of a UV sphere), those are paired only with the
+    /// others, and the others among themselves the same way: ten thousand edges at one
+    /// point cost no more than ten thousand elsewhere.
+    fn same_mesh(
+        &self,
+        tris: &[CellTriangle],
+        region: &Aabb,
+        depth: usize,
+        out: &mut Vec<(u32, u32)>,
+    ) {
+        let m = self.meshes[0];
+        let test = |x: &CellTriangle, y: &CellTriangle, out: &mut Vec<(u32, u32)>| {
+            if x.2.intersects(&y.2)
+                && !shares_vertex(&x.1, &y.1)
+                && m.face_of(x.0 as usize) != m.face_of(y.0 as usize)
+            {
+                out.push((x.0.min(y.0), x.0.max(y.0)));
+            }
+        };
+        let split = |out: &mut Vec<(u32, u32)>, load: &dyn Fn(&[u32]) -> usize| {
+            let items: Vec<u32> = tris.iter().map(|t| t.0).collect();
+            self.split(&items, region, depth, out, load)
+        };
+        if tris.len() > 16 {
+            let mut vertices: Vec<u32> = tris.iter().flat_map(|t| t.1).collect();
+            vertices.sort_unstable();
+            let (hub, count) = vertices
+                .chunk_by(|x, y| x == y)
+                .map(|run| (run[0], run.len()))
+                .max_by(|x, y| x.1.cmp(&y.1).then(y.0.cmp(&x.0)))
+                .unwrap_or((0, 0));
+            if 4 * count >= tris.len() {
+                if tris.len() >= CROWD
+                    && count * (tris.len() - count) > CROWDED * tris.len()
+                    && split(out, &|sub| {
+                        let at = sub
+                            .iter()
+                            .filter(|&&t| m.triangles()[t as usize].contains(&hub))
+                            .count();
+                        at * (sub.len() - at)
+                    })
+                {
+                    return;
+                }
+                let (at, rest): (Vec<CellTriangle>, Vec<CellTriangle>) =
+                    tris.iter().partition(|t| t.1.contains(&hub));
+                for x in &at {
+                    for y in &rest {
+                        test(x, y, out);
+                    }
+                }
+                self.same_mesh(&rest, region, depth, out);
+                return;
+            }
+        }
+        if tris.len() >= CROWD
+            && tris.len() * tris.len() / 2 > CROWDED * tris.len()
+            && split(out, &|sub| sub.len() * sub.len())
+        {
+            return;
+        }
+        for (n, x) in tris.iter().enumerate() {
+            for y in &tris[n + 1..] {
+                test(x, y, out);
+            }
+        }
+    }
+
+    /// Splits the cell `region` of `items` into smaller cells and appends their pairs to
+    /// `out`, unless it has been split [`SPLITS`] times already or the split would not
+    /// lessen the `load` (the pairs to test among some items, as the caller counts them):
+    /// triangles all through one point stay together in every split. Then returns `false`
+    /// and appends nothing.
+    fn split(
+        &self,
+        items: &[u32],
+        region: &Aabb,
+        depth: usize,
+        out: &mut Vec<(u32, u32)>,
+        load: impl Fn(&[u32]) -> usize,
+    ) -> bool {
+        if depth >= SPLITS {
+            return false;
+        }
+        let side = region.size().into_iter().fold(0.0, f64::max) / SPLIT;
+        let grid = Voxels::within(*region, side);
+        let mut listed: Vec<(u64, u32)> = Vec::new();
+        let mut cells = Vec::new();
+        for &item in items {
+            cells.clear();
+            if !grid.box_cells(self.bbox(item), BOX_CELLS, &mut cells) {
+                let (m, t) = self.of(item);
+                grid.triangle_cells(&m.triangle(t), &mut cells);
+            }
+            listed.extend(cells.iter().map(|&c| (c, item)));
+        }
+        let count = grid.shape().iter().product::<usize>();
+        let (start, placed) = by_bucket(count, &listed, |x| x.0 as usize);
+        let subcells: Vec<(u64, Vec<u32>)> = start
+            .windows(2)
+            .filter(|w| w[1] > w[0])
+            .map(|w| {
+                (
+                    placed[w[0]].0,
+                    placed[w[0]..w[1]].iter().map(|x| x.1).collect(),
+                )
+            })
+            .collect();
+        if subcells.iter().map(|(_, sub)| load(sub)).sum::<usize>() >= load(items) {
+            return false;
+        }
+        let mut tris = Vec::new();
+        for (c, sub) in &subcells {
+            self.cell(sub, &grid.cell_box(*c), depth + 1, out, &mut tris);
+        }
+        true
     }
 }
 
@@ -838,6 +1002,95 @@ mod tests {
         assert!(!surely_apart(&a, &beyond));
         let far = [p(1.5, 0.0, 0.0), p(2.0, 1.0, 1.0), p(2.0, -1.0, 0.5)];
         assert!(surely_apart(&a, &far));
+    }
+
+    #[test]
+    fn crowded_cells_are_split_and_miss_no_pair() {
+        // Two fans of 3,000 slivers, one turned by a third of a sliver about the axis and
+        // raised a little: along the rims, each sliver crosses several of the other's, and
+        // the rims' cells hold hundreds of triangles.
+        let fan = uv_sphere(1.0, 1500, 2).unwrap();
+        let turn =
+            nalgebra::Rotation3::from_axis_angle(&Vector3::z_axis(), 0.7e-3).to_homogeneous();
+        let turned = fan
+            .transformed(&(Matrix4::new_translation(&Vector3::new(0.0, 0.0, 1e-3)) * turn))
+            .unwrap();
+        assert!(check(&fan, &turned, false) > 1000);
+        // A crowded cell on the rims is split, and the smaller cells find every pair that
+        // meets in it.
+        let boxes = |m: &Mesh| -> Vec<Aabb> {
+            (0..m.triangles().len())
+                .map(|t| Aabb::from_points(&m.triangle(t)))
+                .collect()
+        };
+        let (b0, b1) = (boxes(&fan), boxes(&turned));
+        let pairing = Pairing {
+            meshes: [&fan, &turned],
+            boxes: [&b0, &b1],
+            same: false,
+        };
+        let region = Aabb::new(
+            Point3::new(0.95, -0.05, -0.05),
+            Point3::new(1.05, 0.05, 0.05),
+        );
+        let near = |b: &[Aabb]| -> Vec<u32> {
+            (0..b.len() as u32)
+                .filter(|&t| b[t as usize].intersects(&region))
+                .collect()
+        };
+        let (near0, near1) = (near(&b0), near(&b1));
+        assert!(near0.len() > 30 && near1.len() > 30);
+        let items: Vec<u32> = near0
+            .iter()
+            .copied()
+            .chain(near1.iter().map(|t| t | 1 << 31))
+            .collect();
+        let mut out = Vec::new();
+        let load = |sub: &[u32]| {
+            let firsts = sub.partition_point(|i| i >> 31 == 0);
+            firsts * (sub.len() - firsts)
+        };
+        assert!(pairing.split(&items, &region, 0, &mut out, load));
+        out.sort_unstable();
+        out.dedup();
+        let mut productive_pairs = 0;
+        for &i in &near0 {
+            for &j in &near1 {
+                let (t0, t1) = (fan.triangle(i as usize), turned.triangle(j as usize));
+                // Pairs that meet in the region: slivers with a rim corner well inside it
+                // (they meet within a sliver's width of their rim corners).
+                let inner = Aabb::new(
+                    Point3::new(0.96, -0.04, -0.04),
+                    Point3::new(1.04, 0.04, 0.04),
+                );
+                let inside = |t: &[Point3; 3]| t.iter().any(|p| inner.contains_point(p));
+                if inside(&t0) && inside(&t1) && productive(&fan, i as usize, &turned, j as usize) {
+                    productive_pairs += 1;
+                    assert!(out.binary_search(&(i, j)).is_ok(), "({i}, {j}) missed");
+                }
+            }
+        }
+        assert!(productive_pairs > 30);
+        // One mesh: the two fans as one soup of crossing slivers.
+        let both = Mesh::from_polygons(
+            fan.vertices()
+                .iter()
+                .chain(turned.vertices())
+                .copied()
+                .collect(),
+            fan.triangles()
+                .iter()
+                .map(|t| t.to_vec())
+                .chain(
+                    turned
+                        .triangles()
+                        .iter()
+                        .map(|t| t.iter().map(|v| v + fan.vertices().len() as u32).collect()),
+                )
+                .collect(),
+        )
+        .unwrap();
+        assert!(check(&both, &both, true) > 1000);
     }
 
     #[test]
