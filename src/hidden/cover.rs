@@ -115,6 +115,9 @@ impl<'a> PictureGrid<'a> {
         while shape[0] * shape[1] > 4 * n {
             shape = shape.map(|c| c.div_ceil(2));
         }
+        if n <= ONE_CELL {
+            shape = [1, 1];
+        }
         let cells = Cells::new(lo, extent, shape);
         let margin = MARGIN * lo.iter().chain(&hi).fold(0.0f64, |m, v| m.max(v.abs()));
         let pairs: Vec<(u32, u32)> = boxes
@@ -229,6 +232,11 @@ fn framed_box(
     let high = [0, 1].map(|k| high[k].min(w[k]));
     (low[0] <= high[0] && low[1] <= high[1]).then_some([low, high])
 }
+
+/// Up to this many triangles, a mesh's pictures are listed in one cell: [`PictureGrid::near`]
+/// passes over a triangle whose picture is far from the point in a few nanoseconds, less than
+/// finding and listing the cells of a small mesh costs.
+const ONE_CELL: usize = 32;
 
 /// The cell side over the mean triangle picture size that balances building against querying:
 /// listing `n` triangles costs about `n·(1 + 1/x)²` entries, and `q` queries test about
