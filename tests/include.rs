@@ -346,19 +346,19 @@ fn union(answers: impl IntoIterator<Item = Inclusion>) -> Inclusion {
 }
 
 /// An object of the scene, as the reference sees it.
-struct RefNode {
+struct RefNode<'s> {
     id: ObjectId,
     path: String,
-    kind: RefKind,
+    kind: RefKind<'s>,
 }
 
-enum RefKind {
-    Leaf(RefMesh, ProjectionGrid),
-    Group(Vec<RefNode>),
+enum RefKind<'s> {
+    Leaf(RefMesh, ProjectionGrid<'s>),
+    Group(Vec<RefNode<'s>>),
 }
 
-impl RefNode {
-    fn new(scene: &Scene, id: ObjectId, scale: Scale) -> RefNode {
+impl<'s> RefNode<'s> {
+    fn new(scene: &'s Scene, id: ObjectId, scale: Scale) -> RefNode<'s> {
         let o = &scene[id];
         let kind = match o.mesh() {
             Some(mesh) => RefKind::Leaf(RefMesh::new(mesh, scale), ProjectionGrid::new(mesh)),

@@ -234,32 +234,55 @@ fn box_inside_plane(t: &[Point3; 3], b: &Aabb, outward: Ordering) -> bool {
     })
 }
 
-/// Whether the surface looks convex: across every edge, no vertex of the neighbouring face
+/// Whether the surface looks convex: across every edge, no vertex of a neighbouring face
 /// lies outside the face's plane by more than a rounding margin. This only chooses which
 /// construction to run (the kernel box alone for convex solids); whatever it says, the box
 /// returned has passed an exact test, so a rounding margin here costs nothing in exactness.
+///
+/// The faces' sides are bucketed by their lower vertex (a counting pass): the faces across
+/// side `(u, v)` are those with side `(v, u)`, in the same bucket.
 fn looks_convex(mesh: &Mesh, flip: f64) -> bool {
+    use rayon::prelude::*;
     let margin = 1e-9
         * Aabb::from_points(mesh.vertices())
             .size()
             .into_iter()
             .fold(0.0, f64::max);
-    let mut edges: Vec<(u32, u32, usize)> = Vec::new();
-    for (i, f) in mesh.faces().iter().enumerate() {
+    fn sides(f: &crate::mesh::Face) -> impl Iterator<Item = (u32, u32)> + '_ {
         let v = f.vertices();
-        for e in 0..v.len() {
-            edges.push((v[e], v[(e + 1) % v.len()], i));
+        (0..v.len()).map(move |e| (v[e], v[(e + 1) % v.len()]))
+    }
+    let mut start = vec![0usize; mesh.vertices().len() + 1];
+    for f in mesh.faces() {
+        for (u, v) in sides(f) {
+            start[u.min(v) as usize + 1] += 1;
         }
     }
-    use rayon::prelude::*;
-    edges.par_sort_unstable();
-    edges.par_iter().all(|&(u, v, f)| {
-        let Ok(k) = edges.binary_search_by(|x| (x.0, x.1).cmp(&(v, u))) else {
-            return false;
-        };
-        let plane = mesh.faces()[f].plane();
-        mesh.face_points(edges[k].2)
-            .all(|p| flip * plane.evaluate(&p) <= margin)
+    for i in 1..start.len() {
+        start[i] += start[i - 1];
+    }
+    let mut next = start.clone();
+    let mut bucketed = vec![(0u32, 0u32, 0u32); start[start.len() - 1]];
+    for (i, f) in mesh.faces().iter().enumerate() {
+        for (u, v) in sides(f) {
+            let slot = &mut next[u.min(v) as usize];
+            bucketed[*slot] = (u, v, i as u32);
+            *slot += 1;
+        }
+    }
+    drop(next);
+    let convex_across = |bucket: &[(u32, u32, u32)], &(u, v, f): &(u32, u32, u32)| {
+        let plane = mesh.faces()[f as usize].plane();
+        let mut across = bucket.iter().filter(|s| (s.0, s.1) == (v, u)).peekable();
+        across.peek().is_some()
+            && across.all(|&(_, _, g)| {
+                mesh.face_points(g as usize)
+                    .all(|p| flip * plane.evaluate(&p) <= margin)
+            })
+    };
+    (0..mesh.vertices().len()).into_par_iter().all(|b| {
+        let bucket = &bucketed[start[b]..start[b + 1]];
+        bucket.iter().all(|s| convex_across(bucket, s))
     })
 }
 
@@ -505,4 +528,80 @@ fn snap_to_vertices(mesh: &Mesh, mut b: Aabb, valid: impl Fn(&Aabb) -> bool) -> 
         }
     }
     b
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// [`looks_convex`] by brute force: every side against every side of every face.
+    fn looks_convex_brute_force(mesh: &Mesh, flip: f64) -> bool {
+        let margin = 1e-9
+            * Aabb::from_points(mesh.vertices())
+                .size()
+                .into_iter()
+                .fold(0.0, f64::max);
+        let sides = |f: usize| {
+            let v = mesh.faces()[f].vertices().to_vec();
+            (0..v.len()).map(move |e| (v[e], v[(e + 1) % v.len()]))
+        };
+        (0..mesh.faces().len()).all(|f| {
+            let plane = mesh.faces()[f].plane();
+            sides(f).all(|(u, v)| {
+                let across: Vec<usize> = (0..mesh.faces().len())
+                    .filter(|&g| sides(g).any(|s| s == (v, u)))
+                    .collect();
+                !across.is_empty()
+                    && across.iter().all(|&g| {
+                        mesh.face_points(g)
+                            .all(|p| flip * plane.evaluate(&p) <= margin)
+                    })
+            })
+        })
+    }
+
+    #[test]
+    fn looks_convex_agrees_with_brute_force() {
+        let two_boxes = |b: [f64; 3]| {
+            let a = crate::solids::box_between([0.0; 3], [1.0; 3]).unwrap();
+            let c = crate::solids::box_between(b, [b[0] + 1.0, b[1] + 1.0, b[2] + 1.0]);
+            Mesh::concatenate([&a, &c.unwrap()]).unwrap()
+        };
+        let open = Mesh::from_polygons(
+            vec![
+                Point3::new(0.0, 0.0, 0.0),
+                Point3::new(1.0, 0.0, 0.0),
+                Point3::new(0.0, 1.0, 0.0),
+            ],
+            vec![vec![0, 1, 2]],
+        )
+        .unwrap();
+        let meshes = [
+            (crate::solids::cube(2.0).unwrap(), Some(true)),
+            (crate::solids::uv_sphere(1.0, 12, 7).unwrap(), Some(true)),
+            (crate::solids::dodecahedron(1.0).unwrap(), Some(true)),
+            (crate::solids::torus(2.0, 0.5, 12, 6).unwrap(), Some(false)),
+            // Touching along a face (a merged L), along an edge (four faces on it) and at a
+            // corner; and an open triangle (a side with nothing across).
+            (two_boxes([1.0, 0.0, 0.0]), None),
+            (two_boxes([1.0, 1.0, 0.0]), Some(false)),
+            (two_boxes([1.0, 1.0, 1.0]), None),
+            (open, Some(false)),
+        ];
+        for (i, (mesh, convex)) in meshes.iter().enumerate() {
+            for flip in [1.0, -1.0] {
+                let fast = looks_convex(mesh, flip);
+                assert_eq!(
+                    fast,
+                    looks_convex_brute_force(mesh, flip),
+                    "mesh {i}, flip {flip}"
+                );
+                if flip == 1.0
+                    && let Some(c) = convex
+                {
+                    assert_eq!(fast, *c, "mesh {i}");
+                }
+            }
+        }
+    }
 }

@@ -104,7 +104,7 @@ pub fn include(scene: &Scene, id: ObjectId, p: &Point3) -> Result<(Inclusion, St
 pub struct IncludeIndex<'s> {
     scene: &'s Scene,
     objects: Vec<ObjectId>,
-    grids: SecondaryMap<ObjectId, ProjectionGrid>,
+    grids: SecondaryMap<ObjectId, ProjectionGrid<'s>>,
 }
 
 impl<'s> IncludeIndex<'s> {
@@ -123,7 +123,7 @@ impl<'s> IncludeIndex<'s> {
         }
         scene.compute_bounds_of(objects);
         let leaves = scene.mesh_objects(objects);
-        let built: Vec<(ObjectId, ProjectionGrid)> = leaves
+        let built: Vec<(ObjectId, ProjectionGrid<'s>)> = leaves
             .par_iter()
             .map(|&(id, mesh)| (id, ProjectionGrid::new(mesh)))
             .collect();

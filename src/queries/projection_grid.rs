@@ -19,29 +19,58 @@ use crate::grid::Cells;
 use crate::mesh::{Containment, Mesh, classify_among, crosses_column};
 use rayon::prelude::*;
 
-/// A triangle as the grid stores it: corners and closed bounding box.
-#[derive(Debug, Clone, Copy)]
-struct Column {
-    corners: [Point3; 3],
-    min: [f64; 3],
-    max: [f64; 3],
+/// A uniform grid over the x-y projection of a mesh's triangles. It lists triangle indices
+/// only and reads the corners from the mesh it borrows.
+///
+/// ```
+/// use kepler::{geometry::Point3, mesh::Containment, queries::projection_grid::ProjectionGrid};
+/// let torus = kepler::solids::torus(2.0, 0.5, 32, 16).unwrap();
+/// let grid = ProjectionGrid::new(&torus);
+/// assert_eq!(grid.classify(&Point3::new(2.0, 0.0, 0.0)), Containment::Inside);
+/// assert_eq!(grid.classify(&Point3::new(0.0, 0.0, 0.0)), Containment::Outside);
+/// assert_eq!(grid.classify(&Point3::new(2.5, 0.0, 0.0)), Containment::Boundary);
+/// ```
+#[derive(Debug, Clone)]
+pub struct ProjectionGrid<'m> {
+    mesh: &'m Mesh,
+    cells: Cells,
+    /// Cell `c` lists the triangles `items[start[c]..start[c + 1]]`, in increasing index.
+    start: Vec<usize>,
+    items: Vec<u32>,
+    /// Each triangle's box, rounded outward to `f32`: a compact filter read before the corners.
+    boxes: Vec<FlatBox>,
+    /// Cell `c`'s gaps are `gaps[gap_start[c]..gap_start[c + 1]]`, in increasing z.
+    gap_start: Vec<usize>,
+    gaps: Vec<Gap>,
 }
 
-/// A triangle as a cell lists it: its bounding box rounded outward to `f32` (a compact filter
-/// that never rejects a triangle whose exact box reaches the point) and its index.
+/// An open z-interval of a cell's column that no listed triangle's box reaches. No triangle
+/// meets the part of the column in it (any triangle that did would be listed), so that box is
+/// all inside or all outside: below and above every triangle, outside; in between, as one
+/// representative point classifies. Most points of a batch fall in a gap and are answered
+/// without touching a triangle (the idea of Franklin's later uniform-grid point location).
 #[derive(Debug, Clone, Copy)]
-struct Candidate {
+struct Gap {
+    lo: f64,
+    hi: f64,
+    inside: bool,
+}
+
+/// A triangle's bounding box rounded outward to `f32` (a filter that never rejects a triangle
+/// whose exact box reaches a point), without its low z (a point's upward ray only meets
+/// triangles that reach above it).
+#[derive(Debug, Clone, Copy)]
+struct FlatBox {
     min: [f32; 2],
     max: [f32; 3],
-    triangle: u32,
 }
 
-impl Candidate {
-    fn new(c: &Column, triangle: u32) -> Candidate {
-        Candidate {
-            min: [round_down(c.min[0]), round_down(c.min[1])],
-            max: c.max.map(round_up),
-            triangle,
+impl FlatBox {
+    fn new(c: &[Point3; 3]) -> FlatBox {
+        let (min, max) = bounds(c);
+        FlatBox {
+            min: [round_down(min[0]), round_down(min[1])],
+            max: max.map(round_up),
         }
     }
 
@@ -68,125 +97,145 @@ fn round_up(x: f64) -> f32 {
     if f64::from(f) < x { f.next_up() } else { f }
 }
 
-/// A uniform grid over the x-y projection of a mesh's triangles.
-///
-/// ```
-/// use kepler::{geometry::Point3, mesh::Containment, queries::projection_grid::ProjectionGrid};
-/// let grid = ProjectionGrid::new(&kepler::solids::torus(2.0, 0.5, 32, 16).unwrap());
-/// assert_eq!(grid.classify(&Point3::new(2.0, 0.0, 0.0)), Containment::Inside);
-/// assert_eq!(grid.classify(&Point3::new(0.0, 0.0, 0.0)), Containment::Outside);
-/// assert_eq!(grid.classify(&Point3::new(2.5, 0.0, 0.0)), Containment::Boundary);
-/// ```
-#[derive(Debug, Clone)]
-pub struct ProjectionGrid {
-    cells: Cells,
-    /// Cell `c` lists `items[start[c]..start[c + 1]]`.
-    start: Vec<u32>,
-    items: Vec<Candidate>,
-    columns: Vec<Column>,
-    /// Cell `c`'s gaps are `gaps[gap_start[c]..gap_start[c + 1]]`, in increasing z.
-    gap_start: Vec<u32>,
-    gaps: Vec<Gap>,
+/// The closed bounding box of a triangle, low and high corners.
+#[inline]
+fn bounds(c: &[Point3; 3]) -> ([f64; 3], [f64; 3]) {
+    let min = |k: usize| c[0][k].min(c[1][k]).min(c[2][k]);
+    let max = |k: usize| c[0][k].max(c[1][k]).max(c[2][k]);
+    ([min(0), min(1), min(2)], [max(0), max(1), max(2)])
 }
 
-/// An open z-interval of a cell's column that no listed triangle's box reaches. No triangle
-/// meets the part of the column in it (any triangle that did would be listed), so that box is
-/// all inside or all outside: below and above every triangle, outside; in between, as one
-/// representative point classifies. Most points of a batch fall in a gap and are answered
-/// without touching a triangle (the idea of Franklin's later uniform-grid point location).
+/// The extent of the triangles' projection and the sums of their boxes' x and y sizes.
 #[derive(Debug, Clone, Copy)]
-struct Gap {
-    lo: f64,
-    hi: f64,
-    inside: bool,
+struct Extent {
+    lo: [f64; 2],
+    hi: [f64; 2],
+    sizes: [f64; 2],
 }
 
-impl ProjectionGrid {
-    /// Builds the grid of `mesh`'s triangles, about one cell per triangle, shaped like the
-    /// mesh's projection.
+impl Extent {
+    const EMPTY: Extent = Extent {
+        lo: [f64::INFINITY; 2],
+        hi: [f64::NEG_INFINITY; 2],
+        sizes: [0.0; 2],
+    };
+
+    fn with(self, c: &[Point3; 3]) -> Extent {
+        let (min, max) = bounds(c);
+        Extent {
+            lo: [0, 1].map(|k| self.lo[k].min(min[k])),
+            hi: [0, 1].map(|k| self.hi[k].max(max[k])),
+            sizes: [0, 1].map(|k| self.sizes[k] + (max[k] - min[k])),
+        }
+    }
+
+    fn join(self, o: Extent) -> Extent {
+        Extent {
+            lo: [0, 1].map(|k| self.lo[k].min(o.lo[k])),
+            hi: [0, 1].map(|k| self.hi[k].max(o.hi[k])),
+            sizes: [0, 1].map(|k| self.sizes[k] + o.sizes[k]),
+        }
+    }
+}
+
+impl<'m> ProjectionGrid<'m> {
+    /// Builds the grid of `mesh`'s triangles, shaped like the mesh's projection, with cells
+    /// about as large as the triangles' projected boxes.
     ///
     /// ```
-    /// let g = kepler::queries::projection_grid::ProjectionGrid::new(&kepler::solids::cube(1.0).unwrap());
+    /// let cube = kepler::solids::cube(1.0).unwrap();
+    /// let g = kepler::queries::projection_grid::ProjectionGrid::new(&cube);
     /// assert_eq!(g.triangle_count(), 12);
     /// ```
-    pub fn new(mesh: &Mesh) -> ProjectionGrid {
-        let columns: Vec<Column> = (0..mesh.triangles().len())
-            .into_par_iter()
-            .map(|t| {
-                let c = mesh.triangle(t);
-                let min = |k: usize| c[0][k].min(c[1][k]).min(c[2][k]);
-                let max = |k: usize| c[0][k].max(c[1][k]).max(c[2][k]);
-                Column {
-                    corners: c,
-                    min: [min(0), min(1), min(2)],
-                    max: [max(0), max(1), max(2)],
-                }
-            })
-            .collect();
-        let lo = |k: usize| {
-            columns
-                .iter()
-                .map(|c| c.min[k])
-                .fold(f64::INFINITY, f64::min)
-        };
-        let hi = |k: usize| {
-            columns
-                .iter()
-                .map(|c| c.max[k])
-                .fold(f64::NEG_INFINITY, f64::max)
-        };
-        let (origin, extent) = if columns.is_empty() {
-            ([0.0; 2], [0.0; 2])
+    pub fn new(mesh: &'m Mesh) -> ProjectionGrid<'m> {
+        let n = mesh.triangles().len();
+        let extent = if n >= crate::mesh::PARALLEL_POLYGONS {
+            (0..n)
+                .into_par_iter()
+                .fold(|| Extent::EMPTY, |e, t| e.with(&mesh.triangle(t)))
+                .reduce(|| Extent::EMPTY, Extent::join)
         } else {
-            ([lo(0), lo(1)], [hi(0) - lo(0), hi(1) - lo(1)])
+            (0..n).fold(Extent::EMPTY, |e, t| e.with(&mesh.triangle(t)))
         };
-        let cells = Cells::new(origin, extent, grid_shape(columns.len(), extent));
+        let cells = if n == 0 {
+            Cells::new([0.0; 2], [0.0; 2], [1, 1])
+        } else {
+            let size = [0, 1].map(|k| extent.hi[k] - extent.lo[k]);
+            let mean = extent.sizes.map(|s| s / n as f64);
+            Cells::new(extent.lo, size, grid_shape(n, size, mean))
+        };
+        let (start, items) = fill(mesh, &cells);
+        let boxes = if n >= crate::mesh::PARALLEL_POLYGONS {
+            (0..n)
+                .into_par_iter()
+                .map(|t| FlatBox::new(&mesh.triangle(t)))
+                .collect()
+        } else {
+            (0..n).map(|t| FlatBox::new(&mesh.triangle(t))).collect()
+        };
         let mut grid = ProjectionGrid {
+            mesh,
             cells,
-            start: vec![0; cells.count() + 1],
-            items: Vec::new(),
-            columns,
+            start,
+            items,
+            boxes,
             gap_start: Vec::new(),
             gaps: Vec::new(),
         };
-        grid.fill();
-        let per_cell: Vec<Vec<Gap>> = (0..cells.count())
-            .into_par_iter()
-            .map(|c| grid.find_gaps(c))
-            .collect();
-        grid.gap_start = std::iter::once(0)
-            .chain(per_cell.iter().scan(0u32, |n, g| {
-                *n += g.len() as u32;
-                Some(*n)
-            }))
-            .collect();
-        grid.gaps = per_cell.into_iter().flatten().collect();
+        grid.find_all_gaps();
         grid
     }
 
-    /// The gaps of cell `c`'s column, in increasing z (a middle gap only when its
-    /// representative point could be placed in the cell).
-    fn find_gaps(&self, c: usize) -> Vec<Gap> {
-        let centre = self.centre(c);
-        let mut blocks: Vec<(f64, f64, bool)> = self
-            .listed(c)
-            .iter()
-            .map(|t| {
-                let column = &self.columns[t.triangle as usize];
-                let crosses = centre.is_some_and(|[x, y]| {
-                    let within = |k: usize, v: f64| column.min[k] <= v && v <= column.max[k];
-                    within(0, x) && within(1, y) && crosses_column(&column.corners, x, y)
-                });
-                (column.min[2], column.max[2], crosses)
+    /// Finds every cell's gaps, a row of cells at a time in parallel.
+    fn find_all_gaps(&mut self) {
+        let [nx, ny] = self.cells.shape();
+        let rows: Vec<(Vec<usize>, Vec<Gap>)> = (0..ny)
+            .into_par_iter()
+            .map_init(Vec::new, |blocks, row| {
+                let mut counts = Vec::with_capacity(nx);
+                let mut gaps = Vec::new();
+                for c in row * nx..(row + 1) * nx {
+                    let before = gaps.len();
+                    self.find_gaps(c, blocks, &mut gaps);
+                    counts.push(gaps.len() - before);
+                }
+                (counts, gaps)
             })
             .collect();
+        let total = rows.iter().map(|(_, g)| g.len()).sum();
+        let mut gap_start = Vec::with_capacity(self.cells.count() + 1);
+        let mut gaps = Vec::with_capacity(total);
+        gap_start.push(0);
+        for (counts, row) in rows {
+            for k in counts {
+                gap_start.push(gap_start[gap_start.len() - 1] + k);
+            }
+            gaps.extend(row);
+        }
+        self.gap_start = gap_start;
+        self.gaps = gaps;
+    }
+
+    /// Appends the gaps of cell `c`'s column to `gaps`, in increasing z (a middle gap only
+    /// when its representative point could be placed in the cell); `blocks` is scratch space.
+    fn find_gaps(&self, c: usize, blocks: &mut Vec<(f64, f64, bool)>, gaps: &mut Vec<Gap>) {
+        let centre = self.centre(c);
+        blocks.clear();
+        blocks.extend(self.listed(c).iter().map(|&t| {
+            let corners = self.mesh.triangle(t as usize);
+            let (min, max) = bounds(&corners);
+            let crosses = centre.is_some_and(|[x, y]| {
+                let within = |k: usize, v: f64| min[k] <= v && v <= max[k];
+                within(0, x) && within(1, y) && crosses_column(&corners, x, y)
+            });
+            (min[2], max[2], crosses)
+        }));
         blocks.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
         // Sweep up the column through the centre: a gap is inside when the line has crossed
         // an odd number of triangles below it (all of them lie below, in z, the gap).
-        let mut gaps = Vec::new();
         let mut top = f64::NEG_INFINITY;
         let mut inside = false;
-        for (lo, hi, crosses) in blocks {
+        for &(lo, hi, crosses) in blocks.iter() {
             if lo > top && (top == f64::NEG_INFINITY || centre.is_some()) {
                 gaps.push(Gap {
                     lo: top,
@@ -202,13 +251,12 @@ impl ProjectionGrid {
             hi: f64::INFINITY,
             inside: false,
         });
-        gaps
     }
 
     /// The triangles cell `c` lists.
     #[inline]
-    fn listed(&self, c: usize) -> &[Candidate] {
-        &self.items[self.start[c] as usize..self.start[c + 1] as usize]
+    fn listed(&self, c: usize) -> &[u32] {
+        &self.items[self.start[c]..self.start[c + 1]]
     }
 
     /// A point of the x-y plane that falls in cell `c`, if the rounded centre does.
@@ -220,56 +268,19 @@ impl ProjectionGrid {
             .then_some(xy)
     }
 
-    /// Lists every triangle in the cells its box covers (counting pass, then filling pass).
-    fn fill(&mut self) {
-        let ranges: Vec<[[usize; 2]; 2]> = self
-            .columns
-            .par_iter()
-            .map(|c| [0, 1].map(|k| [self.cells.index(k, c.min[k]), self.cells.index(k, c.max[k])]))
-            .collect();
-        let nx = self.cells.shape()[0];
-        for [[x0, x1], [y0, y1]] in &ranges {
-            for y in *y0..=*y1 {
-                for x in *x0..=*x1 {
-                    self.start[y * nx + x + 1] += 1;
-                }
-            }
-        }
-        for c in 1..self.start.len() {
-            self.start[c] += self.start[c - 1];
-        }
-        let mut next = self.start.clone();
-        let empty = Candidate {
-            min: [0.0; 2],
-            max: [0.0; 3],
-            triangle: 0,
-        };
-        self.items = vec![empty; *self.start.last().unwrap_or(&0) as usize];
-        for (t, [[x0, x1], [y0, y1]]) in ranges.into_iter().enumerate() {
-            let candidate = Candidate::new(&self.columns[t], t as u32);
-            for y in y0..=y1 {
-                for x in x0..=x1 {
-                    let slot = &mut next[y * nx + x];
-                    self.items[*slot as usize] = candidate;
-                    *slot += 1;
-                }
-            }
-        }
-    }
-
     /// Classifies `p` against the mesh exactly (the mesh must be closed): the upward ray's
     /// crossings with the triangles of `p`'s cell that reach its column.
     ///
     /// ```
     /// use kepler::{geometry::Point3, mesh::Containment, queries::projection_grid::ProjectionGrid};
-    /// let g = ProjectionGrid::new(&kepler::solids::cube(2.0).unwrap());
+    /// let cube = kepler::solids::cube(2.0).unwrap();
+    /// let g = ProjectionGrid::new(&cube);
     /// assert_eq!(g.classify(&Point3::new(1.0, 1.0, 1.0)), Containment::Boundary);
     /// assert_eq!(g.classify(&Point3::new(1.0, 1.0, -3.0)), Containment::Outside);
     /// ```
     pub fn classify(&self, p: &Point3) -> Containment {
         let cell = self.cells.cell_of(p.x, p.y);
-        let gaps = &self.gaps[self.gap_start[cell] as usize..self.gap_start[cell + 1] as usize];
-        for gap in gaps {
+        for gap in &self.gaps[self.gap_start[cell]..self.gap_start[cell + 1]] {
             if p.z <= gap.lo {
                 break;
             }
@@ -284,26 +295,27 @@ impl ProjectionGrid {
         let reaching = self
             .listed(cell)
             .iter()
-            .filter(|c| c.may_reach(p))
-            .map(|c| self.columns[c.triangle as usize].corners);
+            .filter(|&&t| self.boxes[t as usize].may_reach(p))
+            .map(|&t| self.mesh.triangle(t as usize));
         classify_among(reaching, p)
     }
 
     /// The number of triangles in the grid.
     ///
     /// ```
-    /// let g = kepler::queries::projection_grid::ProjectionGrid::new(&kepler::solids::tetrahedron(1.0).unwrap());
+    /// let tetrahedron = kepler::solids::tetrahedron(1.0).unwrap();
+    /// let g = kepler::queries::projection_grid::ProjectionGrid::new(&tetrahedron);
     /// assert_eq!(g.triangle_count(), 4);
     /// ```
     pub fn triangle_count(&self) -> usize {
-        self.columns.len()
+        self.mesh.triangles().len()
     }
 
     /// The grid's shape, cells along x and y.
     ///
     /// ```
-    /// let g = kepler::queries::projection_grid::ProjectionGrid::new(&kepler::solids::cube(1.0).unwrap());
-    /// let [nx, ny] = g.shape();
+    /// let cube = kepler::solids::cube(1.0).unwrap();
+    /// let [nx, ny] = kepler::queries::projection_grid::ProjectionGrid::new(&cube).shape();
     /// assert!(nx * ny >= 1 && nx * ny <= 12);
     /// ```
     pub fn shape(&self) -> [usize; 2] {
@@ -313,7 +325,8 @@ impl ProjectionGrid {
     /// The average number of triangles listed per cell.
     ///
     /// ```
-    /// let g = kepler::queries::projection_grid::ProjectionGrid::new(&kepler::solids::cube(1.0).unwrap());
+    /// let cube = kepler::solids::cube(1.0).unwrap();
+    /// let g = kepler::queries::projection_grid::ProjectionGrid::new(&cube);
     /// assert!(g.mean_cell_load() >= 1.0);
     /// ```
     pub fn mean_cell_load(&self) -> f64 {
@@ -321,14 +334,57 @@ impl ProjectionGrid {
     }
 }
 
-/// Cells per triangle: finer grids list fewer triangles per cell but each triangle in more
-/// cells; measured on a 70,000-triangle torus, 2 is about best.
+/// Lists every triangle of `mesh` in the cells of `cells` its box covers: `(start, items)`,
+/// cell `c` listing `items[start[c]..start[c + 1]]` in increasing triangle index (a counting
+/// pass, then a filling pass).
+fn fill(mesh: &Mesh, cells: &Cells) -> (Vec<usize>, Vec<u32>) {
+    let nx = cells.shape()[0];
+    let range = |t: usize| {
+        let (min, max) = bounds(&mesh.triangle(t));
+        [0, 1].map(|k| cells.index(k, min[k])..=cells.index(k, max[k]))
+    };
+    let mut start = vec![0usize; cells.count() + 1];
+    for t in 0..mesh.triangles().len() {
+        let [xs, ys] = range(t);
+        for y in ys {
+            for x in xs.clone() {
+                start[y * nx + x + 1] += 1;
+            }
+        }
+    }
+    for c in 1..start.len() {
+        start[c] += start[c - 1];
+    }
+    let mut next = start.clone();
+    let mut items = vec![0u32; start[cells.count()]];
+    for t in 0..mesh.triangles().len() {
+        let [xs, ys] = range(t);
+        for y in ys {
+            for x in xs.clone() {
+                let slot = &mut next[y * nx + x];
+                items[*slot] = t as u32;
+                *slot += 1;
+            }
+        }
+    }
+    (start, items)
+}
+
+/// At most one cell per triangle, and no cell smaller than the triangles' mean projected box:
+/// smaller cells would list each triangle in several (on a sphere of a million triangles, ten
+/// on average with a cell per triangle, four with cells the size of the mean box, which also
+/// answer a torus's points faster).
 const CELLS_PER_TRIANGLE: f64 = 1.0;
 
-/// About `n` cells per triangle (at least one cell), split between the axes in proportion to the extents.
-fn grid_shape(n: usize, extent: [f64; 2]) -> [usize; 2] {
+/// The grid's shape for `n` triangles whose projection spans `extent` and whose boxes' mean
+/// sizes are `mean`: at least one cell, split between the axes in proportion to the extents.
+fn grid_shape(n: usize, extent: [f64; 2], mean: [f64; 2]) -> [usize; 2] {
     const MAX_CELLS: f64 = (1u64 << 24) as f64;
-    let n = (CELLS_PER_TRIANGLE * n as f64).clamp(1.0, MAX_CELLS);
+    let mut n = (CELLS_PER_TRIANGLE * n as f64).clamp(1.0, MAX_CELLS);
+    if extent[0] > 0.0 && extent[1] > 0.0 && mean[0] > 0.0 && mean[1] > 0.0 {
+        let boxes = extent[0] / mean[0] * (extent[1] / mean[1]);
+        n = n.min(boxes).max(1.0);
+    }
     match (extent[0] > 0.0, extent[1] > 0.0) {
         (true, true) => {
             let aspect = extent[0] / extent[1];
@@ -339,5 +395,169 @@ fn grid_shape(n: usize, extent: [f64; 2]) -> [usize; 2] {
         (true, false) => [n as usize, 1],
         (false, true) => [1, n as usize],
         (false, false) => [1, 1],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    //! The grid against the brute-force classification (every triangle tested) on points
+    //! chosen to be hard: vertices, edge midpoints, points straight above and below vertices,
+    //! points on the grid's cell borders and the cells' representative centres, and random
+    //! points, on meshes with vertical faces, far from the origin, and at 1e-90 and 1e90.
+
+    use super::*;
+    use crate::mesh::classify_point_brute_force;
+    use proptest::prelude::*;
+
+    /// The test meshes: a cube (vertical faces), a torus, a coarse sphere, an octahedron, and
+    /// a non-convex union of two boxes touching along a face.
+    fn mesh(which: usize) -> Mesh {
+        match which {
+            0 => crate::solids::cube(2.0),
+            1 => crate::solids::torus(2.0, 0.7, 24, 12),
+            2 => crate::solids::uv_sphere(1.0, 17, 9),
+            3 => crate::solids::octahedron(1.5),
+            _ => {
+                let a = crate::solids::box_between([0.0; 3], [2.0, 1.0, 1.0]);
+                let b = crate::solids::box_between([0.0, 0.0, 1.0], [1.0, 1.0, 3.0]);
+                return Mesh::concatenate([&a.unwrap(), &b.unwrap()]).unwrap();
+            }
+        }
+        .unwrap()
+    }
+
+    /// `mesh` scaled by a power of two (exactly), or moved by 1e8 along x and y.
+    fn placed(m: Mesh, placement: usize) -> Mesh {
+        match placement {
+            0 => m,
+            1 => m.scaled_exactly(-300).unwrap(),
+            2 => m.scaled_exactly(300).unwrap(),
+            _ => m
+                .transformed(&nalgebra::Matrix4::new_translation(
+                    &nalgebra::Vector3::new(1e8, -1e8, 0.0),
+                ))
+                .unwrap(),
+        }
+    }
+
+    /// A small deterministic generator (splitmix64).
+    struct Rng(u64);
+
+    impl Rng {
+        fn unit(&mut self) -> f64 {
+            self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+            let mut z = self.0;
+            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+            (z ^ (z >> 31)) as f64 / u64::MAX as f64
+        }
+
+        fn below(&mut self, n: usize) -> usize {
+            ((self.unit() * n as f64) as usize).min(n - 1)
+        }
+    }
+
+    /// Hard points for `grid`'s mesh.
+    fn points(grid: &ProjectionGrid, rng: &mut Rng) -> Vec<Point3> {
+        let mesh = grid.mesh;
+        let v = mesh.vertices();
+        let lo = |k: usize| v.iter().map(|p| p[k]).fold(f64::INFINITY, f64::min);
+        let hi = |k: usize| v.iter().map(|p| p[k]).fold(f64::NEG_INFINITY, f64::max);
+        let within = |k: usize, t: f64| lo(k) + (hi(k) - lo(k)) * t;
+        let z = |rng: &mut Rng| match rng.below(3) {
+            0 => v[rng.below(v.len())].z,
+            _ => within(2, rng.unit() * 1.4 - 0.2),
+        };
+        let mut out: Vec<Point3> = v.to_vec();
+        for t in mesh.triangles() {
+            let [a, b, c] = t.map(|i| v[i as usize]);
+            out.push(nalgebra::center(&a, &b));
+            out.push(nalgebra::center(&b, &c));
+            out.push(Point3::from((a.coords + b.coords + c.coords) / 3.0));
+        }
+        for _ in 0..200 {
+            let p = v[rng.below(v.len())];
+            out.push(Point3::new(p.x, p.y, z(rng)));
+        }
+        let [nx, ny] = grid.cells.shape();
+        for _ in 0..400 {
+            // A cell border or centre along one or both axes, at a vertex's or a random z.
+            let line = |k: usize, n: usize, rng: &mut Rng| {
+                let t = rng.below(2 * n + 1) as f64 / 2.0;
+                match rng.below(3) {
+                    0 => grid.cells.coordinate(k, t),
+                    1 => grid.cells.coordinate(k, t.floor()),
+                    _ => within(k, rng.unit() * 1.2 - 0.1),
+                }
+            };
+            out.push(Point3::new(line(0, nx, rng), line(1, ny, rng), z(rng)));
+        }
+        for c in 0..grid.cells.count() {
+            if let Some([x, y]) = grid.centre(c) {
+                out.push(Point3::new(x, y, z(rng)));
+            }
+        }
+        out
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(40))]
+
+        #[test]
+        fn the_grid_agrees_with_brute_force(which in 0..5usize, placement in 0..4usize,
+                                            seed in any::<u64>()) {
+            let m = placed(mesh(which), placement);
+            let grid = ProjectionGrid::new(&m);
+            let mut rng = Rng(seed);
+            for p in points(&grid, &mut rng) {
+                prop_assert_eq!(grid.classify(&p), classify_point_brute_force(&m, &p),
+                                "mesh {} placement {} point {:?}", which, placement, p);
+            }
+        }
+    }
+
+    #[test]
+    fn cells_are_not_smaller_than_the_mean_box() {
+        // A million-triangle sphere listed each triangle in ten cells on average with a cell
+        // per triangle; cells the size of the mean projected box list fewer than five.
+        let sphere = crate::solids::uv_sphere(1.0, 200, 101).unwrap();
+        let grid = ProjectionGrid::new(&sphere);
+        assert!(
+            grid.items.len() < 5 * grid.triangle_count(),
+            "{}",
+            grid.items.len()
+        );
+        assert!(grid.cells.count() <= grid.triangle_count());
+        // Every triangle is listed in order in the cells its box covers, and nowhere else.
+        for (t, c) in (0..sphere.triangles().len()).map(|t| (t, sphere.triangle(t))) {
+            let (min, max) = bounds(&c);
+            let xs = grid.cells.index(0, min[0])..=grid.cells.index(0, max[0]);
+            let ys = grid.cells.index(1, min[1])..=grid.cells.index(1, max[1]);
+            for y in ys {
+                for x in xs.clone() {
+                    let cell = y * grid.cells.shape()[0] + x;
+                    assert!(grid.listed(cell).binary_search(&(t as u32)).is_ok());
+                }
+            }
+        }
+        let expected: usize = (0..sphere.triangles().len())
+            .map(|t| {
+                let (min, max) = bounds(&sphere.triangle(t));
+                [0, 1]
+                    .map(|k| grid.cells.index(k, max[k]) - grid.cells.index(k, min[k]) + 1)
+                    .iter()
+                    .product::<usize>()
+            })
+            .sum();
+        assert_eq!(grid.items.len(), expected);
+        assert!((0..grid.cells.count()).all(|c| grid.listed(c).is_sorted()));
+    }
+
+    #[test]
+    fn an_empty_mesh_has_one_cell_and_nothing_inside() {
+        let empty = Mesh::from_polygons(Vec::new(), Vec::new()).unwrap();
+        let grid = ProjectionGrid::new(&empty);
+        assert_eq!((grid.shape(), grid.triangle_count()), ([1, 1], 0));
+        assert_eq!(grid.classify(&Point3::origin()), Containment::Outside);
     }
 }

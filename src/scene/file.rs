@@ -163,7 +163,11 @@ pub fn parse_with(text: &str, path: &Path, validation: Validation) -> Result<Sce
         }
         .into());
     }
-    for (o, proto) in spec.object.iter().zip(&protos) {
+    // The builder's caches let go of their meshes, so that a mesh placed once as it is moves
+    // into the scene instead of being copied.
+    b.protos.clear();
+    b.meshes.clear();
+    for (o, proto) in spec.object.iter().zip(protos) {
         place(&mut scene, proto, None, &Matrix4::identity()).map_err(|e| b.at(o, e))?;
     }
     Ok(scene)
@@ -347,10 +351,11 @@ impl Proto {
     }
 }
 
-/// Inserts a proto into the scene, transforming each mesh once by its composed matrix.
+/// Inserts a proto into the scene, transforming each mesh once by its composed matrix (a mesh
+/// under the identity is moved, or copied only when another proto shares it).
 fn place(
     scene: &mut Scene,
-    proto: &Proto,
+    proto: Proto,
     parent: Option<ObjectId>,
     outer: &Matrix4<f64>,
 ) -> Result<ObjectId> {
@@ -363,28 +368,28 @@ fn place(
         } => {
             let m = outer * matrix;
             let mesh = if m == Matrix4::identity() {
-                (**mesh).clone()
+                Arc::unwrap_or_clone(mesh)
             } else {
                 mesh.transformed(&m).map_err(|e| SceneError::Object {
                     object: name.clone(),
                     problem: super::ObjectProblem::Mesh(e),
                 })?
             };
-            (scene.add_mesh(parent, name.clone(), mesh)?, instance_of)
+            (scene.add_mesh(parent, name, mesh)?, instance_of)
         }
         Proto::Group {
             name,
             children,
             instance_of,
         } => {
-            let id = scene.add_group(parent, name.clone())?;
+            let id = scene.add_group(parent, name)?;
             for c in children {
                 place(scene, c, Some(id), outer)?;
             }
             (id, instance_of)
         }
     };
-    scene.objects[id].instance_of = instance_of.clone();
+    scene.objects[id].instance_of = instance_of;
     Ok(id)
 }
 

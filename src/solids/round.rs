@@ -4,7 +4,7 @@
 
 use super::{MAX_FACES, MAX_POLYGON_VERTICES, SolidError, at_least, at_most, positive};
 use crate::geometry::Point3;
-use crate::mesh::Mesh;
+use crate::mesh::{Loop, Mesh, Validation};
 use std::f64::consts::{PI, TAU};
 
 /// A UV sphere of the given radius centred at the origin: `rings` bands of latitude between
@@ -49,14 +49,18 @@ pub fn uv_sphere(radius: f64, segments: u32, rings: u32) -> Result<Mesh, SolidEr
 
     let (n32, m32) = (n as u32, m as u32);
     let at = |i: u32, j: u32| 1 + (i - 1) * n32 + j % n32;
-    let mut faces = Vec::with_capacity(n * m);
-    faces.extend((0..n32).map(|j| vec![0, at(1, j), at(1, j + 1)]));
+    // Loops inline (no allocation per face), built straight into the mesh.
+    let mut faces: Vec<Loop> = Vec::with_capacity(n * m);
+    faces.extend((0..n32).map(|j| Loop::from_slice(&[0, at(1, j), at(1, j + 1)])));
     for i in 1..m32 - 1 {
-        faces
-            .extend((0..n32).map(|j| vec![at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]));
+        faces.extend(
+            (0..n32).map(|j| {
+                Loop::from_slice(&[at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)])
+            }),
+        );
     }
-    faces.extend((0..n32).map(|j| vec![south, at(m32 - 1, j + 1), at(m32 - 1, j)]));
-    Ok(Mesh::from_polygons(vertices, faces)?)
+    faces.extend((0..n32).map(|j| Loop::from_slice(&[south, at(m32 - 1, j + 1), at(m32 - 1, j)])));
+    Ok(Mesh::from_loops_with(vertices, faces, Validation::Repair)?)
 }
 
 /// A torus about the z-axis, centred at the origin: its tube is a regular `sides`-gon of
