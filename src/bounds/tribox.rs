@@ -30,6 +30,12 @@
 //! all), case 2 (beyond h_A), case 3 (beyond h_B), case 4 (beyond h_C). Each corner yields four
 //! vertices and one sub-list per incident face; face loops concatenate their corners' sub-lists.
 //!
+//! The case tests compare the correctly rounded doubled coordinates of p, which case 1 needs
+//! anyway, with twice the principal bounds (rounding is monotone), and take the exact sign of the
+//! test only when they are equal. With no chamfer clamped, the 8 corners are first evaluated
+//! together for case 1 (vectorisable lanes), and corner by corner only when a corner is in
+//! another case or a sum needs exact arithmetic.
+//!
 //! ```
 //! use kepler::bounds::tribox::TriboxBounds;
 //! use kepler::geometry::Point3;
@@ -48,7 +54,9 @@ use std::sync::OnceLock;
 use rayon::prelude::*;
 use serde::{Serialize, Serializer};
 
-use crate::geometry::exact::{accurate_sum, accurate_sum_array, sum_sign, sum_sign_array, two_sum};
+use crate::geometry::exact::{
+    accurate_sum, accurate_sum_array, accurate_sum3_lanes, sum_sign, sum_sign_array, two_sum,
+};
 use crate::geometry::{Point3, Vector3};
 
 /// The 9 directions, in the paper's order, as integer vectors.
@@ -1361,7 +1369,58 @@ fn case2<T: LocalBound>(al: [T; 6]) -> [[f64; 3]; 4] {
 #[inline(always)]
 fn reflected(c: usize, v: &[[f64; 3]; 4]) -> [Point3; 4] {
     let s = CORNER_SIGNS[c];
-    v.map(|v| Point3::new(s[0] * v[0] + 0.0, s[1] * v[1] + 0.0, s[2] * v[2] + 0.0))
+    let r = |v: &[f64; 3]| Point3::new(s[0] * v[0] + 0.0, s[1] * v[1] + 0.0, s[2] * v[2] + 0.0);
+    [r(&v[0]), r(&v[1]), r(&v[2]), r(&v[3])]
+}
+
+/// The vertices of the generic boundary, no chamfer clamped and every corner in case 1,
+/// evaluated for the 8 corners at once (lane c is corner c, so that the arithmetic
+/// vectorises); `None` when some corner is in another case or needs exact arithmetic (a
+/// doubled p coordinate equal to twice its principal bound, or a sum [`accurate_sum3_lanes`]
+/// does not certify), left to [`masked_corner`]. The same operations as
+/// [`masked_corner::<0>`](masked_corner) in case 1, hence the same doubles.
+#[inline(always)]
+fn generic_vertices(beta: &[f64; 18]) -> Option<[[Point3; 4]; 8]> {
+    // Plain loops over fixed arrays (array::from_fn and map were left as calls).
+    let mut al = [[0.0; 8]; 6];
+    for (k, lanes) in al.iter_mut().enumerate() {
+        for (c, x) in lanes.iter_mut().enumerate() {
+            *x = beta[usize::from(CORNER_PLANES[c][k])];
+        }
+    }
+    let [a, b, c, ab, ac, bc] = al;
+    let neg = |mut x: [f64; 8]| {
+        for v in &mut x {
+            *v = -*v;
+        }
+        x
+    };
+    // The doubled p (CASE1_COORDS's last slot), terms in the order of the local planes.
+    let (px, cx) = accurate_sum3_lanes(ab, ac, neg(bc));
+    let (py, cy) = accurate_sum3_lanes(ab, neg(ac), bc);
+    let (pz, cz) = accurate_sum3_lanes(neg(ab), ac, bc);
+    // Case 1 everywhere: every test x_p > α_A (and cyclically) decided negative.
+    let mut below = cx && cy && cz;
+    for k in 0..8 {
+        below &= (px[k] < 2.0 * a[k]) & (py[k] < 2.0 * b[k]) & (pz[k] < 2.0 * c[k]);
+    }
+    if !below {
+        return None;
+    }
+    let mut out = [[const { Point3::new(0.0, 0.0, 0.0) }; 4]; 8];
+    for (k, o) in out.iter_mut().enumerate() {
+        let (aa, bb, cc, ab, ac, bc) = (a[k], b[k], c[k], ab[k], ac[k], bc[k]);
+        *o = reflected(
+            k,
+            &[
+                [ac - cc, bc - cc, cc + 0.0],
+                [aa + 0.0, ab - aa, ac - aa],
+                [ab - bb, bb + 0.0, bc - bb],
+                [0.5 * px[k], 0.5 * py[k], 0.5 * pz[k]],
+            ],
+        );
+    }
+    Some(out)
 }
 
 /// Which chamfer bounds are clamped: β_j ≥ β_p1 + β_p2 for its parent principal planes.
@@ -1452,6 +1511,19 @@ impl Tribox {
         }
         let beta = bounds.offsets();
         let clamped = clamped_chamfers(&beta);
+        if !clamped.contains(&true)
+            && let Some(vertices) = generic_vertices(&beta)
+        {
+            return Tribox {
+                bounds: *bounds,
+                vertices,
+                vertex_planes: GENERIC.vertex_planes,
+                vertex_count: MAX_VERTICES as u8,
+                faces: GENERIC.faces,
+                face_len: GENERIC.face_len,
+                cases: [1; 8],
+            };
+        }
         Tribox::from_corners(bounds, |c| {
             let planes = CORNER_PLANES[c];
             let b = |k: usize| beta[usize::from(planes[k])];

@@ -545,6 +545,38 @@ fn accurate_sum_inline(terms: &[f64]) -> f64 {
     }
 }
 
+/// [`accurate_sum`] of three terms in each of `N` lanes, `a[i] + b[i] + c[i]`, branch-free so
+/// that the lanes vectorise, with whether every lane is certified: the TwoSum cascade turns
+/// each sum exactly into `sum + e1 + e2` and `e1 + e2` into `err + d`; when `d` is zero, the
+/// exact sum is the two doubles `sum + err`, whose single rounding is correct (ties included),
+/// and the lane is bit for bit what [`accurate_sum`] returns. When some `d` is not zero the
+/// flag is false and the lanes are only approximations: call [`accurate_sum`] instead.
+///
+/// ```
+/// use kepler::geometry::exact::{accurate_sum, accurate_sum3_lanes};
+/// let (sums, certified) = accurate_sum3_lanes([0.1, 1e20], [0.2, 1.0], [-0.3, -1e20]);
+/// assert!(certified);
+/// assert_eq!(sums, [accurate_sum(&[0.1, 0.2, -0.3]), 1.0]);
+/// // In 1 + 2^-53 + 2^-200 the two rounding errors, 2^-53 and 2^-200, do not add exactly.
+/// let (_, certified) = accurate_sum3_lanes([1.0], [2f64.powi(-53)], [2f64.powi(-200)]);
+/// assert!(!certified);
+/// ```
+#[inline(always)]
+pub fn accurate_sum3_lanes<const N: usize>(
+    a: [f64; N],
+    b: [f64; N],
+    c: [f64; N],
+) -> ([f64; N], bool) {
+    let mut out = [0.0; N];
+    let mut residual = 0.0;
+    for i in 0..N {
+        let (sum, err, d) = cascade(a[i], b[i], &[c[i]]);
+        out[i] = sum + err;
+        residual += d;
+    }
+    (out, residual == 0.0)
+}
+
 /// The TwoSum cascade of `a`, `b` and `rest`: `(sum, err, residual)` with exact sum =
 /// sum + (sum of the errors e_i); the errors are added with TwoSum too, so exact sum = sum +
 /// err + (sum of the residuals d_i), and `residual` is the sum of their magnitudes, rounded
@@ -752,6 +784,7 @@ mod tests {
             1e16,
             1.5,
         ];
+        let mut uncertified = 0;
         for _ in 0..200_000 {
             let mut t = [0.0; 5];
             for x in &mut t {
@@ -767,12 +800,21 @@ mod tests {
             assert_eq!(sum_sign_array(t), sum_sign(&t), "{t:?}");
             assert_eq!(sum_sign_array([t[0], t[1], t[2]]), sum_sign(&t[..3]));
             assert_eq!(accurate_sum_array(t).to_bits(), accurate_sum(&t).to_bits());
+            let (lanes, certified) = accurate_sum3_lanes([t[0], t[3]], [t[1], t[4]], [t[2], t[0]]);
+            for (sum, terms) in lanes.iter().zip([[t[0], t[1], t[2]], [t[3], t[4], t[0]]]) {
+                uncertified += usize::from(!certified);
+                if certified {
+                    assert_eq!(sum.to_bits(), accurate_sum(&terms).to_bits(), "{t:?}");
+                }
+            }
             assert_eq!(
                 accurate_sum(&t).to_bits(),
                 exact_round(&t).to_bits(),
                 "{t:?}"
             );
         }
+        // The lanes' fallback is exercised too.
+        assert!(uncertified > 1_000, "{uncertified}");
     }
 
     #[test]
