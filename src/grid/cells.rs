@@ -215,8 +215,8 @@ impl CellLists {
         use rayon::prelude::*;
         // Placed by cell in one counting pass; a cell's items then come in the order of the
         // pairs, usually increasing already (each is sorted only where it is not).
-        let (start, placed) = crate::mesh::by_bucket(cells, &pairs, |p| p.0 as usize);
-        let mut items: Vec<u32> = placed.into_iter().map(|(_, i)| i).collect();
+        let (start, mut items) = crate::mesh::by_bucket(cells, &pairs, |p| p.0 as usize, |p| p.1);
+        drop(pairs);
         let mut rest = items.as_mut_slice();
         let mut lists = Vec::with_capacity(cells);
         for c in 0..cells {

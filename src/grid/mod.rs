@@ -269,22 +269,19 @@ impl SegmentGrid {
                 x.append(&mut y);
                 x
             });
-        let (start, keys) =
-            crate::mesh::by_bucket(grid.cells.count(), &keys, |k| (k >> 32) as usize);
-        let mut items: Vec<Item> = keys
-            .par_iter()
-            .map(|&k| {
-                let s = &segments[(k & 0xffff_ffff) as usize];
-                let (a, b) = (xy(s.start), xy(s.end));
-                let (a, b) = if a[0] <= b[0] { (a, b) } else { (b, a) };
-                Item {
-                    cell: (k >> 32) as u32,
-                    segment: k as u32,
-                    a,
-                    b,
-                }
-            })
-            .collect();
+        let item = |&k: &u64| {
+            let s = &segments[(k & 0xffff_ffff) as usize];
+            let (a, b) = (xy(s.start), xy(s.end));
+            let (a, b) = if a[0] <= b[0] { (a, b) } else { (b, a) };
+            Item {
+                cell: (k >> 32) as u32,
+                segment: k as u32,
+                a,
+                b,
+            }
+        };
+        let (start, mut items) =
+            crate::mesh::by_bucket(grid.cells.count(), &keys, |k| (k >> 32) as usize, item);
         // Within a cell, by the left end's x: a cell's pairs are then found by a sweep.
         items
             .par_chunk_by_mut(|x, y| x.cell == y.cell)

@@ -6,14 +6,16 @@
 //! bucket starts as well as the placed items); a radix-sort crate would give the order but
 //! not the starts.
 
-/// The items placed by bucket (`bucket(item) < buckets`), in their input order within a
-/// bucket, and where each bucket starts: bucket `b` holds `placed[start[b]..start[b + 1]]`.
-/// (Tested against a stable sort below; crate-private, so no doctest.)
-pub(crate) fn by_bucket<T: Copy>(
+/// The items placed by bucket (`bucket(item) < buckets`), as `value(item)`, in their input
+/// order within a bucket, and where each bucket starts: bucket `b` holds
+/// `placed[start[b]..start[b + 1]]`. Writing the values straight into their places needs no
+/// copy of the items. (Tested against a stable sort below; crate-private, so no doctest.)
+pub(crate) fn by_bucket<T, U: Copy>(
     buckets: usize,
     items: &[T],
     bucket: impl Fn(&T) -> usize,
-) -> (Vec<usize>, Vec<T>) {
+    value: impl Fn(&T) -> U,
+) -> (Vec<usize>, Vec<U>) {
     let mut start = vec![0usize; buckets + 1];
     for item in items {
         start[bucket(item) + 1] += 1;
@@ -21,14 +23,14 @@ pub(crate) fn by_bucket<T: Copy>(
     for b in 0..buckets {
         start[b + 1] += start[b];
     }
-    let Some(&first) = items.first() else {
+    let Some(first) = items.first() else {
         return (start, Vec::new());
     };
     let mut next = start.clone();
-    let mut placed = vec![first; items.len()];
+    let mut placed = vec![value(first); items.len()];
     for item in items {
         let slot = &mut next[bucket(item)];
-        placed[*slot] = *item;
+        placed[*slot] = value(item);
         *slot += 1;
     }
     (start, placed)
@@ -51,7 +53,7 @@ mod tests {
             let items: Vec<(usize, u64)> = (0..n)
                 .map(|_| ((next() % buckets as u64) as usize, next()))
                 .collect();
-            let (start, placed) = by_bucket(buckets, &items, |x| x.0);
+            let (start, placed) = by_bucket(buckets, &items, |x| x.0, |x| *x);
             let mut sorted = items.clone();
             sorted.sort_by_key(|x| x.0);
             assert_eq!(placed, sorted);

@@ -133,7 +133,7 @@ pub(crate) fn sort_by_edge<T: Copy>(items: &mut Vec<T>, key: impl Fn(&T) -> u64)
         items.sort_by_key(&key);
         return;
     }
-    let (start, mut sorted) = super::by_bucket(vertices, items, lower);
+    let (start, mut sorted) = super::by_bucket(vertices, items, lower, |u| *u);
     for v in 0..vertices {
         sorted[start[v]..start[v + 1]].sort_by_key(&key);
     }

@@ -263,21 +263,25 @@ fn candidate_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32)> {
     if !same {
         items.extend(list(m1, &b1, 1));
     }
-    // By cell, then mesh, then triangle: in one counting pass where the cells are not many
-    // more than the entries (each list comes in the order of mesh and triangle), else sorted.
+    // By cell, then mesh, then triangle: in one counting pass where the cells are a few times
+    // fewer than the entries (each list comes in the order of mesh and triangle; the fan of a
+    // cone), else by a parallel sort in place (a fine grid over a large surface, where the
+    // counts would outweigh the entries).
     let cells = grid.shape().iter().map(|&n| n as u128).product::<u128>();
-    let placed;
-    let runs: Vec<&[(u64, u32)]> = if cells <= 4 * items.len() as u128 {
-        let start;
-        (start, placed) = by_bucket(cells as usize, &items, |x| x.0 as usize);
-        start
-            .windows(2)
-            .filter(|w| w[1] > w[0])
-            .map(|w| &placed[w[0]..w[1]])
-            .collect()
+    let (start, items) = if 4 * cells <= items.len() as u128 {
+        let (start, placed) = by_bucket(cells as usize, &items, |x| x.0 as usize, |x| *x);
+        (Some(start), placed)
     } else {
         items.par_sort_unstable();
-        items.chunk_by(|x, y| x.0 == y.0).collect()
+        (None, items)
+    };
+    let runs: Vec<&[(u64, u32)]> = match &start {
+        Some(start) => start
+            .windows(2)
+            .filter(|w| w[1] > w[0])
+            .map(|w| &items[w[0]..w[1]])
+            .collect(),
+        None => items.chunk_by(|x, y| x.0 == y.0).collect(),
     };
     let pairing = Pairing {
         meshes: [m0, m1],
@@ -345,7 +349,7 @@ const SPLIT: f64 = 4.0;
 const CROWDED: usize = 8;
 
 /// The fewest triangles of a crowded cell.
-const CROWD: usize = 24;
+const CROWD: usize = 64;
 
 /// A cell is split at most this many times over.
 const SPLITS: usize = 3;
@@ -507,7 +511,7 @@ impl Pairing<'_> {
             listed.extend(cells.iter().map(|&c| (c, item)));
         }
         let count = grid.shape().iter().product::<usize>();
-        let (start, placed) = by_bucket(count, &listed, |x| x.0 as usize);
+        let (start, placed) = by_bucket(count, &listed, |x| x.0 as usize, |x| *x);
         let subcells: Vec<(u64, Vec<u32>)> = start
             .windows(2)
             .filter(|w| w[1] > w[0])
