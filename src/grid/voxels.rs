@@ -94,12 +94,20 @@ impl Voxels {
     ///
     /// ```
     /// use kepler::{geometry::{Aabb, Point3}, grid::Voxels};
-    /// let g = Voxels::within(Aabb::new(Point3::origin(), Point3::new(2.0, 2.0, 2.0)), 1.0);
-    /// // A triangle across x = 0, y = 0.5, z = 0.5, sloping up to z = 5 at x = 8.
-    /// let t = [Point3::new(-1.0, 0.5, 0.0), Point3::new(8.0, 0.5, 5.0), Point3::new(-1.0, 0.6, 0.0)];
-    /// let mut cells = Vec::new();
-    /// g.triangle_cells(&t, &mut cells);
-    /// assert_eq!(cells, vec![0, 1, 5]); // Voxels::new would list 0, 1, 5 and 4 beyond x = 2
+    /// let region = Aabb::new(Point3::origin(), Point3::new(2.0, 2.0, 2.0));
+    /// let (within, whole) = (Voxels::within(region, 1.0), Voxels::new(region, 1.0));
+    /// let (mut a, mut b) = (Vec::new(), Vec::new());
+    /// // A triangle beyond the region: the unbounded grid puts it in its corner cell.
+    /// let far = [Point3::new(5.0, 5.0, 5.0), Point3::new(6.0, 5.0, 5.0), Point3::new(5.0, 6.0, 5.0)];
+    /// within.triangle_cells(&far, &mut a);
+    /// whole.triangle_cells(&far, &mut b);
+    /// assert_eq!((a, b), (vec![], vec![7]));
+    /// // One reaching in from beyond x = 2: only its part inside is listed.
+    /// let (mut a, mut b) = (Vec::new(), Vec::new());
+    /// let across = [Point3::new(1.5, 0.5, 0.5), Point3::new(9.0, 0.5, 0.5), Point3::new(9.0, 2.9, 0.5)];
+    /// within.triangle_cells(&across, &mut a);
+    /// whole.triangle_cells(&across, &mut b);
+    /// assert_eq!((a, b), (vec![1], vec![1, 3]));
     /// ```
     pub fn within(region: Aabb, side: f64) -> Voxels {
         Voxels {
