@@ -344,12 +344,19 @@ struct Pairing<'a> {
 /// A crowded cell is split into this many cells along each axis.
 const SPLIT: f64 = 4.0;
 
-/// A cell of at least [`CROWD`] triangles is crowded when it has more than this many pairs
-/// to test per triangle (listing a triangle in smaller cells costs a few pair tests).
+/// A cell of at least [`CROWD`] (or [`CROWD_OF_ONE`]) triangles is crowded when it has more
+/// than this many pairs to test per triangle (listing a triangle in smaller cells costs a few
+/// pair tests).
 const CROWDED: usize = 8;
 
-/// The fewest triangles of a crowded cell.
-const CROWD: usize = 64;
+/// The fewest triangles of a crowded cell whose pairs are between two groups (two meshes, or
+/// a hub's fan and the others): their boxes mostly meet, and each pair costs an exact test.
+const CROWD: usize = 24;
+
+/// The fewest triangles of a crowded cell whose pairs are among them all (a patch of one
+/// surface): most of those pairs are told apart by their boxes alone, so a split pays only
+/// in a larger cell.
+const CROWD_OF_ONE: usize = 64;
 
 /// A cell is split at most this many times over.
 const SPLITS: usize = 3;
@@ -469,7 +476,7 @@ impl Pairing<'_> {
                 return;
             }
         }
-        if tris.len() >= CROWD
+        if tris.len() >= CROWD_OF_ONE
             && tris.len() * tris.len() / 2 > CROWDED * tris.len()
             && split(out, &|sub| sub.len() * sub.len())
         {
@@ -511,23 +518,20 @@ impl Pairing<'_> {
             listed.extend(cells.iter().map(|&c| (c, item)));
         }
         let count = grid.shape().iter().product::<usize>();
-        let (start, placed) = by_bucket(count, &listed, |x| x.0 as usize, |x| *x);
-        let subcells: Vec<(u64, Vec<u32>)> = start
-            .windows(2)
-            .filter(|w| w[1] > w[0])
-            .map(|w| {
-                (
-                    placed[w[0]].0,
-                    placed[w[0]..w[1]].iter().map(|x| x.1).collect(),
-                )
-            })
-            .collect();
-        if subcells.iter().map(|(_, sub)| load(sub)).sum::<usize>() >= load(items) {
+        let (start, placed) = by_bucket(count, &listed, |x| x.0 as usize, |x| x.1);
+        let subcells = || {
+            start
+                .windows(2)
+                .enumerate()
+                .filter(|(_, w)| w[1] > w[0])
+                .map(|(c, w)| (c as u64, &placed[w[0]..w[1]]))
+        };
+        if subcells().map(|(_, sub)| load(sub)).sum::<usize>() >= load(items) {
             return false;
         }
         let mut tris = Vec::new();
-        for (c, sub) in &subcells {
-            self.cell(sub, &grid.cell_box(*c), depth + 1, out, &mut tris);
+        for (c, sub) in subcells() {
+            self.cell(sub, &grid.cell_box(c), depth + 1, out, &mut tris);
         }
         true
     }
