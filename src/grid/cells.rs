@@ -212,23 +212,16 @@ impl CellLists {
     /// assert!(lists.get(0).is_empty());
     /// ```
     pub fn new(cells: usize, pairs: Vec<(u32, u32)>) -> CellLists {
-        use rayon::prelude::*;
         // Placed by cell in one counting pass; a cell's items then come in the order of the
         // pairs, usually increasing already (each is sorted only where it is not).
         let (start, mut items) = crate::mesh::by_bucket(cells, &pairs, |p| p.0 as usize, |p| p.1);
         drop(pairs);
-        let mut rest = items.as_mut_slice();
-        let mut lists = Vec::with_capacity(cells);
         for c in 0..cells {
-            let (list, after) = rest.split_at_mut(start[c + 1] - start[c]);
-            lists.push(list);
-            rest = after;
-        }
-        lists.into_par_iter().for_each(|list| {
+            let list = &mut items[start[c]..start[c + 1]];
             if !list.is_sorted() {
                 list.sort_unstable();
             }
-        });
+        }
         CellLists {
             start: start.into_iter().map(|s| s as u32).collect(),
             items,

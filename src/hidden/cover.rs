@@ -7,7 +7,10 @@
 //! 2⁻⁴⁰ of the largest picture coordinate, far more than the rounding of any picture point; a
 //! cell is found by the grid's one monotone index function. So a triangle whose exact picture
 //! contains a point's exact picture is always listed in the cell of the point's rounded
-//! picture, and the exact test then decides. A point known only to within a distance (a point
+//! picture, and the exact test then decides; first, a floating-point distance filter
+//! ([`surely_farther`]) passes over the cell's triangles whose pictures are surely too far
+//! from the point's to hide it (a crowded cell, such as a fan's apex, costs a few nanoseconds
+//! a triangle). A point known only to within a distance (a point
 //! of an edge or an intersection line, defined exactly but approximated for finding what is
 //! near it) is looked up in every cell within the reach of its picture's error
 //! ([`Picture::reach`]): nearly always the one cell.

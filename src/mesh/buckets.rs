@@ -26,13 +26,16 @@ pub(crate) fn by_bucket<T, U: Copy>(
     let Some(first) = items.first() else {
         return (start, Vec::new());
     };
-    let mut next = start.clone();
+    // Each bucket's start serves as its cursor (no second array of counts): after placing,
+    // `start[b]` has moved on to where bucket `b + 1` starts, and one shift puts it back.
     let mut placed = vec![value(first); items.len()];
     for item in items {
-        let slot = &mut next[bucket(item)];
+        let slot = &mut start[bucket(item)];
         placed[*slot] = value(item);
         *slot += 1;
     }
+    start.copy_within(0..buckets, 1);
+    start[0] = 0;
     (start, placed)
 }
 

@@ -1,8 +1,9 @@
 //! Intersection lines: where two faces pierce each other, in different objects or in one.
 //!
 //! Candidate triangle pairs are those whose boxes meet, found with a uniform 3-D grid over the
-//! region where the two meshes' boxes overlap; objects whose CBOXes do not overlap are not
-//! compared at all. Which vertices lie on which side of the other triangle's plane is
+//! region where the two meshes' boxes overlap (a crowded cell, such as where the rims of two
+//! fans of slivers meet, split into smaller cells); objects whose CBOXes do not overlap are
+//! not compared at all. Which vertices lie on which side of the other triangle's plane is
 //! decided exactly, and two triangles pierce each other only when each has vertices strictly
 //! on both sides of the other's plane, or lies on it along a diagonal of its flat face (the
 //! face is then cut along the diagonal, whichever way it is triangulated): touching faces (a
@@ -204,7 +205,7 @@ fn merged(group: &[Piece], eye: &Eye) -> Vec<Segment> {
 /// mesh (`same`), pairs sharing a vertex or a face are left out, and where most of a cell's
 /// triangles share one vertex (a fan's apex, a pole of a UV sphere) those are not paired with
 /// each other at all: only with the rest, so ten thousand edges at one point cost no more
-/// than ten thousand elsewhere.
+/// than ten thousand elsewhere. A crowded cell is split into smaller ones ([`Pairing::cell`]).
 fn candidate_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32)> {
     // Each triangle read once for its box and its size (the square root of twice its area).
     let boxes = |m: &Mesh| -> (Vec<Aabb>, f64) {
@@ -263,26 +264,10 @@ fn candidate_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32)> {
     if !same {
         items.extend(list(m1, &b1, 1));
     }
-    // By cell, then mesh, then triangle: in one counting pass where the cells are a few times
-    // fewer than the entries (each list comes in the order of mesh and triangle; the fan of a
-    // cone), else by a parallel sort in place (a fine grid over a large surface, where the
-    // counts would outweigh the entries).
-    let cells = grid.shape().iter().map(|&n| n as u128).product::<u128>();
-    let (start, items) = if 4 * cells <= items.len() as u128 {
-        let (start, placed) = by_bucket(cells as usize, &items, |x| x.0 as usize, |x| *x);
-        (Some(start), placed)
-    } else {
-        items.par_sort_unstable();
-        (None, items)
-    };
-    let runs: Vec<&[(u64, u32)]> = match &start {
-        Some(start) => start
-            .windows(2)
-            .filter(|w| w[1] > w[0])
-            .map(|w| &items[w[0]..w[1]])
-            .collect(),
-        None => items.chunk_by(|x, y| x.0 == y.0).collect(),
-    };
+    // By cell, then mesh, then triangle, sorted in place (a counting pass would need a second
+    // array of the entries at once, the largest of this stage).
+    items.par_sort_unstable();
+    let runs: Vec<&[(u64, u32)]> = items.chunk_by(|x, y| x.0 == y.0).collect();
     let pairing = Pairing {
         meshes: [m0, m1],
         boxes: [&b0, second],
