@@ -1514,15 +1514,7 @@ impl Tribox {
         if !clamped.contains(&true)
             && let Some(vertices) = generic_vertices(&beta)
         {
-            return Tribox {
-                bounds: *bounds,
-                vertices,
-                vertex_planes: GENERIC.vertex_planes,
-                vertex_count: MAX_VERTICES as u8,
-                faces: GENERIC.faces,
-                face_len: GENERIC.face_len,
-                cases: [1; 8],
-            };
+            return Tribox::generic(bounds, vertices);
         }
         Tribox::from_corners(bounds, |c| {
             let planes = CORNER_PLANES[c];
@@ -1559,6 +1551,20 @@ impl Tribox {
         }
     }
 
+    /// The generic boundary (every corner in case 1) with the given vertices: its planes and
+    /// face loops are the compile-time [`GENERIC`] table's.
+    fn generic(bounds: &TriboxBounds, vertices: [[Point3; 4]; 8]) -> Tribox {
+        Tribox {
+            bounds: *bounds,
+            vertices,
+            vertex_planes: GENERIC.vertex_planes,
+            vertex_count: MAX_VERTICES as u8,
+            faces: GENERIC.faces,
+            face_len: GENERIC.face_len,
+            cases: [1; 8],
+        }
+    }
+
     /// The boundary from each corner's case and four vertices in world coordinates (`corner`
     /// returns them, by [`reflected`]), and each face's loop, its corners' sub-lists
     /// concatenated counter-clockwise around it (tabulated for every combination of cases).
@@ -1576,15 +1582,7 @@ impl Tribox {
         });
         if cases == [1; 8] {
             // The generic boundary (every corner in case 1), at once.
-            return Tribox {
-                bounds: *bounds,
-                vertices,
-                vertex_planes: GENERIC.vertex_planes,
-                vertex_count: MAX_VERTICES as u8,
-                faces: GENERIC.faces,
-                face_len: GENERIC.face_len,
-                cases,
-            };
+            return Tribox::generic(bounds, vertices);
         }
         let vertex_planes = std::array::from_fn(|c| VERTEX_PLANES[c][usize::from(cases[c]) - 1]);
         // Two bits per corner: its case − 1.
