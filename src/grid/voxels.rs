@@ -239,10 +239,9 @@ impl Voxels {
             c / self.shape[0] % self.shape[1],
             c / self.shape[0] / self.shape[1],
         ];
-        let at = |k: usize, i: usize| self.low[k] + self.size[k] * i as f64 / self.shape[k] as f64;
         Aabb::new(
-            Point3::from([0, 1, 2].map(|k| at(k, index[k]))),
-            Point3::from([0, 1, 2].map(|k| at(k, index[k] + 1))),
+            Point3::from([0, 1, 2].map(|k| self.wall(k, index[k]))),
+            Point3::from([0, 1, 2].map(|k| self.wall(k, index[k] + 1))),
         )
     }
 
@@ -280,6 +279,12 @@ impl Voxels {
         ]
     }
 
+    /// The coordinate along axis `k` where cell `i` starts (and cell `i − 1` ends), as the
+    /// division of the region gives it.
+    fn wall(&self, k: usize, i: usize) -> f64 {
+        self.low[k] + self.size[k] / self.shape[k] as f64 * i as f64
+    }
+
     /// Whether the piece's range along axis `k` reaches the region's, widened by the margin.
     fn reaches(&self, piece: &Piece, k: usize) -> bool {
         let points = &piece.points[..piece.len];
@@ -293,14 +298,13 @@ impl Voxels {
     /// (unbounded beyond the first and last cells, which hold everything outside the region,
     /// unless the grid is bounded).
     fn slab(&self, piece: &Piece, k: usize, i: usize) -> Piece {
-        let step = self.size[k] / self.shape[k] as f64;
         let mut out = *piece;
         if i > 0 || self.bounded {
-            let lo = self.low[k] + step * i as f64 - self.margin;
+            let lo = self.wall(k, i) - self.margin;
             out = clip(&out, k, lo, true);
         }
         if i + 1 < self.shape[k] || self.bounded {
-            let hi = self.low[k] + step * (i + 1) as f64 + self.margin;
+            let hi = self.wall(k, i + 1) + self.margin;
             out = clip(&out, k, hi, false);
         }
         out
