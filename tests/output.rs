@@ -9,6 +9,7 @@ use kepler::output::{
 };
 
 const SVG_NS: &str = "http://www.w3.org/2000/svg";
+const INKSCAPE_NS: &str = "http://www.inkscape.org/namespaces/inkscape";
 
 fn line(class: EdgeClass, visible: bool, points: &[[f64; 2]]) -> Polyline {
     Polyline {
@@ -224,7 +225,8 @@ fn no_nan_or_inf(text: &str) {
 
 /// What the SVG says: its page transform, and its layers' ids, attributes and polylines.
 struct Svg {
-    matrix: [f64; 6],
+    /// The layers' page transform (the same in each), if there are layers.
+    matrix: Option<[f64; 6]>,
     layers: Vec<Layer>,
 }
 
@@ -250,20 +252,24 @@ fn read_svg(text: &str, options: &SvgOptions) -> Svg {
         Some(format!("0 0 {w} {h}").as_str())
     );
 
-    let outer = element_children(root);
-    assert_eq!(outer.len(), 1, "one outer group");
-    let outer = outer[0];
-    assert_eq!(outer.tag_name().name(), "g");
-    assert_eq!(outer.attribute("fill"), Some("none"));
-    assert_eq!(outer.attribute("stroke-linecap"), Some("round"));
-    assert_eq!(outer.attribute("stroke-linejoin"), Some("round"));
-    let matrix = matrix(outer.attribute("transform").expect("a transform"));
-
-    let layers = element_children(outer)
+    // The layers are the root's children, each an Inkscape layer with the same transform.
+    let groups = element_children(root);
+    let mut matrices = Vec::new();
+    let layers = groups
         .into_iter()
         .map(|g| {
             assert_eq!(g.tag_name().name(), "g");
             assert_eq!(g.tag_name().namespace(), Some(SVG_NS));
+            assert_eq!(g.attribute("fill"), Some("none"));
+            assert_eq!(g.attribute("stroke-linecap"), Some("round"));
+            assert_eq!(g.attribute("stroke-linejoin"), Some("round"));
+            let id = g.attribute("id").expect("a layer id").to_string();
+            assert_eq!(g.attribute((INKSCAPE_NS, "groupmode")), Some("layer"));
+            assert_eq!(
+                g.attribute((INKSCAPE_NS, "label")),
+                Some(id.replacen('-', " ", 1).as_str())
+            );
+            matrices.push(matrix(g.attribute("transform").expect("a transform")));
             let paths = element_children(g)
                 .into_iter()
                 .map(|p| {
@@ -273,7 +279,7 @@ fn read_svg(text: &str, options: &SvgOptions) -> Svg {
                 })
                 .collect();
             Layer {
-                id: g.attribute("id").expect("a layer id").to_string(),
+                id,
                 stroke_width: number(g.attribute("stroke-width").expect("a stroke width")),
                 dasharray: g
                     .attribute("stroke-dasharray")
@@ -282,6 +288,11 @@ fn read_svg(text: &str, options: &SvgOptions) -> Svg {
             }
         })
         .collect();
+    let matrix = matrices.first().copied();
+    assert!(
+        matrices.iter().all(|m| Some(*m) == matrix),
+        "one page transform"
+    );
     Svg { matrix, layers }
 }
 
@@ -403,7 +414,7 @@ fn stroke_widths_and_dashes_are_millimetres_on_the_page() {
     };
     for d in [awkward(), plain()] {
         let svg = check_round_trip(&d, &options);
-        let s = svg.matrix[0];
+        let s = svg.matrix.expect("layers")[0];
         for layer in &svg.layers {
             let class = EdgeClass::ALL
                 .into_iter()
@@ -453,7 +464,7 @@ fn hidden_lines_are_lighter_than_visible_ones() {
 /// touch them on both sides along one axis, and are centred.
 fn check_layout(d: &Drawing, options: &SvgOptions) {
     let svg = read_svg(&svg_text(d, options), options);
-    let [a, b, c, dd, e, f] = svg.matrix;
+    let [a, b, c, dd, e, f] = svg.matrix.expect("layers");
     assert_eq!((b, c), (0.0, 0.0));
     assert_eq!(dd, -a, "uniform scale with y flipped");
     assert!(a > 0.0 && a.is_finite());
@@ -547,7 +558,9 @@ fn degenerate_drawings_give_valid_svg() {
     let text = svg_text(&empty, &options);
     let svg = read_svg(&text, &options);
     assert!(svg.layers.is_empty());
-    assert_eq!(svg.matrix, [1.0, 0.0, 0.0, -1.0, 148.5, 105.0]);
+    assert_eq!(svg.matrix, None);
+    let t = page_transform(&empty, &options);
+    assert_eq!((t.scale, t.tx, t.ty), (1.0, 148.5, 105.0));
     assert_eq!(json_text(&empty), "{\"polylines\":[]}\n");
 
     let point = drawing(vec![
@@ -577,8 +590,9 @@ fn extreme_extents_stay_finite() {
             line(EdgeClass::Smooth, false, &points),
         ]);
         let svg = check_round_trip(&d, &options);
-        assert!(svg.matrix.iter().all(|v| v.is_finite()), "{points:?}");
-        assert!(svg.matrix[0] > 0.0);
+        let matrix = svg.matrix.expect("layers");
+        assert!(matrix.iter().all(|v| v.is_finite()), "{points:?}");
+        assert!(matrix[0] > 0.0);
         for layer in &svg.layers {
             assert!(layer.stroke_width.is_finite());
         }

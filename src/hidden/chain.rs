@@ -64,7 +64,7 @@ fn key(p: [f64; 2]) -> [u64; 2] {
 }
 
 /// Chains one group's segments.
-fn chain_group(segments: &[Segment]) -> Vec<Vec<[f64; 2]>> {
+pub(super) fn chain_group(segments: &[Segment]) -> Vec<Vec<[f64; 2]>> {
     // At each point, how many segment ends lie there and the first two segments: only a point
     // with exactly two is chained through.
     let mut at: HashMap<[u64; 2], (usize, [usize; 2]), FixedState> =

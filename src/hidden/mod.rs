@@ -64,9 +64,11 @@ mod cover;
 mod drawing;
 mod edges;
 pub mod ideographs;
+mod overlaps;
 pub mod verify;
 
 pub use drawing::{Drawing, EdgeClass, Polyline, StageReport};
+pub use overlaps::{OverlapReport, without_overlaps};
 
 use crate::geometry::exact::ldexp;
 use crate::geometry::kernel::Polynomial;

@@ -7,11 +7,13 @@
 //! ## SVG ([`write_svg`])
 //!
 //! The root `<svg>` has `width` and `height` in millimetres and a matching `viewBox`, so one user
-//! unit is one millimetre of the page ([`SvgOptions::page`], A4 landscape by default). A single
-//! outer group `<g id="drawing" transform="matrix(s 0 0 -s tx ty)">` maps view coordinates to
-//! the page: one uniform scale `s` fits the drawing's bounds inside the page less
-//! [`SvgOptions::margin`], centred, and the `-s` flips `y` to point down the page (see
-//! [`page_transform`]). Inside it, one `<g>` layer per class and visibility:
+//! unit is one millimetre of the page ([`SvgOptions::page`], A4 landscape by default). Its
+//! children are the layers, one `<g>` per class and visibility, each an Inkscape layer
+//! (`inkscape:groupmode="layer"`, labelled like `visible silhouette`) so that Inkscape and
+//! `vpype read` keep them apart, and each with the transform `matrix(s 0 0 -s tx ty)` that maps
+//! view coordinates to the page: one uniform scale `s` fits the drawing's bounds inside the
+//! page less [`SvgOptions::margin`], centred, and the `-s` flips `y` to point down the page
+//! (see [`page_transform`]). The layers' ids:
 //!
 //! - `hidden-smooth`, `hidden-crease`, `hidden-intersection`, `hidden-boundary`,
 //!   `hidden-silhouette`: hidden lines, grey and dashed (`stroke-dasharray`);
@@ -61,10 +63,12 @@
 //! ```
 
 mod json;
+mod order;
 mod surfaces;
 mod svg;
 
 pub use json::write_json;
+pub use order::{ordered, pen_travel};
 pub use surfaces::{Shading, write_surfaces_json, write_surfaces_svg};
 pub use svg::{PageTransform, StrokeWidths, SvgOptions, page_transform, write_svg};
 

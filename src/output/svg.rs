@@ -301,15 +301,16 @@ pub fn write_svg(drawing: &Drawing, options: &SvgOptions, out: &mut impl Write) 
     writeln!(out, r#"<?xml version="1.0" encoding="UTF-8"?>"#)?;
     writeln!(
         out,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" version="1.1" width="{width}mm" height="{height}mm" viewBox="0 0 {width} {height}">"#
+        r#"<svg xmlns="http://www.w3.org/2000/svg" xmlns:inkscape="{INKSCAPE_NS}" version="1.1" width="{width}mm" height="{height}mm" viewBox="0 0 {width} {height}">"#
     )?;
-    writeln!(
-        out,
-        r#"<g id="drawing" transform="matrix({s} 0 0 -{s} {tx} {ty})" fill="none" stroke-linecap="round" stroke-linejoin="round">"#,
+    // Each layer a top-level group with the page transform, so that Inkscape and `vpype
+    // read` see one layer per class and visibility (a layer nested in a group is not one).
+    let placed = format!(
+        r#"transform="matrix({s} 0 0 -{s} {tx} {ty})" fill="none" stroke-linecap="round" stroke-linejoin="round""#,
         s = t.scale,
         tx = t.tx,
         ty = t.ty,
-    )?;
+    );
     for visible in [false, true] {
         for (class, stroke_width) in EdgeClass::ALL.into_iter().zip(widths) {
             let paths: Vec<&Polyline> = drawing
@@ -321,26 +322,36 @@ pub fn write_svg(drawing: &Drawing, options: &SvgOptions, out: &mut impl Write) 
                 continue;
             }
             let name = class.name();
+            let layer = |id: &str| {
+                format!(
+                    r#"id="{id}-{name}" inkscape:groupmode="layer" inkscape:label="{id} {name}""#
+                )
+            };
             if visible {
                 writeln!(
                     out,
-                    r#"<g id="visible-{name}" stroke="{VISIBLE_COLOUR}" stroke-width="{stroke_width}">"#
+                    r#"<g {} {placed} stroke="{VISIBLE_COLOUR}" stroke-width="{stroke_width}">"#,
+                    layer("visible")
                 )?;
             } else {
                 writeln!(
                     out,
-                    r#"<g id="hidden-{name}" stroke="{HIDDEN_COLOUR}" stroke-width="{stroke_width}" stroke-dasharray="{} {}">"#,
-                    dash[0], dash[1]
+                    r#"<g {} {placed} stroke="{HIDDEN_COLOUR}" stroke-width="{stroke_width}" stroke-dasharray="{} {}">"#,
+                    layer("hidden"),
+                    dash[0],
+                    dash[1]
                 )?;
             }
             write_paths(&paths, &mut out)?;
             writeln!(out, "</g>")?;
         }
     }
-    writeln!(out, "</g>")?;
     writeln!(out, "</svg>")?;
     out.flush()
 }
+
+/// Inkscape's namespace, for its layer attributes.
+const INKSCAPE_NS: &str = "http://www.inkscape.org/namespaces/inkscape";
 
 /// Writes one `<path>` per polyline, in order. Formatting the numbers (shortest round trip)
 /// is most of the work of a large drawing: windows of polylines are formatted in parallel

@@ -9,7 +9,7 @@ use kepler::geometry::polygon::bounding_box;
 use kepler::hidden::ideographs::{Ideograph, ideographs};
 use kepler::hidden::verify::{Traced, draw_traced, verify};
 use kepler::hidden::{self, Drawing, EdgeClass, EdgeSelection};
-use kepler::output::{PageTransform, SvgOptions, write_json, write_svg};
+use kepler::output::{PageTransform, SvgOptions, ordered, pen_travel, write_json, write_svg};
 use kepler::scene::Scene;
 use kepler::views::{Picture, View};
 use std::fmt::Write as _;
@@ -41,6 +41,16 @@ pub struct Args {
     /// boundary, crease, intersection, smooth); repeat for several.
     #[arg(long, value_name = "CLASS=MM", value_parser = parse_stroke)]
     stroke: Vec<(EdgeClass, f64)>,
+    /// Keep lines drawn twice: by default a stretch of line that several edges run along
+    /// (touching objects, T-junctions, a line right behind a contour) is written once, as
+    /// the one drawn on top (visible over hidden, then silhouette, boundary, intersection,
+    /// crease, smooth).
+    #[arg(long)]
+    keep_overlaps: bool,
+    /// Order and turn each layer's paths to shorten the pen's travel between them (greedy
+    /// nearest end); `--stats` prints the travel before and after.
+    #[arg(long)]
+    order: bool,
     /// Also write the polylines as JSON, in view coordinates, to this file.
     #[arg(long, value_name = "FILE")]
     json: Option<PathBuf>,
@@ -101,7 +111,8 @@ pub fn run(args: Args) -> Result<()> {
     };
     let loaded = started.elapsed();
     let traced = draw(&scene, &view, &options, args.verify)?;
-    let drawing = &traced.drawing;
+    let (plotted, plotter_stats) = for_plotters(&traced.drawing, &args);
+    let drawing = &plotted;
     let clock = Instant::now();
     write_file(&args.output, |mut out| {
         write_svg(drawing, &svg_options, &mut out)
@@ -119,7 +130,7 @@ pub fn run(args: Args) -> Result<()> {
             );
         }
         eprintln!("{repairs}");
-        eprint!("{}", stats_report(drawing, loaded, written));
+        eprint!("{}", stats_report(drawing, loaded, &plotter_stats, written));
     }
     if args.verify {
         let report = verify(&scene, &view, &options, &traced);
@@ -204,8 +215,53 @@ fn draw(scene: &Scene, view: &View, options: &hidden::Options, traced: bool) -> 
     Ok(traced)
 }
 
+/// The drawing as written: each stretch of line once (unless `--keep-overlaps`), paths in
+/// pen order with `--order`; and the `--stats` lines of those two steps.
+fn for_plotters(drawing: &Drawing, args: &Args) -> (Drawing, String) {
+    let mut stats = String::new();
+    let clock = Instant::now();
+    let mut drawing = if args.keep_overlaps {
+        let _ = writeln!(
+            stats,
+            "overlaps       {:>7}  skipped: kept (--keep-overlaps)",
+            ""
+        );
+        drawing.clone()
+    } else {
+        let (clean, report) = hidden::without_overlaps(drawing);
+        let _ = writeln!(
+            stats,
+            "overlaps       {:>7.4}  {} groups of {} segments on one line drawn once ({:.6} of \
+             line no longer drawn twice)",
+            clock.elapsed().as_secs_f64(),
+            report.groups,
+            report.segments,
+            report.removed_length
+        );
+        clean
+    };
+    let clock = Instant::now();
+    let before = pen_travel(&drawing);
+    if args.order {
+        drawing = ordered(&drawing);
+        let _ = writeln!(
+            stats,
+            "order          {:>7.4}  pen travel between paths {before:.6} -> {:.6} (view coordinates)",
+            clock.elapsed().as_secs_f64(),
+            pen_travel(&drawing)
+        );
+    } else {
+        let _ = writeln!(
+            stats,
+            "order          {:>7}  skipped: pen travel between paths {before:.6} (--order shortens it)",
+            ""
+        );
+    }
+    (drawing, stats)
+}
+
 /// The `--stats` report: each stage, then lengths per class.
-fn stats_report(drawing: &Drawing, loaded: Duration, written: Duration) -> String {
+fn stats_report(drawing: &Drawing, loaded: Duration, plotter: &str, written: Duration) -> String {
     let mut text = String::new();
     let _ = writeln!(text, "stage          seconds  computed / skipped");
     let _ = writeln!(
@@ -223,6 +279,7 @@ fn stats_report(drawing: &Drawing, loaded: Duration, written: Duration) -> Strin
             let _ = writeln!(text, "{:<14} {:>7}  skipped: {skipped}", "", "");
         }
     }
+    text += plotter;
     let _ = writeln!(
         text,
         "write          {:>7.4}  output files",
