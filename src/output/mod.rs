@@ -62,11 +62,13 @@
 //! );
 //! ```
 
+mod dxf;
 mod json;
 mod order;
 mod surfaces;
 mod svg;
 
+pub use self::dxf::{DxfFormat, layer_name, write_dxf};
 pub use json::write_json;
 pub use order::{ordered, pen_travel};
 pub use surfaces::{Shading, write_surfaces_json, write_surfaces_svg};

@@ -9,7 +9,9 @@ use kepler::geometry::polygon::bounding_box;
 use kepler::hidden::ideographs::{Ideograph, ideographs};
 use kepler::hidden::verify::{Traced, draw_traced, verify};
 use kepler::hidden::{self, Drawing, EdgeClass, EdgeSelection};
-use kepler::output::{PageTransform, SvgOptions, ordered, pen_travel, write_json, write_svg};
+use kepler::output::{
+    DxfFormat, PageTransform, SvgOptions, ordered, pen_travel, write_dxf, write_json, write_svg,
+};
 use kepler::scene::Scene;
 use kepler::views::{Picture, View};
 use std::fmt::Write as _;
@@ -21,7 +23,8 @@ use std::time::{Duration, Instant};
 pub struct Args {
     /// A scene file (.toml) or a mesh file (.obj, .stl, .off, .ply).
     scene: PathBuf,
-    /// The SVG file to write (`-` writes standard output).
+    /// The file to write: SVG, or DXF when its name ends in `.dxf` (`-` writes SVG to
+    /// standard output).
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     output: PathBuf,
     /// Which edges: `feature` (silhouette, boundary, crease, intersection), `all` (smooth
@@ -51,6 +54,10 @@ pub struct Args {
     /// nearest end); `--stats` prints the travel before and after.
     #[arg(long)]
     order: bool,
+    /// DXF encoding: `text` (ASCII, numbers to 12 decimal places) or `binary` (every double
+    /// exact).
+    #[arg(long, value_enum, default_value_t = DxfEncoding::Text)]
+    dxf: DxfEncoding,
     /// Also write the polylines as JSON, in view coordinates, to this file.
     #[arg(long, value_name = "FILE")]
     json: Option<PathBuf>,
@@ -84,6 +91,13 @@ enum Hidden {
     Omit,
 }
 
+/// `--dxf`: the DXF file's encoding (`output::DxfFormat`).
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum DxfEncoding {
+    Text,
+    Binary,
+}
+
 /// Draws the scene and writes the drawing.
 pub fn run(args: Args) -> Result<()> {
     let crease_angle = args.crease_angle;
@@ -114,8 +128,20 @@ pub fn run(args: Args) -> Result<()> {
     let (plotted, plotter_stats) = for_plotters(&traced.drawing, &args);
     let drawing = &plotted;
     let clock = Instant::now();
+    let dxf = args
+        .output
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("dxf"));
     write_file(&args.output, |mut out| {
-        write_svg(drawing, &svg_options, &mut out)
+        if dxf {
+            let format = match args.dxf {
+                DxfEncoding::Text => DxfFormat::Text,
+                DxfEncoding::Binary => DxfFormat::Binary,
+            };
+            write_dxf(drawing, &svg_options, format, &mut out)
+        } else {
+            write_svg(drawing, &svg_options, &mut out)
+        }
     })?;
     if let Some(json) = &args.json {
         write_file(json, |mut out| write_json(drawing, &mut out))?;
