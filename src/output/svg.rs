@@ -98,6 +98,21 @@ impl Default for SvgOptions {
 }
 
 impl SvgOptions {
+    /// The width of the page's drawing area (the page less its margins) over its height: the
+    /// aspect a perspective view is framed to. 1 when the page is refused (the writer reports
+    /// it).
+    ///
+    /// ```
+    /// let a4 = kepler::output::SvgOptions::default();
+    /// assert_eq!(a4.drawing_aspect(), (297.0 - 20.0) / (210.0 - 20.0));
+    /// ```
+    pub fn drawing_aspect(&self) -> f64 {
+        let room = self.page.map(|side| side - 2.0 * self.margin);
+        Some(room[0] / room[1])
+            .filter(|a| a.is_finite() && *a > 0.0)
+            .unwrap_or(1.0)
+    }
+
     /// An error if the options are out of range (see [`SvgOptions`]).
     pub(crate) fn check(&self) -> io::Result<()> {
         let [width, height] = self.page;

@@ -63,15 +63,6 @@ impl ViewArgs {
     }
 }
 
-/// The width of the page's drawing area over its height (1 when the page is refused: the SVG
-/// writer reports it).
-pub fn page_aspect(options: &SvgOptions) -> f64 {
-    let room = options.page.map(|side| side - 2.0 * options.margin);
-    Some(room[0] / room[1])
-        .filter(|a| a.is_finite() && *a > 0.0)
-        .unwrap_or(1.0)
-}
-
 /// The page options of the commands that write SVG.
 #[derive(clap::Args)]
 pub struct PageArgs {

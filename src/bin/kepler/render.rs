@@ -1,8 +1,6 @@
 //! `kepler render`: the exact hidden-line drawing of a scene, as SVG (and JSON).
 
-use crate::args::{
-    FaceArgs, PageArgs, ViewArgs, load_drawable, page_aspect, parse_area, parse_stroke,
-};
+use crate::args::{FaceArgs, PageArgs, ViewArgs, load_drawable, parse_area, parse_stroke};
 use crate::output::{progress_bar, write_file};
 use anyhow::Result;
 use kepler::geometry::polygon::bounding_box;
@@ -108,7 +106,7 @@ pub fn run(args: Args) -> Result<()> {
     let scene = load_drawable(&args.scene, args.faces.validation())?;
     let repairs = repairs(&scene);
     let svg_options = svg_options(&args);
-    let view = args.view.view_on(&scene, page_aspect(&svg_options))?;
+    let view = args.view.view_on(&scene, svg_options.drawing_aspect())?;
     let options = hidden::Options {
         edges: args.edges,
         crease_angle,

@@ -1,6 +1,6 @@
 //! `kepler surfaces`: every face's visible polygons, as a shaded SVG (and JSON).
 
-use crate::args::{FaceArgs, PageArgs, ViewArgs, load_drawable, page_aspect, parse_triple};
+use crate::args::{FaceArgs, PageArgs, ViewArgs, load_drawable, parse_triple};
 use crate::output::write_file;
 use anyhow::Result;
 use kepler::geometry::Vector3;
@@ -41,7 +41,7 @@ pub fn run(args: Args) -> Result<()> {
     }
     let scene = load_drawable(&args.scene, args.faces.validation())?;
     let options = args.page.svg_options();
-    let view = args.view.view_on(&scene, page_aspect(&options))?;
+    let view = args.view.view_on(&scene, options.drawing_aspect())?;
     let faces = visible_surfaces(&scene, &view)?;
     let shading = Shading {
         light: args.light.map(Vector3::from),
