@@ -267,14 +267,7 @@ type Seg = (EdgeClass, bool, [[f64; 2]; 2]);
 
 /// The pieces of a drawing: consecutive vertices of its polylines.
 fn lib_segments(d: &Drawing) -> Vec<Seg> {
-    d.polylines
-        .iter()
-        .flat_map(|p| {
-            p.points
-                .windows(2)
-                .map(move |w| (p.class, p.visible, [w[0], w[1]]))
-        })
-        .collect()
+    d.segments().collect()
 }
 
 /// The pieces as bit patterns, each with its ends in order, sorted: equal drawings give

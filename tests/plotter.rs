@@ -17,14 +17,11 @@ type P = [Q; 2];
 
 /// The segments of a drawing, exact, with their rank (what is drawn over what).
 fn segments(d: &Drawing) -> Vec<(usize, [P; 2])> {
-    d.polylines
-        .iter()
-        .flat_map(|p| {
-            let rank = usize::from(p.visible) * 5
-                + EdgeClass::ALL.iter().position(|&c| c == p.class).unwrap();
-            p.points
-                .windows(2)
-                .map(move |w| (rank, [[q(w[0][0]), q(w[0][1])], [q(w[1][0]), q(w[1][1])]]))
+    d.segments()
+        .map(|(class, visible, [a, b])| {
+            let rank =
+                usize::from(visible) * 5 + EdgeClass::ALL.iter().position(|&c| c == class).unwrap();
+            (rank, [[q(a[0]), q(a[1])], [q(b[0]), q(b[1])]])
         })
         .collect()
 }

@@ -156,6 +156,26 @@ impl Drawing {
             .fold(0.0, |total, l| total + l)
     }
 
+    /// Every segment of the drawing (consecutive vertices of a polyline) with its polyline's
+    /// class and visibility, in order.
+    ///
+    /// ```
+    /// use kepler::hidden::{Drawing, EdgeClass, Polyline};
+    /// let d = Drawing {
+    ///     polylines: vec![Polyline { class: EdgeClass::Crease, visible: false, points: vec![[0.0, 0.0], [1.0, 0.0], [1.0, 2.0]] }],
+    ///     stages: Vec::new(),
+    /// };
+    /// let s: Vec<_> = d.segments().collect();
+    /// assert_eq!(s[1], (EdgeClass::Crease, false, [[1.0, 0.0], [1.0, 2.0]]));
+    /// ```
+    pub fn segments(&self) -> impl Iterator<Item = (EdgeClass, bool, [[f64; 2]; 2])> + '_ {
+        self.polylines.iter().flat_map(|p| {
+            p.points
+                .windows(2)
+                .map(move |w| (p.class, p.visible, [w[0], w[1]]))
+        })
+    }
+
     /// The smallest box `(min, max)` holding every polyline vertex, or `None` for an empty
     /// drawing.
     ///

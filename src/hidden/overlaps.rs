@@ -103,17 +103,11 @@ pub(crate) fn overlap(s: &[[f64; 2]; 2], t: &[[f64; 2]; 2]) -> bool {
 /// was removed. A drawing without overlaps comes back unchanged, polyline for polyline.
 pub fn without_overlaps(drawing: &Drawing) -> (Drawing, OverlapReport) {
     let segments: Vec<Segment> = drawing
-        .polylines
-        .iter()
-        .flat_map(|p| {
-            let rank = rank(p.class, p.visible);
-            p.points
-                .windows(2)
-                .filter(|w| w[0] != w[1])
-                .map(move |w| Segment {
-                    ends: [w[0], w[1]],
-                    rank,
-                })
+        .segments()
+        .filter(|(_, _, ends)| ends[0] != ends[1])
+        .map(|(class, visible, ends)| Segment {
+            ends,
+            rank: rank(class, visible),
         })
         .collect();
     let groups = overlapping_groups(&segments);
@@ -269,20 +263,6 @@ fn sweep(segments: &[Segment], group: &[usize]) -> Vec<Segment> {
     out
 }
 
-/// The class and visibility of each piece kept, for the tests.
-#[cfg(test)]
-fn pieces(drawing: &Drawing) -> Vec<(EdgeClass, bool, [[f64; 2]; 2])> {
-    drawing
-        .polylines
-        .iter()
-        .flat_map(|p| {
-            p.points
-                .windows(2)
-                .map(move |w| (p.class, p.visible, [w[0], w[1]]))
-        })
-        .collect()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -331,13 +311,13 @@ mod tests {
     /// exactly); every segment of it lies on segments of the original of its class and
     /// visibility; every segment of the original is covered by segments of its rank or above.
     fn check(original: &Drawing, clean: &Drawing) {
-        let after = pieces(clean);
+        let after: Vec<_> = clean.segments().collect();
         for (i, a) in after.iter().enumerate() {
             for b in &after[i + 1..] {
                 assert!(!overlap(&a.2, &b.2), "{a:?} and {b:?} overlap");
             }
         }
-        let before = pieces(original);
+        let before: Vec<_> = original.segments().collect();
         for a in &after {
             let same: Vec<_> = before
                 .iter()
