@@ -869,6 +869,65 @@ fn render_can_omit_hidden_lines_and_report_stats() {
 }
 
 #[test]
+fn render_hatch_writes_a_hatch_layer_between_hidden_and_visible_ones() {
+    let svg = temp_path("hatch.svg");
+    let args = [
+        "render",
+        "scenes/cube.toml",
+        "-o",
+        &svg,
+        "--view-dir",
+        "-1,-2,-3",
+        "--up",
+        "0,0,1",
+        "--hatch",
+        "--light",
+        "0,0,-1",
+        "--hatch-angle",
+        "30",
+        "--hatch-spacing",
+        "1,4",
+        "--stats",
+    ];
+    let o = kepler(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let stats = stderr(&o);
+    let line = stats
+        .lines()
+        .find(|l| l.starts_with("hatch "))
+        .unwrap_or_else(|| panic!("no hatch line: {stats}"));
+    // Lit from below, the three faces seen from above are turned away: all darkest.
+    assert!(line.contains("3 of 6 faces hatched"), "{line}");
+    assert!(line.contains("(0 dropped"), "{line}");
+    let text = std::fs::read_to_string(&svg).expect("the SVG");
+    let hatch = text
+        .find(r#"<g id="hatch" inkscape:groupmode="layer" inkscape:label="hatch""#)
+        .expect("a hatch layer");
+    assert!(text.find(r#"id="hidden-crease""#).expect("hidden") < hatch);
+    assert!(hatch < text.find(r#"id="visible-silhouette""#).expect("visible"));
+    let layers = svg_polylines(&text);
+    assert!(layers.iter().filter(|(l, _)| l == "hatch").count() > 50);
+    // Without --hatch there is none; --hatch writes SVG only.
+    ok(&["render", "scenes/cube.toml", "-o", &svg]);
+    assert!(
+        !std::fs::read_to_string(&svg)
+            .expect("the SVG")
+            .contains("hatch")
+    );
+    let dxf = temp_path("hatch.dxf");
+    assert!(fails(&["render", "scenes/cube.toml", "-o", &dxf, "--hatch"]).contains("SVG only"));
+    let bad = kepler(&[
+        "render",
+        "scenes/cube.toml",
+        "-o",
+        &svg,
+        "--hatch-spacing",
+        "3,1",
+    ]);
+    assert!(!bad.status.success() && stderr(&bad).contains("0 < MIN ≤ MAX"));
+}
+
+#[test]
 fn render_rejects_bad_scenes_views_and_options() {
     let svg = temp_path("bad.svg");
     assert!(

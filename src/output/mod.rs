@@ -20,6 +20,10 @@
 //! - `visible-smooth`, `visible-crease`, `visible-intersection`, `visible-boundary`,
 //!   `visible-silhouette`: visible lines, black and solid.
 //!
+//! With [`write_svg_with_hatches`], one more layer, `hatch` (black, solid, thin): the hatch
+//! lines of the visible faces (see [`crate::surfaces::hatch`]), between the hidden layers and
+//! the visible ones, so that outlines are drawn over the hatches' ends.
+//!
 //! Hidden layers come first and visible ones are drawn over them, each in
 //! [`EdgeClass::ALL`](crate::hidden::EdgeClass::ALL) order; a layer without polylines is left
 //! out. Every polyline is one `<path d="M x y L x y L x y …"/>` listing all its points in view
@@ -72,7 +76,10 @@ pub use self::dxf::{DxfFormat, layer_name, write_dxf};
 pub use json::write_json;
 pub use order::{ordered, pen_travel};
 pub use surfaces::{Shading, write_surfaces_json, write_surfaces_svg};
-pub use svg::{PageTransform, StrokeWidths, SvgOptions, page_transform, write_svg};
+pub use svg::{
+    HatchLayer, PageTransform, StrokeWidths, SvgOptions, page_transform, write_svg,
+    write_svg_with_hatches,
+};
 
 /// An [`std::io::ErrorKind::InvalidData`] error if a point of `drawing` is not finite.
 fn check_finite(drawing: &crate::hidden::Drawing) -> std::io::Result<()> {

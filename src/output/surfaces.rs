@@ -26,6 +26,63 @@ pub struct Shading {
     pub outlines: bool,
 }
 
+impl Shading {
+    /// The unit direction towards the light in `view`: [`Shading::light`], or over the
+    /// viewer's left shoulder (towards the eye, up 0.6 and left 0.4 of the picture).
+    ///
+    /// ```
+    /// use kepler::{geometry::Vector3, output::Shading, views::View};
+    /// let view = View::orthographic(Vector3::new(0.0, 0.0, -1.0), Vector3::y()).unwrap();
+    /// let l = Shading::default().light_direction(&view);
+    /// assert!((l.norm() - 1.0).abs() < 1e-12 && l.z > 0.0 && l.y > 0.0);
+    /// let given = Shading { light: Some(Vector3::new(0.0, 0.0, 2.0)), ..Shading::default() };
+    /// assert_eq!(given.light_direction(&view), Vector3::z());
+    /// ```
+    pub fn light_direction(&self, view: &View) -> Vector3 {
+        let toward_eye = -view.forward();
+        let (right, up) = view.right_up();
+        self.light
+            .filter(|l| l.norm() > 0.0 && l.iter().all(|c| c.is_finite()))
+            .unwrap_or(toward_eye + up * 0.6 - right * 0.4)
+            .normalize()
+    }
+
+    /// Each face's shade in `[0, 1]` (Lambert): `max(0, n·l)` with the face's unit normal `n`
+    /// turned towards the eye and the light direction `l` ([`Shading::light_direction`]); 0
+    /// for a face turned away from the light (darkest), 1 for one facing it.
+    ///
+    /// ```
+    /// use kepler::{geometry::Vector3, output::Shading, scene::Scene, views::View};
+    /// use kepler::surfaces::visible_surfaces;
+    /// let mut scene = Scene::new();
+    /// scene.add_mesh(None, "cube", kepler::solids::cube(2.0).unwrap()).unwrap();
+    /// let view = View::orthographic(Vector3::new(0.0, 0.0, -1.0), Vector3::y()).unwrap();
+    /// let faces = visible_surfaces(&scene, &view).unwrap();
+    /// let light = Shading { light: Some(Vector3::z()), ..Shading::default() };
+    /// let shades = light.shades(&faces, &scene, &view);
+    /// let top = faces.iter().position(|f| !f.visible.polygons.0.is_empty()).unwrap();
+    /// assert_eq!(shades[top], 1.0);
+    /// ```
+    pub fn shades(&self, faces: &[FaceReport], scene: &Scene, view: &View) -> Vec<f64> {
+        let toward_eye = -view.forward();
+        let light = self.light_direction(view);
+        faces
+            .iter()
+            .map(|f| {
+                let normal = scene[f.object]
+                    .mesh()
+                    .map_or(toward_eye, |m| m.faces()[f.face].plane().normal);
+                let facing = if normal.dot(&toward_eye) < 0.0 {
+                    -normal
+                } else {
+                    normal
+                };
+                facing.dot(&light).clamp(0.0, 1.0)
+            })
+            .collect()
+    }
+}
+
 /// Writes the visible polygons of `faces` as an SVG page: each face's polygons one `<path>`
 /// (holes by the even-odd rule) filled with a grey from flat shading, `ambient + diffuse ·
 /// max(0, n·l)` with the face's normal `n` turned towards the eye and the light direction `l`.
@@ -72,13 +129,6 @@ pub fn write_surfaces_svg(
         (lo, hi)
     });
     let t = PageTransform::fit(bounds, options);
-    let toward_eye = -view.forward();
-    let (right, up) = view.right_up();
-    let light = shading
-        .light
-        .filter(|l| l.norm() > 0.0 && l.iter().all(|c| c.is_finite()))
-        .unwrap_or(toward_eye + up * 0.6 - right * 0.4)
-        .normalize();
     let [width, height] = options.page;
     writeln!(out, r#"<?xml version="1.0" encoding="UTF-8"?>"#)?;
     writeln!(
@@ -98,16 +148,12 @@ pub fn write_surfaces_svg(
         r#"<g id="surfaces" transform="matrix({} 0 0 {} {} {})" fill-rule="evenodd"{outline}>"#,
         t.scale, -t.scale, t.tx, t.ty
     )?;
-    for f in faces.iter().filter(|f| !f.visible.polygons.0.is_empty()) {
-        let normal = scene[f.object]
-            .mesh()
-            .map_or(toward_eye, |m| m.faces()[f.face].plane().normal);
-        let facing = if normal.dot(&toward_eye) < 0.0 {
-            -normal
-        } else {
-            normal
-        };
-        let grey = (255.0 * (0.25 + 0.7 * facing.dot(&light).max(0.0))).round() as u8;
+    for (f, shade) in faces
+        .iter()
+        .zip(shading.shades(faces, scene, view))
+        .filter(|(f, _)| !f.visible.polygons.0.is_empty())
+    {
+        let grey = (255.0 * (0.25 + 0.7 * shade)).round() as u8;
         let mut d = String::new();
         for p in f.visible.polygons.iter() {
             for ring in std::iter::once(p.exterior()).chain(p.interiors()) {

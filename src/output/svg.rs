@@ -2,7 +2,7 @@
 
 use std::io::{self, Write};
 
-use crate::hidden::{Drawing, EdgeClass, Polyline};
+use crate::hidden::{Drawing, EdgeClass};
 
 /// The stroke colour of visible lines.
 const VISIBLE_COLOUR: &str = "#000000";
@@ -279,6 +279,80 @@ fn fit(bounds: Option<([f64; 2], [f64; 2])>, options: &SvgOptions) -> PageTransf
 /// assert!(write_svg(&drawing, &cramped, &mut Vec::new()).is_err());
 /// ```
 pub fn write_svg(drawing: &Drawing, options: &SvgOptions, out: &mut impl Write) -> io::Result<()> {
+    write_layers(drawing, None, options, out)
+}
+
+/// Hatch lines to draw with a drawing ([`write_svg_with_hatches`]): polylines in view
+/// coordinates and their stroke width in millimetres on the page.
+///
+/// ```
+/// let h = kepler::output::HatchLayer { polylines: vec![vec![[0.0, 0.0], [1.0, 0.0]]], stroke: 0.1 };
+/// assert_eq!(h.polylines.len(), 1);
+/// ```
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct HatchLayer {
+    /// The hatch polylines (see [`crate::surfaces::hatch`]), in view coordinates.
+    pub polylines: Vec<Vec<[f64; 2]>>,
+    /// Their stroke width in millimetres.
+    pub stroke: f64,
+}
+
+/// [`write_svg`] with a layer of hatch lines: `id="hatch"`, labelled `hatch`, black, solid,
+/// `hatches.stroke` wide, between the hidden layers and the visible ones (so that the
+/// outlines are drawn over the hatches' ends), left out when empty. The page transform is the
+/// drawing's, as [`write_svg`]'s: hatches of visible faces lie inside the drawing's bounds.
+///
+/// Fails as [`write_svg`] does, and with [`io::ErrorKind::InvalidInput`] for a negative or
+/// non-finite hatch stroke, [`io::ErrorKind::InvalidData`] for a hatch point not finite.
+///
+/// ```
+/// use kepler::hidden::{Drawing, EdgeClass, Polyline};
+/// use kepler::output::{HatchLayer, SvgOptions, write_svg_with_hatches};
+/// let drawing = Drawing {
+///     polylines: vec![Polyline { class: EdgeClass::Silhouette, visible: true, points: vec![[0.0, 0.0], [1.0, 1.0]] }],
+///     stages: Vec::new(),
+/// };
+/// let hatches = HatchLayer { polylines: vec![vec![[0.0, 0.5], [0.5, 0.5]]], stroke: 0.1 };
+/// let mut out = Vec::new();
+/// write_svg_with_hatches(&drawing, &hatches, &SvgOptions::default(), &mut out).unwrap();
+/// let svg = String::from_utf8(out).unwrap();
+/// let hatch = svg.find(r#"<g id="hatch" inkscape:groupmode="layer" inkscape:label="hatch""#).unwrap();
+/// assert!(hatch < svg.find(r#"id="visible-silhouette""#).unwrap());
+/// assert!(svg.contains(r#"d="M 0 0.5 L 0.5 0.5""#));
+/// ```
+pub fn write_svg_with_hatches(
+    drawing: &Drawing,
+    hatches: &HatchLayer,
+    options: &SvgOptions,
+    out: &mut impl Write,
+) -> io::Result<()> {
+    if !(hatches.stroke.is_finite() && hatches.stroke >= 0.0) {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!("hatch stroke width {} mm is negative", hatches.stroke),
+        ));
+    }
+    if hatches
+        .polylines
+        .iter()
+        .flatten()
+        .any(|p| !(p[0].is_finite() && p[1].is_finite()))
+    {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidData,
+            "a hatch has a point that is not finite",
+        ));
+    }
+    write_layers(drawing, Some(hatches), options, out)
+}
+
+/// [`write_svg`], with the hatch layer if any.
+fn write_layers(
+    drawing: &Drawing,
+    hatches: Option<&HatchLayer>,
+    options: &SvgOptions,
+    out: &mut impl Write,
+) -> io::Result<()> {
     options.check()?;
     super::check_finite(drawing)?;
     let t = page_transform(drawing, options);
@@ -327,11 +401,22 @@ pub fn write_svg(drawing: &Drawing, options: &SvgOptions, out: &mut impl Write) 
         ty = t.ty,
     );
     for visible in [false, true] {
+        if let Some(h) = hatches.filter(|h| visible && !h.polylines.is_empty()) {
+            let paths: Vec<&[[f64; 2]]> = h.polylines.iter().map(Vec::as_slice).collect();
+            writeln!(
+                out,
+                r#"<g id="hatch" inkscape:groupmode="layer" inkscape:label="hatch" {placed} stroke="{VISIBLE_COLOUR}" stroke-width="{}">"#,
+                in_view(h.stroke, "the hatch stroke width")?
+            )?;
+            write_paths(&paths, &mut out)?;
+            writeln!(out, "</g>")?;
+        }
         for (class, stroke_width) in EdgeClass::ALL.into_iter().zip(widths) {
-            let paths: Vec<&Polyline> = drawing
+            let paths: Vec<&[[f64; 2]]> = drawing
                 .polylines
                 .iter()
                 .filter(|p| p.class == class && p.visible == visible && !p.points.is_empty())
+                .map(|p| p.points.as_slice())
                 .collect();
             if paths.is_empty() {
                 continue;
@@ -372,7 +457,7 @@ const INKSCAPE_NS: &str = "http://www.inkscape.org/namespaces/inkscape";
 /// is most of the work of a large drawing: windows of polylines are formatted in parallel
 /// pieces and written in order, so the bytes are those of writing them one by one, and the
 /// memory held is one window's text.
-fn write_paths(paths: &[&Polyline], out: &mut impl Write) -> io::Result<()> {
+fn write_paths(paths: &[&[[f64; 2]]], out: &mut impl Write) -> io::Result<()> {
     use rayon::prelude::*;
     const WINDOW: usize = 1 << 16;
     const PIECE: usize = 1 << 11;
@@ -383,7 +468,7 @@ fn write_paths(paths: &[&Polyline], out: &mut impl Write) -> io::Result<()> {
                 let mut text = Vec::new();
                 for polyline in piece {
                     text.extend_from_slice(b"<path d=\"");
-                    for (i, [x, y]) in polyline.points.iter().enumerate() {
+                    for (i, [x, y]) in polyline.iter().enumerate() {
                         let command = if i == 0 { "M" } else { " L" };
                         // Writing into a vector cannot fail.
                         let _ = write!(text, "{command} {x} {y}");
@@ -403,6 +488,7 @@ fn write_paths(paths: &[&Polyline], out: &mut impl Write) -> io::Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::hidden::Polyline;
 
     /// Many polylines (several windows and pieces) are written as one by one, in order.
     #[test]
@@ -416,7 +502,7 @@ mod tests {
                     .collect(),
             })
             .collect();
-        let refs: Vec<&Polyline> = polylines.iter().collect();
+        let refs: Vec<&[[f64; 2]]> = polylines.iter().map(|p| p.points.as_slice()).collect();
         let mut parallel = Vec::new();
         write_paths(&refs, &mut parallel).unwrap();
         let mut one_by_one = String::new();

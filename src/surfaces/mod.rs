@@ -65,6 +65,7 @@ use rayon::prelude::*;
 use slotmap::SecondaryMap;
 use std::cmp::Ordering;
 
+pub mod hatch;
 mod lines;
 mod overlap;
 mod vtp;
@@ -105,6 +106,10 @@ pub enum SurfacesError {
         /// How many faces the mesh has.
         faces: usize,
     },
+    /// Hatching asked with an angle or spacings out of range, shades that do not match the
+    /// faces, or too many lines (see [`hatch`]).
+    #[error("hatching: {0}")]
+    Hatch(String),
 }
 
 /// `Result` with the surfaces layer's [`SurfacesError`].

@@ -1,16 +1,22 @@
 //! `kepler render`: the exact hidden-line drawing of a scene, as SVG (and JSON).
 
-use crate::args::{FaceArgs, PageArgs, ViewArgs, load_drawable, parse_area, parse_stroke};
+use crate::args::{
+    FaceArgs, PageArgs, ViewArgs, load_drawable, parse_area, parse_stroke, parse_triple,
+};
 use crate::output::{progress_bar, write_file};
 use anyhow::Result;
+use kepler::geometry::Vector3;
 use kepler::geometry::polygon::bounding_box;
 use kepler::hidden::ideographs::{Ideograph, ideographs};
 use kepler::hidden::verify::{Traced, draw_traced, verify};
 use kepler::hidden::{self, Drawing, EdgeClass, EdgeSelection};
 use kepler::output::{
-    DxfFormat, PageTransform, SvgOptions, ordered, pen_travel, write_dxf, write_json, write_svg,
+    DxfFormat, HatchLayer, PageTransform, Shading, SvgOptions, ordered, page_transform, pen_travel,
+    write_dxf, write_json, write_svg_with_hatches,
 };
 use kepler::scene::Scene;
+use kepler::surfaces::hatch::{Hatching, hatch_faces};
+use kepler::surfaces::visible_surfaces;
 use kepler::views::{Picture, View};
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -78,8 +84,46 @@ pub struct Args {
     /// What a small object becomes: `bound` (its CBOX) or `omit`.
     #[arg(long, value_enum, default_value_t = Ideograph::Bound)]
     ideograph: Ideograph,
+    /// Hatch the visible faces (SVG only): parallel lines, denser on darker faces (Lambert
+    /// shading, `--light`), clipped exactly to each face's visible polygons, in their own
+    /// layer `hatch` between the hidden and the visible lines. A face lit head-on gets none.
+    #[arg(long)]
+    hatch: bool,
+    /// With `--hatch`: the direction towards the light, in scene coordinates (default: over
+    /// the viewer's left shoulder: towards the eye, up and to the left in the picture).
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_triple, allow_hyphen_values = true)]
+    light: Option<[f64; 3]>,
+    /// With `--hatch`: the angle of the hatch lines on the page, in degrees counter-clockwise
+    /// from the horizontal.
+    #[arg(
+        long,
+        value_name = "DEGREES",
+        default_value_t = 45.0,
+        allow_hyphen_values = true
+    )]
+    hatch_angle: f64,
+    /// With `--hatch`: the spacing of hatch lines on the page in millimetres, `MIN,MAX`: the
+    /// darkest faces get MIN; spacing grows as MIN / darkness, and a face that would get more
+    /// than MAX gets none.
+    #[arg(long, value_name = "MIN,MAX", value_parser = parse_spacing, default_value = "0.5,3")]
+    hatch_spacing: [f64; 2],
+    /// With `--hatch`: the hatch lines' stroke width in millimetres.
+    #[arg(long, value_name = "MM", default_value_t = 0.1)]
+    hatch_stroke: f64,
     #[command(flatten)]
     view: ViewArgs,
+}
+
+/// Parses `MIN,MAX` (millimetres, `0 < MIN ≤ MAX`, finite).
+fn parse_spacing(text: &str) -> Result<[f64; 2], String> {
+    let fields: Vec<&str> = text.split(',').map(str::trim).collect();
+    match fields[..] {
+        [a, b] => match (a.parse::<f64>(), b.parse::<f64>()) {
+            (Ok(a), Ok(b)) if a.is_finite() && b.is_finite() && a > 0.0 && a <= b => Ok([a, b]),
+            _ => Err(format!("'{text}' is not two spacings 0 < MIN ≤ MAX in mm")),
+        },
+        _ => Err(format!("expected MIN,MAX in mm (like 0.5,3), got '{text}'")),
+    }
 }
 
 /// `--hidden`: the library keeps hidden lines or not (`hidden::Options::hidden`).
@@ -101,6 +145,20 @@ pub fn run(args: Args) -> Result<()> {
     let crease_angle = args.crease_angle;
     if !(crease_angle.is_finite() && (0.0..=180.0).contains(&crease_angle)) {
         anyhow::bail!("--crease-angle must be between 0 and 180 degrees, not {crease_angle}");
+    }
+    if args.light == Some([0.0; 3]) {
+        anyhow::bail!("--light 0,0,0 has no direction: give a nonzero vector towards the light");
+    }
+    if !(args.hatch_angle.is_finite() && args.hatch_stroke.is_finite() && args.hatch_stroke >= 0.0)
+    {
+        anyhow::bail!("--hatch-angle and --hatch-stroke must be finite (the stroke nonnegative)");
+    }
+    let dxf = args
+        .output
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("dxf"));
+    if dxf && args.hatch {
+        anyhow::bail!("--hatch writes SVG only, not DXF");
     }
     let started = Instant::now();
     let scene = load_drawable(&args.scene, args.faces.validation())?;
@@ -125,11 +183,12 @@ pub fn run(args: Args) -> Result<()> {
     let traced = draw(&scene, &view, &options, args.verify)?;
     let (plotted, plotter_stats) = for_plotters(&traced.drawing, &args);
     let drawing = &plotted;
+    let (hatches, hatch_stats) = if args.hatch {
+        hatch(&scene, &view, drawing, &svg_options, &args)?
+    } else {
+        (HatchLayer::default(), String::new())
+    };
     let clock = Instant::now();
-    let dxf = args
-        .output
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("dxf"));
     write_file(&args.output, |mut out| {
         if dxf {
             let format = match args.dxf {
@@ -138,7 +197,7 @@ pub fn run(args: Args) -> Result<()> {
             };
             write_dxf(drawing, &svg_options, format, &mut out)
         } else {
-            write_svg(drawing, &svg_options, &mut out)
+            write_svg_with_hatches(drawing, &hatches, &svg_options, &mut out)
         }
     })?;
     if let Some(json) = &args.json {
@@ -154,7 +213,8 @@ pub fn run(args: Args) -> Result<()> {
             );
         }
         eprintln!("{repairs}");
-        eprint!("{}", stats_report(drawing, loaded, &plotter_stats, written));
+        let plotter = plotter_stats + &hatch_stats;
+        eprint!("{}", stats_report(drawing, loaded, &plotter, written));
     }
     if args.verify {
         let report = verify(&scene, &view, &options, &traced);
@@ -168,6 +228,52 @@ pub fn run(args: Args) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// The hatch layer (`--hatch`): every face's visible polygons, shaded, hatched at the page
+/// spacing (millimetres turned into view units by the drawing's page scale); and its
+/// `--stats` line.
+fn hatch(
+    scene: &Scene,
+    view: &View,
+    drawing: &Drawing,
+    svg_options: &SvgOptions,
+    args: &Args,
+) -> Result<(HatchLayer, String)> {
+    let clock = Instant::now();
+    let faces = visible_surfaces(scene, view)?;
+    let shading = Shading {
+        light: args.light.map(Vector3::from),
+        outlines: false,
+    };
+    let shades = shading.shades(&faces, scene, view);
+    let scale = page_transform(drawing, svg_options).scale;
+    let hatching = Hatching {
+        angle: args.hatch_angle,
+        spacing: args.hatch_spacing.map(|mm| mm / scale),
+    };
+    let hatched = hatch_faces(&faces, &shades, &hatching)?;
+    let polylines: Vec<Vec<[f64; 2]>> = hatched
+        .iter()
+        .flat_map(|f| f.hatch.runs.iter().map(|r| r.points.clone()))
+        .collect();
+    let segments: usize = polylines.iter().map(|p| p.len() - 1).sum();
+    let dropped: usize = hatched.iter().map(|f| f.hatch.dropped).sum();
+    let stats = format!(
+        "hatch          {:>7.4}  {} of {} faces hatched: {} lines, {segments} segments \
+         ({dropped} dropped by the exact check)\n",
+        clock.elapsed().as_secs_f64(),
+        hatched.len(),
+        faces.len(),
+        polylines.len(),
+    );
+    Ok((
+        HatchLayer {
+            polylines,
+            stroke: args.hatch_stroke,
+        },
+        stats,
+    ))
 }
 
 /// What validation repaired in the scene's meshes: the `--stats` line.
