@@ -1513,3 +1513,56 @@ fn one_thread_and_four_write_the_same_bytes() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `--order` orders the hatch layer too: the same segments, bit for bit, with less travel.
+#[test]
+fn render_order_orders_the_hatch_layer() {
+    let hatch = |order: bool| {
+        let svg = temp_path(if order {
+            "hatch-ordered.svg"
+        } else {
+            "hatch-plain.svg"
+        });
+        let mut args = vec!["render", "scenes/solids.toml", "-o", &svg, "--hatch"];
+        if order {
+            args.push("--order");
+        }
+        ok(&args);
+        let text = std::fs::read_to_string(&svg).expect("the SVG");
+        svg_polylines(&text)
+            .into_iter()
+            .filter(|(layer, _)| layer == "hatch")
+            .map(|(_, points)| points)
+            .collect::<Vec<Vec<[f64; 2]>>>()
+    };
+    let (plain, ordered) = (hatch(false), hatch(true));
+    let segments = |paths: &[Vec<[f64; 2]>]| {
+        let mut s: Vec<[[u64; 2]; 2]> = paths
+            .iter()
+            .flat_map(|p| {
+                p.windows(2)
+                    .map(|w| [w[0], w[1]].map(|q| q.map(f64::to_bits)))
+            })
+            .map(|[a, b]| if a <= b { [a, b] } else { [b, a] })
+            .collect();
+        s.sort_unstable();
+        s
+    };
+    assert!(plain.len() > 100);
+    assert_eq!(segments(&plain), segments(&ordered));
+    let travel = |paths: &[Vec<[f64; 2]>]| {
+        paths
+            .windows(2)
+            .map(|w| {
+                let (a, b) = (w[0][w[0].len() - 1], w[1][0]);
+                (b[0] - a[0]).hypot(b[1] - a[1])
+            })
+            .sum::<f64>()
+    };
+    assert!(
+        travel(&ordered) < 0.5 * travel(&plain),
+        "{} vs {}",
+        travel(&ordered),
+        travel(&plain)
+    );
+}

@@ -65,29 +65,51 @@ pub fn ordered(drawing: &Drawing) -> Drawing {
 
 /// One layer's paths in greedy nearest-end order, from its first path as given.
 fn order_layer(layer: &[&Polyline]) -> Vec<Polyline> {
-    let Some(first) = layer.first() else {
+    let points: Vec<&[[f64; 2]]> = layer.iter().map(|p| p.points.as_slice()).collect();
+    pen_order(&points)
+        .into_iter()
+        .map(|(i, reversed)| {
+            let mut path = layer[i].clone();
+            if reversed {
+                path.points.reverse();
+            }
+            path
+        })
+        .collect()
+}
+
+/// The order in which a plotter should draw `paths` (each at least one point) to shorten its
+/// travel between them, greedily from the first as given: each path's index and whether to
+/// draw it reversed. The hatch layer of `kepler render --hatch --order` is ordered with it.
+///
+/// ```
+/// let paths: [&[[f64; 2]]; 3] = [&[[0.0, 0.0], [1.0, 0.0]], &[[9.0, 0.0], [8.0, 0.0]], &[[3.0, 0.0], [2.0, 0.0]]];
+/// assert_eq!(kepler::output::pen_order(&paths), vec![(0, false), (2, true), (1, true)]);
+/// ```
+pub fn pen_order(paths: &[&[[f64; 2]]]) -> Vec<(usize, bool)> {
+    let Some(first) = paths.first().filter(|p| !p.is_empty()) else {
         return Vec::new();
     };
     let end = |i: usize, last: bool| {
-        let p = &layer[i].points;
+        let p = paths[i];
         End::new(if last { p[p.len() - 1] } else { p[0] }, (i, last))
     };
     // Ends of drawn paths stay in the tree until they are as many as the live ones; then the
     // tree is built again from the live ends (bulk loading is cheaper than removing).
     let live = |used: &[bool]| -> Vec<End> {
-        (1..layer.len())
-            .filter(|&i| !used[i])
+        (1..paths.len())
+            .filter(|&i| !used[i] && !paths[i].is_empty())
             .flat_map(|i| [end(i, false), end(i, true)])
             .collect()
     };
-    let mut used = vec![false; layer.len()];
+    let mut used = vec![false; paths.len()];
     used[0] = true;
     let mut tree = RTree::bulk_load(live(&used));
     let mut stale = 0;
-    let mut out = Vec::with_capacity(layer.len());
-    out.push((*first).clone());
-    let mut at = first.points[first.points.len() - 1];
-    for _ in 1..layer.len() {
+    let mut out = Vec::with_capacity(paths.len());
+    out.push((0, false));
+    let mut at = first[first.len() - 1];
+    for _ in 1..paths.len() {
         let Some(&(i, last)) = tree
             .nearest_neighbor_iter(&at)
             .map(|e| &e.data)
@@ -97,12 +119,12 @@ fn order_layer(layer: &[&Polyline]) -> Vec<Polyline> {
         };
         used[i] = true;
         stale += 2;
-        let mut path = layer[i].clone();
-        if last {
-            path.points.reverse();
-        }
-        at = path.points[path.points.len() - 1];
-        out.push(path);
+        at = if last {
+            paths[i][0]
+        } else {
+            paths[i][paths[i].len() - 1]
+        };
+        out.push((i, last));
         if 2 * stale > tree.size() {
             tree = RTree::bulk_load(live(&used));
             stale = 0;

@@ -11,8 +11,8 @@ use kepler::hidden::ideographs::{Ideograph, ideographs};
 use kepler::hidden::verify::{Traced, draw_traced, verify};
 use kepler::hidden::{self, Drawing, EdgeClass, EdgeSelection};
 use kepler::output::{
-    DxfFormat, HatchLayer, PageTransform, Shading, SvgOptions, ordered, page_transform, pen_travel,
-    write_dxf, write_json, write_svg_with_hatches,
+    DxfFormat, HatchLayer, PageTransform, Shading, SvgOptions, ordered, page_transform, pen_order,
+    pen_travel, write_dxf, write_json, write_svg_with_hatches,
 };
 use kepler::scene::Scene;
 use kepler::surfaces::hatch::{Hatching, hatch_faces};
@@ -257,6 +257,21 @@ fn hatch(
         .iter()
         .flat_map(|f| f.hatch.runs.iter().map(|r| r.points.clone()))
         .collect();
+    let polylines = if args.order {
+        let paths: Vec<&[[f64; 2]]> = polylines.iter().map(Vec::as_slice).collect();
+        pen_order(&paths)
+            .into_iter()
+            .map(|(i, reversed)| {
+                let mut path = polylines[i].clone();
+                if reversed {
+                    path.reverse();
+                }
+                path
+            })
+            .collect()
+    } else {
+        polylines
+    };
     let segments: usize = polylines.iter().map(|p| p.len() - 1).sum();
     let dropped: usize = hatched.iter().map(|f| f.hatch.dropped).sum();
     let stats = format!(
