@@ -22,6 +22,8 @@ pub(crate) struct Piece {
     pub line: usize,
     /// See `line`.
     pub t: [f64; 2],
+    /// Whether a tile's plane passes through each end (see [`super::tiles`]).
+    pub border: [bool; 2],
 }
 
 /// Chains the pieces of each class and visibility into polylines, joining pieces at ends

@@ -65,6 +65,7 @@ mod drawing;
 mod edges;
 pub mod ideographs;
 mod overlaps;
+pub mod tiles;
 pub mod verify;
 
 pub use drawing::{Drawing, EdgeClass, Polyline, StageReport};
@@ -78,7 +79,9 @@ use crate::grid::SegmentGrid;
 use crate::mesh::Mesh;
 use crate::queries::Counters;
 use crate::queries::along::{Form, Sample, Zero, cut_point, hides_at};
-use crate::queries::frustum::{Clip, Framed, FramedLine, contour_in_front, pictured};
+use crate::queries::frustum::{
+    Clip, Framed, FramedLine, TilePlanes, contour_in_front, pictured,
+};
 use crate::queries::intersections;
 use crate::queries::meet::{Meet, OnLine, balance, reversed};
 use crate::queries::own_solid::turned_away;
@@ -87,6 +90,7 @@ use crate::queries::visp::Visibility;
 use crate::scene::{ObjectId, Scene, SceneError};
 use crate::views::{Eye, Picture, View, ViewError};
 use chain::{Piece, chain};
+use tiles::LineId;
 use cover::{Occluders, PicturedMesh};
 use geo::{Line as GeoLine, coord};
 use rayon::prelude::*;
@@ -117,6 +121,9 @@ pub enum DrawError {
     /// The scene to draw could not be built (see [`ideographs`]).
     #[error(transparent)]
     Scene(#[from] SceneError),
+    /// Tiles that cannot be stitched together, or bytes that are not a tile (see [`tiles`]).
+    #[error("tiles: {0}")]
+    Tiles(String),
 }
 
 /// `Result` with the hidden-line layer's [`DrawError`].
@@ -209,6 +216,8 @@ struct Line {
     /// it makes on an intersection line the same way in a transformed scene).
     leaf: u32,
     vertices: [u32; 2],
+    /// The line's name, the same in every tile of a grid (see [`tiles`]).
+    id: LineId,
 }
 
 /// An intersection segment in the pass: where it lies and the faces that do not hide it.
@@ -301,10 +310,10 @@ pub fn draw_with_progress(
     progress: &(dyn Fn(u64, u64) + Sync),
 ) -> Result<Drawing> {
     let (drawing, shift) = in_working_range::<_, DrawError>(scene, view, |scene, view| {
-        let (pass, pieces) = decided(scene, view, options, progress)?;
+        let (pass, pieces) = decided(scene, view, None, options, progress)?;
         Ok(chained(pass, pieces, options))
     })?;
-    Ok(scaled_back(drawing, view, shift))
+    Ok(scaled_back(drawing, view.is_perspective(), shift))
 }
 
 /// A line of a drawing before its visibility is decided (stages 1 and 2): an edge of the
@@ -345,7 +354,7 @@ pub struct Stroke {
 /// ```
 pub fn strokes(scene: &Scene, view: &View, options: &Options) -> Result<Vec<Stroke>> {
     let (strokes, shift) = in_working_range::<_, DrawError>(scene, view, |scene, view| {
-        let mut pass = Pass::new(scene, view)?;
+        let mut pass = Pass::new(scene, view, None)?;
         pass.edges(options);
         pass.intersections();
         Ok(pass
@@ -371,22 +380,24 @@ pub fn strokes(scene: &Scene, view: &View, options: &Options) -> Result<Vec<Stro
 
 /// A drawing made in the working range by `2^shift` brought back to the view's scale: a
 /// perspective picture does not scale.
-fn scaled_back(drawing: Drawing, view: &View, shift: i32) -> Drawing {
-    if shift == 0 || view.is_perspective() {
+fn scaled_back(drawing: Drawing, perspective: bool, shift: i32) -> Drawing {
+    if shift == 0 || perspective {
         drawing
     } else {
         drawing.scaled(-shift)
     }
 }
 
-/// Stages 1 to 4 of the pass: the pass and every piece with its visibility.
+/// Stages 1 to 4 of the pass (in one tile, with `tile`): the pass and every piece with its
+/// visibility.
 fn decided<'a>(
     scene: &'a Scene,
     view: &View,
+    tile: Option<TilePlanes>,
     options: &Options,
     progress: &(dyn Fn(u64, u64) + Sync),
 ) -> Result<(Pass<'a>, Vec<Piece>)> {
-    let mut pass = Pass::new(scene, view)?;
+    let mut pass = Pass::new(scene, view, tile)?;
     pass.edges(options);
     pass.intersections();
     pass.contour_cuts();
@@ -417,6 +428,8 @@ fn chained(mut pass: Pass, mut pieces: Vec<Piece>, options: &Options) -> Drawing
 /// edges in [`Pass::lines`].
 struct Leaf<'a> {
     id: ObjectId,
+    /// Its index among the scene's mesh objects (but exact copies), the same in every tile.
+    global: u32,
     mesh: &'a Mesh,
     pictures: Vec<[f64; 2]>,
     /// When the view clips: whether each vertex is strictly in front of the eye (the others'
@@ -443,28 +456,44 @@ struct Pass<'a> {
     clip: Option<Clip>,
     /// The mesh objects left out as exact copies of an earlier one.
     copies: usize,
+    /// The window, when the pass draws one tile of a grid (see [`tiles`]).
+    tile: Option<TilePlanes>,
+    /// The mesh objects left out because their CBOX lies outside the tile.
+    outside_tile: usize,
 }
 
 impl<'a> Pass<'a> {
     /// The pass over every mesh of the scene; a perspective view with a vertex not strictly
     /// in front of the eye clips to its frustum (see `queries/frustum.rs`).
-    fn new(scene: &'a Scene, view: &View) -> Result<Pass<'a>> {
+    /// With a `tile`, the pass draws only what lies in it, from the objects whose CBOX may
+    /// reach it (see [`tiles`]).
+    fn new(scene: &'a Scene, view: &View, tile: Option<TilePlanes>) -> Result<Pass<'a>> {
         let picture = Picture::of(view);
         let (meshes, clip) = pictured(scene, view)?;
         let all = meshes.len();
         let meshes = without_copies(meshes);
         let copies = all - meshes.len();
+        let kept = meshes.len();
         let leaves: Vec<Leaf> = meshes
             .into_iter()
-            .map(|(id, mesh)| Leaf {
+            .enumerate()
+            .filter(|(_, (id, _))| {
+                tile.as_ref()
+                    .is_none_or(|t| !t.surely_outside(&scene.cbox(*id).corners()))
+            })
+            .map(|(global, (id, mesh))| Leaf {
                 id,
+                global: global as u32,
                 mesh,
                 pictures: Vec::new(),
                 front: Vec::new(),
                 lines: 0..0,
             })
             .collect();
+        let outside_tile = kept - leaves.len();
         Ok(Pass {
+            tile,
+            outside_tile,
             clip,
             scene,
             eye: *view.eye(),
@@ -487,18 +516,26 @@ impl<'a> Pass<'a> {
     fn edges(&mut self, options: &Options) {
         let clock = Instant::now();
         let (eye, picture, clip) = (&self.eye, &self.picture, self.clip);
+        let tile = self.tile.as_ref();
         let crease_cos = -options.crease_angle.to_radians().cos();
         let classified: Vec<_> = self
             .leaves
             .par_iter()
             .map(|leaf| {
                 let vertices = leaf.mesh.vertices();
-                let (front, inside): (Vec<bool>, Vec<bool>) = match &clip {
-                    Some(n) => vertices
+                let front: Vec<bool> = match &clip {
+                    Some(n) => vertices.par_iter().map(|p| n.in_front(p)).collect(),
+                    None => Vec::new(),
+                };
+                let inside: Vec<bool> = match (&clip, tile) {
+                    (None, None) => Vec::new(),
+                    _ => vertices
                         .par_iter()
-                        .map(|p| (n.in_front(p), n.contains(eye, p)))
-                        .unzip(),
-                    None => (Vec::new(), Vec::new()),
+                        .map(|p| {
+                            clip.is_none_or(|n| n.contains(eye, p))
+                                && tile.is_none_or(|t| t.contains(eye, p))
+                        })
+                        .collect(),
                 };
                 let pictures: Vec<[f64; 2]> = vertices
                     .par_iter()
@@ -514,7 +551,7 @@ impl<'a> Pass<'a> {
             .collect();
         let (mut flat, mut end_on, mut left_out) = (0, 0, 0);
         let mut by_class = [0usize; 5];
-        let mut behind = 0;
+        let (mut behind, mut outside_tile) = (0, 0);
         for (n, (leaf, ((edges, counts), pictures, (front, inside)))) in
             self.leaves.iter_mut().zip(classified).enumerate()
         {
@@ -527,12 +564,19 @@ impl<'a> Pass<'a> {
             for (total, n) in by_class.iter_mut().zip(counts.by_class) {
                 *total += n;
             }
-            for e in edges {
+            for (k, e) in edges.into_iter().enumerate() {
                 let (a, b) = (e.a as usize, e.b as usize);
                 let in_front = |v: usize| front.get(v).is_none_or(|&f| f);
                 if !in_front(a) && !in_front(b) {
                     // Wholly behind the eye: nothing of it is drawn or bounds what is seen.
                     behind += 1;
+                    continue;
+                }
+                let ends = [mesh.vertices()[a], mesh.vertices()[b]];
+                if self.tile.as_ref().is_some_and(|t| t.surely_outside(&ends)) {
+                    // Wholly outside the tile: nothing of it is drawn there, and where it
+                    // crosses a contour or pierces a face is outside too.
+                    outside_tile += 1;
                     continue;
                 }
                 let clipped = !(inside.is_empty() || inside[a] && inside[b]);
@@ -555,11 +599,13 @@ impl<'a> Pass<'a> {
                     clipped,
                     leaf: n as u32,
                     vertices: [e.a, e.b],
+                    id: LineId::Edge(leaf.global, k as u32),
                 });
                 if clipped {
                     let i = self.lines.len() - 1;
+                    let tile = self.tile.as_ref();
                     self.cuts
-                        .extend(frustum_cuts(clip, eye, (i, &self.lines[i], None)));
+                        .extend(frustum_cuts(clip, tile, eye, (i, &self.lines[i], None)));
                 }
             }
             leaf.pictures = pictures;
@@ -599,9 +645,16 @@ impl<'a> Pass<'a> {
             0 => String::new(),
             n => format!(", {n} objects that are exact copies of another (drawn once)"),
         };
+        let tiled = match &self.tile {
+            Some(_) => format!(
+                ", {} objects and {outside_tile} edges outside the tile",
+                self.outside_tile
+            ),
+            None => String::new(),
+        };
         let skipped = format!(
             "{flat} edges between coplanar faces (no edge), {end_on} seen end-on (a point)\
-             {smooth}{clipping}{copies}"
+             {smooth}{clipping}{copies}{tiled}"
         );
         self.stage("edges", clock, done, Some(skipped));
     }
@@ -644,14 +697,17 @@ impl<'a> Pass<'a> {
                 };
                 partners.entry(x).or_default().push(y);
             }
-            for s in found {
+            for (k, s) in found.into_iter().enumerate() {
                 segments += 1;
                 // Which ends are in front of the eye, and whether both are inside the frustum,
                 // decided exactly at the ends (points of the meet line).
                 let sign_at = |k: usize| move |form: &Form| s.meet.sign_at(&eye, &s.ends[k], form);
                 let front = [0, 1]
                     .map(|k| clip.is_none_or(|n| sign_at(k)(&n.depth()) == Ordering::Greater));
-                let inside = [0, 1].map(|k| clip.is_none_or(|n| n.contains_by(sign_at(k))));
+                let inside = [0, 1].map(|k| {
+                    clip.is_none_or(|n| n.contains_by(sign_at(k)))
+                        && self.tile.as_ref().is_none_or(|t| t.contains_by(sign_at(k)))
+                });
                 if front == [false, false] {
                     // Wholly behind the eye: nothing of it is drawn or bounds what is seen.
                     continue;
@@ -680,6 +736,7 @@ impl<'a> Pass<'a> {
                     clipped: inside != [true, true],
                     leaf: 0,
                     vertices: [0; 2],
+                    id: LineId::Meet(leaves[i].global, leaves[j].global, k as u32),
                 });
                 self.meets.push(MeetLine {
                     meet: s.meet,
@@ -689,7 +746,8 @@ impl<'a> Pass<'a> {
                 let line = self.lines.len() - 1;
                 if self.lines[line].clipped {
                     let meet = self.meets.last();
-                    let cuts = frustum_cuts(clip, &eye, (line, &self.lines[line], meet));
+                    let tile = self.tile.as_ref();
+                    let cuts = frustum_cuts(clip, tile, &eye, (line, &self.lines[line], meet));
                     self.cuts.extend(cuts);
                 }
                 if i == j {
@@ -980,8 +1038,8 @@ impl<'a> Pass<'a> {
         }
         let done = AtomicU64::new(0);
         let total = lines.len() as u64;
-        let (scene, eye, picture, meets, clip) =
-            (self.scene, &self.eye, &self.picture, &self.meets, self.clip);
+        let (scene, eye, picture, meets) = (self.scene, &self.eye, &self.picture, &self.meets);
+        let clip = (self.clip, self.tile.as_ref());
         let decided: Vec<(Vec<Piece>, Counters)> = (0..lines.len())
             .into_par_iter()
             .map(|l| {
@@ -1256,7 +1314,7 @@ fn pieces(
     scene: &Scene,
     eye: &Eye,
     picture: &Picture,
-    clip: Option<Clip>,
+    (clip, tile): (Option<Clip>, Option<&TilePlanes>),
     (line, l): (usize, &Line),
     cuts: &[&Cut],
 ) -> (Vec<Piece>, Counters) {
@@ -1268,6 +1326,7 @@ fn pieces(
             ends: l.ends,
             line,
             t: [0.0, 1.0],
+            border: [false; 2],
         };
         return (vec![piece], counters);
     }
@@ -1282,28 +1341,34 @@ fn pieces(
             j -= 1;
         }
     }
-    let mut bounds: Vec<&Cut> = Vec::with_capacity(sorted.len());
+    // Each point once, with whether a tile's plane passes through it.
+    let mut bounds: Vec<(&Cut, bool)> = Vec::with_capacity(sorted.len());
     for c in sorted {
+        let border = c.key[0] == TILE_CUT;
         match bounds.last_mut() {
-            Some(last) if order(last, c) == Ordering::Equal => {
+            Some((last, on_border)) if order(last, c) == Ordering::Equal => {
+                *on_border |= border;
                 if c.key < last.key {
                     *last = c;
                 }
             }
-            _ => bounds.push(c),
+            _ => bounds.push((c, border)),
         }
     }
     let mut runs = Runs::new(l, line);
     for k in 0..=bounds.len() {
-        let lo = k.checked_sub(1).map(|k| bounds[k]);
+        let (lo, border) = match k.checked_sub(1).map(|k| bounds[k]) {
+            Some((c, border)) => (Some(c), border),
+            None => (None, false),
+        };
         let sample = Sample::between(
             eye,
             a,
             b,
-            [lo.map(|c| &c.zero), bounds.get(k).map(|c| &c.zero)],
+            [lo.map(|c| &c.zero), bounds.get(k).map(|c| &c.0.zero)],
         );
         let sign = |form: &Form| sample.sign(form, eye, a, b);
-        let state = if l.clipped && !clip.is_some_and(|n| n.contains_by(sign)) {
+        let state = if l.clipped && !inside(clip, tile, sign) {
             None
         } else if l.back {
             Some(false)
@@ -1317,7 +1382,7 @@ fn pieces(
             let answer = occluders.visp((&approximate, radius), hides, &mut counters);
             Some(answer == Visibility::Visible)
         };
-        runs.step(state, lo.map_or(0.0, |c| c.zero.t), || {
+        runs.step(state, lo.map_or(0.0, |c| c.zero.t), border, || {
             cut_picture(picture, eye, l, lo)
         });
     }
@@ -1334,7 +1399,7 @@ fn line_pieces(
     scene: &Scene,
     eye: &Eye,
     picture: &Picture,
-    clip: Option<Clip>,
+    (clip, tile): (Option<Clip>, Option<&TilePlanes>),
     (line, l, m): (usize, &Line, &MeetLine),
     cuts: &[&Cut],
 ) -> (Vec<Piece>, Counters) {
@@ -1342,7 +1407,18 @@ fn line_pieces(
     let mut inner: Vec<(OnLine, &Cut)> = cuts.iter().map(|&c| (c.point(), c)).collect();
     // Stable: the cuts come roughly sorted already.
     inner.sort_by(|x, y| meet.compare(eye, &x.0, &y.0).then(x.1.key.cmp(&y.1.key)));
-    inner.dedup_by(|b, a| meet.compare(eye, &a.0, &b.0) == Ordering::Equal);
+    // Each point once (the smallest key), with whether a tile's plane passes through it.
+    let mut borders: Vec<bool> = Vec::with_capacity(inner.len());
+    let mut k = 0;
+    while k < inner.len() {
+        let mut border = inner[k].1.key[0] == TILE_CUT;
+        while k + 1 < inner.len() && meet.compare(eye, &inner[k].0, &inner[k + 1].0).is_eq() {
+            border |= inner[k + 1].1.key[0] == TILE_CUT;
+            inner.remove(k + 1);
+        }
+        borders.push(border);
+        k += 1;
+    }
     let points: Vec<OnLine> = std::iter::once(m.ends[0])
         .chain(inner.iter().map(|x| x.0))
         .chain(std::iter::once(m.ends[1]))
@@ -1369,7 +1445,7 @@ fn line_pieces(
     for k in 0..points.len() - 1 {
         let scales = [balance(weights[k]), balance(weights[k + 1])];
         let sign = |form: &Form| meet.sign_between(eye, [&points[k], &points[k + 1]], scales, form);
-        let state = if l.clipped && !clip.is_some_and(|n| n.contains_by(sign)) {
+        let state = if l.clipped && !inside(clip, tile, sign) {
             None
         } else {
             let (u, v) = (weights[k] * scales[0], weights[k + 1] * scales[1]);
@@ -1391,7 +1467,8 @@ fn line_pieces(
             let answer = occluders.visp((&approximate, radius), hides, &mut counters);
             Some(answer == Visibility::Visible)
         };
-        runs.step(state, along(k), || drawn(k));
+        let border = k > 0 && borders[k - 1];
+        runs.step(state, along(k), border, || drawn(k));
     }
     (runs.finish(l.ends[1]), counters)
 }
@@ -1408,8 +1485,9 @@ struct Runs {
     first: [f64; 2],
     out: Vec<Piece>,
     /// The current run: its state (`None` where the view clips it away, else its
-    /// visibility), the picture of its start and its start's parameter.
-    run: Option<(Option<bool>, [f64; 2], f64)>,
+    /// visibility), the picture of its start, its start's parameter and whether a tile's
+    /// plane passes through its start.
+    run: Option<(Option<bool>, [f64; 2], f64, bool)>,
 }
 
 impl Runs {
@@ -1425,11 +1503,11 @@ impl Runs {
         }
     }
 
-    /// The next piece's state, from parameter `t`; where it changes, the run ends at the
-    /// picture `at` of the piece's start.
-    fn step(&mut self, state: Option<bool>, t: f64, at: impl FnOnce() -> [f64; 2]) {
+    /// The next piece's state, from parameter `t` (where a tile's plane passes if `border`);
+    /// where it changes, the run ends at the picture `at` of the piece's start.
+    fn step(&mut self, state: Option<bool>, t: f64, border: bool, at: impl FnOnce() -> [f64; 2]) {
         match self.run {
-            Some((s, start, from)) if s != state => {
+            Some((s, start, from, on_border)) if s != state => {
                 let at = at();
                 if let Some(visible) = s {
                     self.out.push(Piece {
@@ -1438,24 +1516,26 @@ impl Runs {
                         ends: [start, at],
                         line: self.line,
                         t: [from, t],
+                        border: [on_border, border],
                     });
                 }
-                self.run = Some((state, at, t));
+                self.run = Some((state, at, t, border));
             }
-            None => self.run = Some((state, self.first, 0.0)),
+            None => self.run = Some((state, self.first, 0.0, false)),
             _ => {}
         }
     }
 
     /// The runs, the last ending at `end`.
     fn finish(mut self, end: [f64; 2]) -> Vec<Piece> {
-        if let Some((Some(visible), start, from)) = self.run {
+        if let Some((Some(visible), start, from, on_border)) = self.run {
             self.out.push(Piece {
                 class: self.class,
                 visible,
                 ends: [start, end],
                 line: self.line,
                 t: [from, 1.0],
+                border: [on_border, false],
             });
         }
         if self.clipped {
@@ -1468,6 +1548,12 @@ impl Runs {
     }
 }
 
+/// Whether a point of a clipped line is drawn: inside the frustum of a view that clips and
+/// inside the tile, given the exact sign of each plane's form at it.
+fn inside(clip: Option<Clip>, tile: Option<&TilePlanes>, sign: impl Fn(&Form) -> Ordering) -> bool {
+    clip.is_none_or(|n| n.contains_by(&sign)) && tile.is_none_or(|t| t.contains_by(&sign))
+}
+
 /// Whether triangle `tri` of `object` lies on one of the faces an intersection line runs on.
 fn on_faces(m: &MeetLine, scene: &Scene, object: ObjectId, tri: usize) -> bool {
     m.on_faces
@@ -1476,19 +1562,22 @@ fn on_faces(m: &MeetLine, scene: &Scene, object: ObjectId, tri: usize) -> bool {
 }
 
 /// The cuts of line `l` (index `i`) where it crosses the planes of the frustum of a view
-/// that clips, strictly inside it.
+/// that clips, and the planes of a tile, strictly inside it. A tile's cuts have the largest
+/// keys (see [`TILE_CUT`]): where one falls on another cut, the other is drawn, as in the
+/// whole drawing.
 fn frustum_cuts(
     clip: Option<Clip>,
+    tile: Option<&TilePlanes>,
     eye: &Eye,
     (i, l, m): (usize, &Line, Option<&MeetLine>),
 ) -> Vec<(usize, Cut)> {
-    let Some(clip) = clip else {
-        return Vec::new();
-    };
-    clip.forms()
-        .enumerate()
-        .filter_map(|(k, form)| {
-            let key = [3, k as u32, 0, 0];
+    let frustum = clip.into_iter().flat_map(|c| c.forms().collect::<Vec<_>>());
+    let frustum = frustum.enumerate().map(|(k, form)| (form, [3, k as u32, 0, 0]));
+    let tile = tile.into_iter().flat_map(|t| t.forms());
+    let tile = tile.enumerate().map(|(k, form)| (form, [TILE_CUT, k as u32, 0, 0]));
+    frustum
+        .chain(tile)
+        .filter_map(|(form, key)| {
             let cut = match m {
                 None => Cut::on_edge(form.zero_on(eye, &l.a, &l.b)?, None, key),
                 Some(m) => {
@@ -1507,6 +1596,10 @@ fn frustum_cuts(
         })
         .collect()
 }
+
+/// The first element of the key of a cut where a line crosses a tile's plane: larger than any
+/// other cut's.
+const TILE_CUT: u32 = 4;
 
 /// The picture of a cut of the edge `l` (`None`: its first end).
 fn cut_picture(picture: &Picture, eye: &Eye, l: &Line, cut: Option<&Cut>) -> [f64; 2] {

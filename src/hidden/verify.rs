@@ -187,7 +187,7 @@ pub fn draw_traced(
     progress: &(dyn Fn(u64, u64) + Sync),
 ) -> Result<Traced> {
     let (traced, shift) = in_working_range::<_, DrawError>(scene, view, |scene, view| {
-        let (pass, pieces) = decided(scene, view, options, progress)?;
+        let (pass, pieces) = decided(scene, view, None, options, progress)?;
         Ok(traced(pass, pieces, options))
     })?;
     // Back to the input's scale, exactly.
@@ -216,7 +216,7 @@ impl Traced {
             })
             .collect();
         Traced {
-            drawing: scaled_back(self.drawing, view, -shift),
+            drawing: scaled_back(self.drawing, view.is_perspective(), -shift),
             pieces,
         }
     }

@@ -37,7 +37,7 @@ use crate::geometry::{Point3, Vector3};
 use crate::mesh::Mesh;
 use crate::queries::along::{Form, PictureAt};
 use crate::scene::{ObjectId, Scene};
-use crate::views::{Eye, Picture, View, ViewError};
+use crate::views::{Eye, Picture, View, ViewError, Window};
 use std::cmp::Ordering;
 
 /// The frustum of a perspective view that clips: its near plane and the four planes through
@@ -334,5 +334,103 @@ pub(crate) fn contour_in_front(
             let s = numerator.sign();
             s != Ordering::Equal && s == sd
         }
+    }
+}
+
+/// The planes of a window of the picture ([`Window`]): each bound of the window as the plane of
+/// the points whose picture lies on it, `rows[k]·x = c` for an orthographic view and
+/// `(rows[k] − c·rows[2])·(x − eye) = 0` for a perspective one (the picture forms of
+/// [`Picture::rows`]; the second normal rounded, like the frustum's side planes). Each plane
+/// is the same double-valued form wherever the window is used, so the tiles of a grid cut an
+/// edge at their common border at the same point, built once from the input like every other
+/// cut; and the half-open windows split space: every point of a line lies in exactly one tile
+/// (on a lower bound's plane it is inside, on an upper bound's outside).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct TilePlanes {
+    /// Each bound's form, and whether it is a lower bound (inside where the form is positive
+    /// or zero; an upper bound is inside where it is negative).
+    planes: Vec<(Form, bool)>,
+    /// The point the forms are taken from (the eye, or the origin).
+    origin: Point3,
+}
+
+impl TilePlanes {
+    /// The planes of `window` in `view`; `None` when the window is the whole picture, and an
+    /// error when a bound's plane does not fit in doubles.
+    pub(crate) fn of(view: &View, window: &Window) -> Result<Option<TilePlanes>, ViewError> {
+        let picture = Picture::of(view);
+        let (rows, origin) = picture.rows();
+        let mut planes = Vec::new();
+        for (k, bounds) in [window.x, window.y].into_iter().enumerate() {
+            for (lower, c) in [(true, bounds[0]), (false, bounds[1])] {
+                if c.is_infinite() {
+                    continue;
+                }
+                let form = if picture.is_perspective() {
+                    let normal = rows[k] - rows[2] * c;
+                    if !normal.iter().all(|x| x.is_finite()) {
+                        return Err(ViewError::Options(
+                            "a window's bound is too far out for this view",
+                        ));
+                    }
+                    Form::Frustum(normal, 0.0)
+                } else {
+                    Form::Frustum(rows[k], c)
+                };
+                planes.push((form, lower));
+            }
+        }
+        Ok((!planes.is_empty()).then_some(TilePlanes { planes, origin }))
+    }
+
+    /// Whether a sign of a bound's form is inside.
+    fn inside(sign: Ordering, lower: bool) -> bool {
+        if lower {
+            sign != Ordering::Less
+        } else {
+            sign == Ordering::Less
+        }
+    }
+
+    /// Whether a point is in the tile, given the exact sign of each bound's form at it.
+    pub(crate) fn contains_by(&self, sign: impl Fn(&Form) -> Ordering) -> bool {
+        self.planes
+            .iter()
+            .all(|(form, lower)| TilePlanes::inside(sign(form), *lower))
+    }
+
+    /// Whether `x` is in the tile, exactly.
+    pub(crate) fn contains(&self, eye: &Eye, x: &Point3) -> bool {
+        self.contains_by(|form| form.sign_at(eye, x))
+    }
+
+    /// The bounds' forms.
+    pub(crate) fn forms(&self) -> impl Iterator<Item = Form> + '_ {
+        self.planes.iter().map(|p| p.0)
+    }
+
+    /// Whether every one of `points` lies outside one bound's plane by more than the rounding
+    /// of its form in floating point could account for, with room to spare: then nothing of
+    /// their convex hull (an object's CBOX, an edge) is in the tile, nor (for an orthographic
+    /// view, whose planes are parallel to the lines of sight only to within rounding) anything
+    /// on a line of sight through the tile. A filter for leaving work out, never a decision:
+    /// `false` when unsure.
+    pub(crate) fn surely_outside(&self, points: &[Point3]) -> bool {
+        self.planes.iter().any(|(form, lower)| {
+            let Form::Frustum(normal, offset) = form else {
+                return false;
+            };
+            points.iter().all(|x| {
+                let d = x - self.origin;
+                let value = normal.dot(&d) - offset;
+                let size = normal.amax() * (x.coords.amax() + self.origin.coords.amax());
+                let margin = (3.0 * size + offset.abs()) / (1u64 << 30) as f64;
+                if *lower {
+                    value < -margin
+                } else {
+                    value > margin
+                }
+            })
+        })
     }
 }

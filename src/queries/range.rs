@@ -19,9 +19,14 @@ pub(crate) fn in_working_range<T, E: From<SceneError>>(
     view: &View,
     work: impl FnOnce(&Scene, &View) -> Result<T, E>,
 ) -> Result<(T, i32), E> {
-    let shift = scene.exponents().union(view.exponents()).shift();
+    let shift = working_shift(scene, view);
     if shift == 0 {
         return Ok((work(scene, view)?, 0));
     }
     Ok((work(&scene.scaled(shift)?, &view.scaled(shift))?, shift))
+}
+
+/// The power of two, `2^shift`, by which [`in_working_range`] scales the scene and view.
+pub(crate) fn working_shift(scene: &Scene, view: &View) -> i32 {
+    scene.exponents().union(view.exponents()).shift()
 }

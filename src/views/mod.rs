@@ -34,7 +34,9 @@ use std::cmp::Ordering;
 
 mod picture;
 pub mod projected_area;
+mod window;
 pub use picture::Picture;
+pub use window::Window;
 
 /// A view that cannot be built, or a scene it cannot picture: the views layer's error.
 ///
