@@ -61,7 +61,13 @@ fn options(edges: EdgeSelection, hidden: bool) -> Options {
 #[test]
 fn bundled_scenes_stitch_to_the_whole_drawing() {
     let scenes = [
-        "cube", "solids", "polyhedra", "torus", "meshes", "bunny", "city",
+        "cube",
+        "solids",
+        "polyhedra",
+        "torus",
+        "meshes",
+        "bunny",
+        "city",
     ];
     for name in scenes {
         let scene = file::load(Path::new(&format!("scenes/{name}.toml"))).unwrap();
@@ -95,7 +101,13 @@ fn metropolis_stitches_on_a_fine_grid() {
         .unwrap();
     let view = view.clone().with_aspect(1.5).unwrap_or(view);
     let windows = tile_windows(&scene, &view, [8, 8]).unwrap();
-    same(&scene, &view, &Options::default(), &windows, "metropolis 8×8");
+    same(
+        &scene,
+        &view,
+        &Options::default(),
+        &windows,
+        "metropolis 8×8",
+    );
 }
 
 /// A lattice of unit boxes, touching and stacked, with some sunk into each other (so they
@@ -163,8 +175,16 @@ fn random_boxes_in_random_views_and_grids() {
     for round in 0..30 {
         let mut scene = Scene::new();
         for i in 0..5 {
-            let at = [rng.range(-2.0, 2.0), rng.range(-2.0, 2.0), rng.range(0.0, 2.0)];
-            let size = [rng.range(0.2, 2.0), rng.range(0.2, 2.0), rng.range(0.2, 2.0)];
+            let at = [
+                rng.range(-2.0, 2.0),
+                rng.range(-2.0, 2.0),
+                rng.range(0.0, 2.0),
+            ];
+            let size = [
+                rng.range(0.2, 2.0),
+                rng.range(0.2, 2.0),
+                rng.range(0.2, 2.0),
+            ];
             scene
                 .add_mesh(None, &format!("b{i}"), cuboid_at(size, at))
                 .unwrap();
@@ -202,7 +222,11 @@ fn an_eye_inside_the_scene_clips_the_tiles_too() {
             .unwrap();
     }
     scene
-        .add_mesh(None, "room", cuboid_at([30.0, 30.0, 10.0], [-15.0, -15.0, -2.0]))
+        .add_mesh(
+            None,
+            "room",
+            cuboid_at([30.0, 30.0, 10.0], [-15.0, -15.0, -2.0]),
+        )
         .unwrap();
     let view = View::perspective(
         Point3::new(0.0, -5.0, 0.5),
@@ -224,9 +248,14 @@ fn an_eye_inside_the_scene_clips_the_tiles_too() {
 fn extreme_scales_and_offsets() {
     for (scale, offset) in [(2f64.powi(300), 0.0), (2f64.powi(-300), 0.0), (1.0, 1e8)] {
         let mut scene = Scene::new();
-        for (i, at) in [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.5, 0.5, 1.0], [0.25, -0.5, 0.5]]
-            .iter()
-            .enumerate()
+        for (i, at) in [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.5, 0.5, 1.0],
+            [0.25, -0.5, 0.5],
+        ]
+        .iter()
+        .enumerate()
         {
             let at = at.map(|c| c * scale + offset);
             scene
@@ -267,7 +296,10 @@ fn a_tile_draws_only_inside_its_window() {
         .flat_map(|p| p.points.iter().map(|q| q[0]))
         .collect();
     assert!(xs.iter().all(|&x| (3.5..=6.5).contains(&x)), "{xs:?}");
-    assert_eq!(drawing.length(kepler::hidden::EdgeClass::Silhouette, true), 8.0);
+    assert_eq!(
+        drawing.length(kepler::hidden::EdgeClass::Silhouette, true),
+        8.0
+    );
     // A window through the middle of a box cuts it there, exactly.
     let half = Window::new([4.0, 7.5], [f64::NEG_INFINITY, f64::INFINITY]).unwrap();
     let tile = draw_tile(&scene, &view, &Options::default(), &half).unwrap();
@@ -279,20 +311,29 @@ fn a_tile_draws_only_inside_its_window() {
         .fold(f64::INFINITY, f64::min);
     assert_eq!(min, 4.0);
     // Half of box 2's square (no line where the window cuts it) and box 3's whole.
-    assert_eq!(drawing.length(kepler::hidden::EdgeClass::Silhouette, true), 6.0);
+    assert_eq!(
+        drawing.length(kepler::hidden::EdgeClass::Silhouette, true),
+        6.0
+    );
 }
 
 #[test]
 fn tiles_of_different_scenes_and_bad_bytes_are_refused() {
     let mut small = Scene::new();
-    small.add_mesh(None, "a", cuboid_at([1.0; 3], [0.0; 3])).unwrap();
+    small
+        .add_mesh(None, "a", cuboid_at([1.0; 3], [0.0; 3]))
+        .unwrap();
     let mut huge = Scene::new();
-    huge.add_mesh(None, "a", cuboid_at([1e200; 3], [0.0; 3])).unwrap();
+    huge.add_mesh(None, "a", cuboid_at([1e200; 3], [0.0; 3]))
+        .unwrap();
     let view = View::standard();
     let o = Options::default();
     let a = draw_tile(&small, &view, &o, &Window::ALL).unwrap();
     let b = draw_tile(&huge, &view, &o, &Window::ALL).unwrap();
-    assert!(matches!(stitch(&[a.clone(), b], &o), Err(DrawError::Tiles(_))));
+    assert!(matches!(
+        stitch(&[a.clone(), b], &o),
+        Err(DrawError::Tiles(_))
+    ));
     let bytes = a.to_bytes();
     assert!(TileDrawing::from_bytes(&bytes[..bytes.len() - 1]).is_err());
     let mut flipped = bytes.clone();

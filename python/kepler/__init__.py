@@ -16,8 +16,11 @@ Views are dicts of the command line's view options: ``{"view_dir": (x, y, z)}`` 
 orthographic view along a direction, ``{"eye": ..., "target": ..., "fov": 40}`` for a
 perspective one, each with an optional ``"up"``; ``None`` takes the scene's camera (a scene
 file's) or the standard view.
+
+Large scenes render tile by tile, on a Dask cluster: :func:`kepler.dask.render_tiles` (the
+``dask`` extra).
 """
 
-from ._kepler import IN, ON, OUT, KeplerError, Polyline, Scene, render
+from ._kepler import IN, ON, OUT, KeplerError, Polyline, Scene, render, stitch
 
-__all__ = ["IN", "ON", "OUT", "KeplerError", "Polyline", "Scene", "render"]
+__all__ = ["IN", "ON", "OUT", "KeplerError", "Polyline", "Scene", "render", "stitch"]

@@ -11,6 +11,9 @@ View = Optional[Mapping[str, Any]]
 
 Faces = Union[npt.ArrayLike, Sequence[Sequence[int]]]
 
+Window = tuple[tuple[float, float], tuple[float, float]]
+"""A window of the picture: ``((x0, x1), (y0, y1))``, half open (``x0 <= x < x1``)."""
+
 IN: int
 """INCLUDE's answer for a point inside an object (1)."""
 ON: int
@@ -87,6 +90,19 @@ class Scene:
         order: bool = False,
     ) -> list[Polyline]:
         """The hidden-line drawing (see :func:`render`)."""
+    def tile_windows(
+        self, view: View = None, tiles: tuple[int, int] = (8, 8)
+    ) -> list[Window]:
+        """A grid of windows over the picture, each ``((x0, x1), (y0, y1))``, half open; the
+        outer ones reach to infinity, so the grid covers the whole picture."""
+    def render_tile(
+        self,
+        window: Window,
+        view: View = None,
+        edges: str = "feature",
+        crease_angle: float = 30.0,
+    ) -> bytes:
+        """The pieces of the drawing inside one window, as bytes for :func:`stitch`."""
 
 def render(
     vertices: npt.ArrayLike,
@@ -105,3 +121,13 @@ def render(
     ``once`` draws each stretch of line once, ``keep`` keeps coincident edges. ``order``:
     order each layer's paths to shorten pen travel.
     """
+
+def stitch(
+    tiles: Sequence[bytes],
+    hidden: bool = False,
+    overlaps: str = "once",
+    order: bool = False,
+) -> list[Polyline]:
+    """The drawing of the tiles of a grid (:meth:`Scene.render_tile` of each window of
+    :meth:`Scene.tile_windows`), finished as :func:`render` finishes it: the same polylines
+    as :meth:`Scene.render`, bit for bit."""

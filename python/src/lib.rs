@@ -6,20 +6,21 @@
 //! library's own message. No geometry is computed here.
 
 use kepler::geometry::{Point3, Vector3};
+use kepler::hidden::tiles::{TileDrawing, draw_tile, tile_windows};
 use kepler::hidden::{self, Drawing, EdgeClass, EdgeSelection};
 use kepler::mesh::{Mesh, Validation};
 use kepler::output::{SvgOptions, ordered};
 use kepler::queries::include::{IncludeIndex, Inclusion};
 use kepler::queries::visp::{Visibility, VisibilityIndex};
 use kepler::scene::{ObjectId, Scene as Graph, file};
-use kepler::views::{View, ViewOptions};
+use kepler::views::{View, ViewOptions, Window as Rectangle};
 use nalgebra::Matrix4;
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyBytes, PyDict};
 use std::path::Path;
 
 create_exception!(
@@ -95,26 +96,20 @@ fn faces_of(faces: &Bound<'_, PyAny>) -> PyResult<Vec<Vec<u32>>> {
         .collect()
 }
 
-/// A mesh from vertices (an `(n, 3)` array or sequence of triples) and faces, placed by an
-/// optional 4×4 transform.
+/// A mesh from vertices and polygon faces, placed by an optional transform.
 fn mesh_of(
-    vertices: &Bound<'_, PyAny>,
-    faces: &Bound<'_, PyAny>,
-    transform: Option<&Bound<'_, PyAny>>,
+    vertices: Vec<Point3>,
+    faces: Vec<Vec<u32>>,
+    transform: Option<&Matrix4<f64>>,
 ) -> PyResult<Mesh> {
-    let mesh = Mesh::from_polygons_with(
-        points_of(vertices, "vertices")?,
-        faces_of(faces)?,
-        Validation::Repair,
-    )
-    .map_err(err)?;
+    let mesh = Mesh::from_polygons_with(vertices, faces, Validation::Repair).map_err(err)?;
     placed(mesh, transform)
 }
 
-/// The mesh under an optional 4×4 transform (row-major homogeneous matrix).
-fn placed(mesh: Mesh, transform: Option<&Bound<'_, PyAny>>) -> PyResult<Mesh> {
+/// An optional 4×4 transform (row-major homogeneous matrix) from Python.
+fn transform_of(transform: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Matrix4<f64>>> {
     let Some(t) = transform else {
-        return Ok(mesh);
+        return Ok(None);
     };
     let t: PyReadonlyArray2<'_, f64> = as_array(t, "float64")
         .and_then(|a| a.extract())
@@ -123,8 +118,15 @@ fn placed(mesh: Mesh, transform: Option<&Bound<'_, PyAny>>) -> PyResult<Mesh> {
         return Err(err(format!("transform must be 4×4, not {:?}", t.shape())));
     }
     let a = t.as_array();
-    let m = Matrix4::from_fn(|i, j| a[[i, j]]);
-    mesh.transformed(&m).map_err(err)
+    Ok(Some(Matrix4::from_fn(|i, j| a[[i, j]])))
+}
+
+/// The mesh under an optional transform.
+fn placed(mesh: Mesh, transform: Option<&Matrix4<f64>>) -> PyResult<Mesh> {
+    match transform {
+        Some(m) => mesh.transformed(m).map_err(err),
+        None => Ok(mesh),
+    }
 }
 
 /// A triple from a Python sequence.
@@ -220,8 +222,60 @@ fn edges_of(edges: &str) -> PyResult<EdgeSelection> {
     }
 }
 
-/// Draws the scene as the command line's `render` does: each stretch of line once unless
-/// `overlaps == "keep"`, paths in pen order when `order`.
+/// The hidden-line options from Python's arguments.
+fn options_of(edges: &str, hidden: bool, crease_angle: f64) -> PyResult<hidden::Options> {
+    if !(crease_angle.is_finite() && (0.0..=180.0).contains(&crease_angle)) {
+        return Err(err(format!(
+            "crease_angle must be between 0 and 180 degrees, not {crease_angle}"
+        )));
+    }
+    Ok(hidden::Options {
+        edges: edges_of(edges)?,
+        crease_angle,
+        hidden,
+    })
+}
+
+/// Whether `overlaps` asks to keep overlapping lines.
+fn keeps_overlaps(overlaps: &str) -> PyResult<bool> {
+    match overlaps {
+        "once" => Ok(false),
+        "keep" => Ok(true),
+        other => Err(err(format!(
+            "overlaps must be 'once' or 'keep', not '{other}'"
+        ))),
+    }
+}
+
+/// A drawing finished as the command line's `render` finishes it: each stretch of line once
+/// unless `keep`, paths in pen order when `order`; as Python polylines.
+fn finished(drawing: Drawing, keep: bool, order: bool) -> Vec<Polyline> {
+    let drawing = if keep {
+        drawing
+    } else {
+        hidden::without_overlaps(&drawing).0
+    };
+    let drawing = if order { ordered(&drawing) } else { drawing };
+    drawing
+        .polylines
+        .into_iter()
+        .map(|p| Polyline {
+            points: p.points,
+            class: p.class,
+            visible: p.visible,
+        })
+        .collect()
+}
+
+/// An error unless the scene has something to draw.
+fn drawable(scene: &Graph) -> PyResult<()> {
+    if scene.mesh_objects(scene.roots()).is_empty() {
+        return Err(err("the scene has no objects to draw"));
+    }
+    Ok(())
+}
+
+/// Draws the scene as the command line's `render` does (see [`finished`]).
 #[allow(clippy::too_many_arguments)]
 fn draw(
     py: Python<'_>,
@@ -233,55 +287,58 @@ fn draw(
     overlaps: &str,
     order: bool,
 ) -> PyResult<Vec<Polyline>> {
-    if !(crease_angle.is_finite() && (0.0..=180.0).contains(&crease_angle)) {
-        return Err(err(format!(
-            "crease_angle must be between 0 and 180 degrees, not {crease_angle}"
-        )));
-    }
-    let keep = match overlaps {
-        "once" => false,
-        "keep" => true,
-        other => {
-            return Err(err(format!(
-                "overlaps must be 'once' or 'keep', not '{other}'"
-            )));
-        }
-    };
-    if scene.mesh_objects(scene.roots()).is_empty() {
-        return Err(err("the scene has no objects to draw"));
-    }
+    let options = options_of(edges, hidden, crease_angle)?;
+    let keep = keeps_overlaps(overlaps)?;
+    drawable(scene)?;
     let view = view_of(scene, view, SvgOptions::default().drawing_aspect())?;
-    let options = hidden::Options {
-        edges: edges_of(edges)?,
-        crease_angle,
-        hidden,
-    };
-    let drawing: Drawing = py
-        .detach(|| -> Result<Drawing, String> {
-            let drawing = hidden::draw(scene, &view, &options).map_err(|e| e.to_string())?;
-            let drawing = if keep {
-                drawing
-            } else {
-                hidden::without_overlaps(&drawing).0
-            };
-            Ok(if order { ordered(&drawing) } else { drawing })
-        })
-        .map_err(err)?;
-    Ok(drawing
-        .polylines
-        .into_iter()
-        .map(|p| Polyline {
-            points: p.points,
-            class: p.class,
-            visible: p.visible,
-        })
-        .collect())
+    py.detach(|| {
+        hidden::draw(scene, &view, &options)
+            .map(|d| finished(d, keep, order))
+            .map_err(|e| e.to_string())
+    })
+    .map_err(err)
+}
+
+/// One call that built a scene, kept so that the scene can be rebuilt in another process (a
+/// Dask worker): a pickled scene is its calls.
+#[derive(Debug, Clone)]
+enum Step {
+    /// `Scene.load(path)`, with the path made absolute.
+    Load(String),
+    /// `add_group(name, parent)`.
+    Group(String, Option<String>),
+    /// `add_mesh` or `add_trimesh`: name, vertices, faces, transform, parent.
+    Mesh(
+        String,
+        Vec<[f64; 3]>,
+        Vec<Vec<u32>>,
+        Option<[f64; 16]>,
+        Option<String>,
+    ),
+    /// `add_file(path, name, transform, parent)`, with the path made absolute.
+    File(String, Option<String>, Option<[f64; 16]>, Option<String>),
+}
+
+/// A transform as 16 numbers, row by row, and back.
+fn row_major(m: &Matrix4<f64>) -> [f64; 16] {
+    std::array::from_fn(|k| m[(k / 4, k % 4)])
+}
+
+fn from_row_major(t: &[f64; 16]) -> Matrix4<f64> {
+    Matrix4::from_fn(|i, j| t[4 * i + j])
+}
+
+/// A path made absolute (a worker may run elsewhere in the file system).
+fn absolute(path: &str) -> String {
+    std::path::absolute(path).map_or_else(|_| path.to_string(), |p| p.display().to_string())
 }
 
 /// A scene: a graph of named objects (groups and meshes), as kepler's scene files describe.
 #[pyclass(module = "kepler")]
 struct Scene {
     graph: Graph,
+    /// The calls that built it, in order (see [`Step`]).
+    steps: Vec<Step>,
 }
 
 impl Scene {
@@ -297,11 +354,61 @@ impl Scene {
         parent.map(|p| self.object(p)).transpose()
     }
 
+    /// Carries out one step of building the scene and records it; returns the path of the
+    /// object it added.
+    fn apply(&mut self, step: Step) -> PyResult<String> {
+        let path = match &step {
+            Step::Load(path) => {
+                self.graph = file::load(Path::new(path)).map_err(err)?;
+                String::new()
+            }
+            Step::Group(name, parent) => {
+                let parent = self.parent(parent.as_deref())?;
+                let id = self.graph.add_group(parent, name).map_err(err)?;
+                self.graph.path(id)
+            }
+            Step::Mesh(name, vertices, faces, transform, parent) => {
+                let vertices = vertices.iter().map(|&p| Point3::from(p)).collect();
+                let transform = transform.as_ref().map(from_row_major);
+                let mesh = mesh_of(vertices, faces.clone(), transform.as_ref())?;
+                self.add(name, mesh, parent.as_deref())?
+            }
+            Step::File(path, name, transform, parent) => {
+                let file = Path::new(path);
+                let mesh = kepler::io::read_mesh(file).map_err(err)?;
+                let stem = file.file_stem().and_then(|s| s.to_str()).unwrap_or("mesh");
+                let mesh = placed(mesh, transform.as_ref().map(from_row_major).as_ref())?;
+                let name = name.clone().unwrap_or_else(|| stem.to_string());
+                self.add(&name, mesh, parent.as_deref())?
+            }
+        };
+        self.steps.push(step);
+        Ok(path)
+    }
+
     /// Adds a mesh and returns its path.
     fn add(&mut self, name: &str, mesh: Mesh, parent: Option<&str>) -> PyResult<String> {
         let parent = self.parent(parent)?;
         let id = self.graph.add_mesh(parent, name, mesh).map_err(err)?;
         Ok(self.graph.path(id))
+    }
+
+    /// A mesh step from Python vertices, faces and transform.
+    fn mesh_step(
+        name: &str,
+        vertices: &Bound<'_, PyAny>,
+        faces: &Bound<'_, PyAny>,
+        transform: Option<&Bound<'_, PyAny>>,
+        parent: Option<&str>,
+    ) -> PyResult<Step> {
+        let vertices = points_of(vertices, "vertices")?;
+        Ok(Step::Mesh(
+            name.to_string(),
+            vertices.iter().map(|p| [p.x, p.y, p.z]).collect(),
+            faces_of(faces)?,
+            transform_of(transform)?.as_ref().map(row_major),
+            parent.map(str::to_string),
+        ))
     }
 }
 
@@ -311,6 +418,7 @@ impl Scene {
     fn new() -> Scene {
         Scene {
             graph: Graph::new(),
+            steps: Vec::new(),
         }
     }
 
@@ -318,17 +426,15 @@ impl Scene {
     /// `.ply`).
     #[staticmethod]
     fn load(path: &str) -> PyResult<Scene> {
-        Ok(Scene {
-            graph: file::load(Path::new(path)).map_err(err)?,
-        })
+        let mut scene = Scene::new();
+        scene.apply(Step::Load(absolute(path)))?;
+        Ok(scene)
     }
 
     /// Adds a group; returns its path.
     #[pyo3(signature = (name, parent=None))]
     fn add_group(&mut self, name: &str, parent: Option<&str>) -> PyResult<String> {
-        let parent = self.parent(parent)?;
-        let id = self.graph.add_group(parent, name).map_err(err)?;
-        Ok(self.graph.path(id))
+        self.apply(Step::Group(name.to_string(), parent.map(str::to_string)))
     }
 
     /// Adds a mesh from an `(n, 3)` vertex array and faces (an `(m, k)` integer array or a
@@ -342,8 +448,8 @@ impl Scene {
         transform: Option<&Bound<'_, PyAny>>,
         parent: Option<&str>,
     ) -> PyResult<String> {
-        let mesh = mesh_of(vertices, faces, transform)?;
-        self.add(name, mesh, parent)
+        let step = Scene::mesh_step(name, vertices, faces, transform, parent)?;
+        self.apply(step)
     }
 
     /// Adds a trimesh (or any object with `vertices` and `faces` arrays); returns its path.
@@ -355,12 +461,9 @@ impl Scene {
         transform: Option<&Bound<'_, PyAny>>,
         parent: Option<&str>,
     ) -> PyResult<String> {
-        let mesh = mesh_of(
-            &mesh.getattr("vertices")?,
-            &mesh.getattr("faces")?,
-            transform,
-        )?;
-        self.add(name, mesh, parent)
+        let (vertices, faces) = (mesh.getattr("vertices")?, mesh.getattr("faces")?);
+        let step = Scene::mesh_step(name, &vertices, &faces, transform, parent)?;
+        self.apply(step)
     }
 
     /// Adds the mesh of a mesh file (`.obj`, `.stl`, `.off`, `.ply`); returns its path.
@@ -372,11 +475,49 @@ impl Scene {
         transform: Option<&Bound<'_, PyAny>>,
         parent: Option<&str>,
     ) -> PyResult<String> {
-        let path = Path::new(path);
-        let mesh = kepler::io::read_mesh(path).map_err(err)?;
-        let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("mesh");
-        let mesh = placed(mesh, transform)?;
-        self.add(name.unwrap_or(stem), mesh, parent)
+        self.apply(Step::File(
+            absolute(path),
+            name.map(str::to_string),
+            transform_of(transform)?.as_ref().map(row_major),
+            parent.map(str::to_string),
+        ))
+    }
+
+    /// Pickling: the scene is rebuilt from the calls that built it (files are read again, by
+    /// their absolute paths).
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, (Vec<Bound<'py, PyAny>>,))> {
+        let rebuild = py.import("kepler._kepler")?.getattr("_rebuild")?;
+        let steps = self
+            .steps
+            .iter()
+            .map(|step| {
+                Ok(match step.clone() {
+                    Step::Load(path) => ("load", path).into_pyobject(py)?.into_any(),
+                    Step::Group(name, parent) => {
+                        ("group", name, parent).into_pyobject(py)?.into_any()
+                    }
+                    Step::Mesh(name, vertices, faces, transform, parent) => (
+                        "mesh",
+                        name,
+                        vertices,
+                        faces,
+                        transform.map(Vec::from),
+                        parent,
+                    )
+                        .into_pyobject(py)?
+                        .into_any(),
+                    Step::File(path, name, transform, parent) => {
+                        ("file", path, name, transform.map(Vec::from), parent)
+                            .into_pyobject(py)?
+                            .into_any()
+                    }
+                })
+            })
+            .collect::<PyResult<Vec<_>>>()?;
+        Ok((rebuild, (steps,)))
     }
 
     /// The paths of the scene's objects, depth first.
@@ -479,6 +620,47 @@ impl Scene {
         )
     }
 
+    /// A grid of `tiles[0]` by `tiles[1]` windows over the scene's picture in a view, each
+    /// `((x0, x1), (y0, y1))`, half open, the outer ones reaching to infinity: the windows of
+    /// `render_tile` that `kepler.stitch` joins into `render`'s drawing.
+    #[pyo3(signature = (view=None, tiles=(8, 8)))]
+    fn tile_windows(
+        &self,
+        view: Option<&Bound<'_, PyDict>>,
+        tiles: (usize, usize),
+    ) -> PyResult<Vec<Window>> {
+        drawable(&self.graph)?;
+        let view = view_of(&self.graph, view, SvgOptions::default().drawing_aspect())?;
+        let windows = tile_windows(&self.graph, &view, [tiles.0, tiles.1]).map_err(err)?;
+        Ok(windows.iter().map(|w| (w.x.into(), w.y.into())).collect())
+    }
+
+    /// The pieces of the drawing inside one window `((x0, x1), (y0, y1))` of the view, as
+    /// bytes for `kepler.stitch` (hidden pieces are kept; `stitch` drops them unless asked).
+    #[pyo3(signature = (window, view=None, edges="feature", crease_angle=30.0))]
+    fn render_tile<'py>(
+        &self,
+        py: Python<'py>,
+        window: Window,
+        view: Option<&Bound<'_, PyDict>>,
+        edges: &str,
+        crease_angle: f64,
+    ) -> PyResult<Bound<'py, PyBytes>> {
+        let options = options_of(edges, true, crease_angle)?;
+        drawable(&self.graph)?;
+        let view = view_of(&self.graph, view, SvgOptions::default().drawing_aspect())?;
+        let window = Rectangle::new(window.0.into(), window.1.into()).map_err(err)?;
+        let graph = &self.graph;
+        let bytes = py
+            .detach(|| {
+                draw_tile(graph, &view, &options, &window)
+                    .map(|t| t.to_bytes())
+                    .map_err(|e| e.to_string())
+            })
+            .map_err(err)?;
+        Ok(PyBytes::new(py, &bytes))
+    }
+
     fn __repr__(&self) -> String {
         format!("Scene({} objects)", self.graph.walk().len())
     }
@@ -501,7 +683,11 @@ fn render(
 ) -> PyResult<Vec<Polyline>> {
     let mut graph = Graph::new();
     graph
-        .add_mesh(None, "mesh", mesh_of(vertices, faces, None)?)
+        .add_mesh(
+            None,
+            "mesh",
+            mesh_of(points_of(vertices, "vertices")?, faces_of(faces)?, None)?,
+        )
         .map_err(err)?;
     draw(
         py,
@@ -515,6 +701,81 @@ fn render(
     )
 }
 
+/// A window as Python sees it: `((x0, x1), (y0, y1))`.
+type Window = ((f64, f64), (f64, f64));
+
+/// The drawing of the tiles of a grid (the bytes of `Scene.render_tile` for each window of
+/// `Scene.tile_windows`), finished as `render` finishes it: the same polylines as `render`,
+/// bit for bit.
+#[pyfunction]
+#[pyo3(signature = (tiles, hidden=false, overlaps="once", order=false))]
+fn stitch(
+    py: Python<'_>,
+    tiles: Vec<Vec<u8>>,
+    hidden: bool,
+    overlaps: &str,
+    order: bool,
+) -> PyResult<Vec<Polyline>> {
+    let keep = keeps_overlaps(overlaps)?;
+    let options = hidden::Options {
+        hidden,
+        ..hidden::Options::default()
+    };
+    py.detach(|| {
+        let tiles = tiles
+            .iter()
+            .map(|t| TileDrawing::from_bytes(t))
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(|e| e.to_string())?;
+        kepler::hidden::tiles::stitch(&tiles, &options)
+            .map(|d| finished(d, keep, order))
+            .map_err(|e| e.to_string())
+    })
+    .map_err(err)
+}
+
+/// A scene rebuilt from the calls that built it (unpickling a `Scene`).
+#[pyfunction]
+fn _rebuild(steps: Vec<Bound<'_, PyAny>>) -> PyResult<Scene> {
+    let mut scene = Scene::new();
+    for step in steps {
+        let kind: String = step.get_item(0)?.extract()?;
+        let step = match kind.as_str() {
+            "load" => Step::Load(step.get_item(1)?.extract()?),
+            "group" => {
+                let (_, name, parent): (String, String, Option<String>) = step.extract()?;
+                Step::Group(name, parent)
+            }
+            "mesh" => {
+                type Args = (
+                    String,
+                    String,
+                    Vec<[f64; 3]>,
+                    Vec<Vec<u32>>,
+                    Option<[f64; 16]>,
+                    Option<String>,
+                );
+                let (_, name, vertices, faces, transform, parent): Args = step.extract()?;
+                Step::Mesh(name, vertices, faces, transform, parent)
+            }
+            "file" => {
+                type Args = (
+                    String,
+                    String,
+                    Option<String>,
+                    Option<[f64; 16]>,
+                    Option<String>,
+                );
+                let (_, path, name, transform, parent): Args = step.extract()?;
+                Step::File(path, name, transform, parent)
+            }
+            other => return Err(err(format!("not a step that builds a scene: '{other}'"))),
+        };
+        scene.apply(step)?;
+    }
+    Ok(scene)
+}
+
 /// The module `kepler._kepler`.
 #[pymodule]
 fn _kepler(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -525,5 +786,7 @@ fn _kepler(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Polyline>()?;
     m.add_class::<Scene>()?;
     m.add_function(wrap_pyfunction!(render, m)?)?;
+    m.add_function(wrap_pyfunction!(stitch, m)?)?;
+    m.add_function(wrap_pyfunction!(_rebuild, m)?)?;
     Ok(())
 }

@@ -79,9 +79,7 @@ use crate::grid::SegmentGrid;
 use crate::mesh::Mesh;
 use crate::queries::Counters;
 use crate::queries::along::{Form, Sample, Zero, cut_point, hides_at};
-use crate::queries::frustum::{
-    Clip, Framed, FramedLine, TilePlanes, contour_in_front, pictured,
-};
+use crate::queries::frustum::{Clip, Framed, FramedLine, TilePlanes, contour_in_front, pictured};
 use crate::queries::intersections;
 use crate::queries::meet::{Meet, OnLine, balance, reversed};
 use crate::queries::own_solid::turned_away;
@@ -90,7 +88,6 @@ use crate::queries::visp::Visibility;
 use crate::scene::{ObjectId, Scene, SceneError};
 use crate::views::{Eye, Picture, View, ViewError};
 use chain::{Piece, chain};
-use tiles::LineId;
 use cover::{Occluders, PicturedMesh};
 use geo::{Line as GeoLine, coord};
 use rayon::prelude::*;
@@ -100,6 +97,7 @@ use std::cmp::Ordering;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicU64, Ordering as Atomic};
 use std::time::Instant;
+use tiles::LineId;
 
 /// Why a drawing could not be made: the hidden-line layer's error.
 ///
@@ -1572,9 +1570,13 @@ fn frustum_cuts(
     (i, l, m): (usize, &Line, Option<&MeetLine>),
 ) -> Vec<(usize, Cut)> {
     let frustum = clip.into_iter().flat_map(|c| c.forms().collect::<Vec<_>>());
-    let frustum = frustum.enumerate().map(|(k, form)| (form, [3, k as u32, 0, 0]));
+    let frustum = frustum
+        .enumerate()
+        .map(|(k, form)| (form, [3, k as u32, 0, 0]));
     let tile = tile.into_iter().flat_map(|t| t.forms());
-    let tile = tile.enumerate().map(|(k, form)| (form, [TILE_CUT, k as u32, 0, 0]));
+    let tile = tile
+        .enumerate()
+        .map(|(k, form)| (form, [TILE_CUT, k as u32, 0, 0]));
     frustum
         .chain(tile)
         .filter_map(|(form, key)| {

@@ -375,7 +375,10 @@ pub fn stitch(tiles: &[TileDrawing], options: &Options) -> Result<Drawing> {
                 .to_string(),
         ));
     }
-    let mut pieces: Vec<TilePiece> = tiles.iter().flat_map(|t| t.pieces.iter().copied()).collect();
+    let mut pieces: Vec<TilePiece> = tiles
+        .iter()
+        .flat_map(|t| t.pieces.iter().copied())
+        .collect();
     pieces.sort_unstable_by(|p, q| {
         p.id.cmp(&q.id)
             .then(p.t[0].total_cmp(&q.t[0]))

@@ -75,9 +75,13 @@ impl Window {
     /// ```
     pub fn grid(low: [f64; 2], high: [f64; 2], n: [usize; 2]) -> Result<Vec<Window>, ViewError> {
         if n.contains(&0) {
-            return Err(ViewError::Options("a grid of windows needs at least one of each"));
+            return Err(ViewError::Options(
+                "a grid of windows needs at least one of each",
+            ));
         }
-        if !(low.iter().chain(&high).all(|c| c.is_finite()) && low[0] <= high[0] && low[1] <= high[1])
+        if !(low.iter().chain(&high).all(|c| c.is_finite())
+            && low[0] <= high[0]
+            && low[1] <= high[1])
         {
             return Err(ViewError::Options(
                 "a grid of windows needs finite bounds, low below high",

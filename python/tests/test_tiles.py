@@ -1,0 +1,119 @@
+"""Tiles (issue 17, item 6): a scene drawn window by window, by hand or on a Dask cluster of
+worker processes, stitched into the same drawing as `Scene.render`, bit for bit; scenes
+pickled to the workers as the calls that built them."""
+
+import pickle
+
+import numpy as np
+import pytest
+import trimesh
+
+import kepler
+import kepler.dask
+from conftest import ROOT, SCENES
+
+OBLIQUE = {"view_dir": (-1, -2, -1.5)}
+PERSPECTIVE = {"eye": (9, -14, 8), "target": (0, 0, 0), "fov": 40}
+
+
+def bits(polylines):
+    """A drawing as comparable bits: class, visibility and the points' bytes per polyline."""
+    return [(p.edge_class, p.visible, p.points.tobytes()) for p in polylines]
+
+
+def by_hand(scene, tiles, view=None, **options):
+    """The drawing made tile by tile in this process, each tile's bytes stitched."""
+    edges = options.get("edges", "feature")
+    parts = [
+        scene.render_tile(w, view=view, edges=edges) for w in scene.tile_windows(view, tiles)
+    ]
+    finish = {k: v for k, v in options.items() if k in ("hidden", "overlaps", "order")}
+    return kepler.stitch(parts, **finish)
+
+
+@pytest.mark.parametrize("scene", SCENES, ids=[s.stem for s in SCENES])
+def test_tiles_stitch_to_render_on_every_bundled_scene(scene):
+    s = kepler.Scene.load(str(scene))
+    for view in (None, OBLIQUE):
+        for tiles in ((1, 1), (3, 2), (6, 6)):
+            assert bits(by_hand(s, tiles, view, hidden=True)) == bits(
+                s.render(view=view, hidden=True)
+            ), (scene.stem, view, tiles)
+
+
+def test_every_option_stitches_as_render_draws():
+    s = kepler.Scene.load(str(ROOT / "scenes" / "solids.toml"))
+    for view in (OBLIQUE, PERSPECTIVE):
+        for options in (
+            {"edges": "all", "hidden": True},
+            {"edges": "mesh"},
+            {"overlaps": "keep", "hidden": True},
+            {"order": True, "hidden": True},
+        ):
+            assert bits(by_hand(s, (4, 5), view, **options)) == bits(
+                s.render(view=view, **options)
+            ), (view, options)
+
+
+def built_scene(tmp_path):
+    """A scene built call by call: a group, arrays with a transform, a trimesh, a file."""
+    s = kepler.Scene()
+    s.add_group("g")
+    v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)
+    f = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]
+    t = np.eye(4)
+    t[:3, 3] = (0.25, 0.5, 0.125)
+    s.add_mesh("tetra", v, f, transform=t, parent="g")
+    s.add_trimesh("box", trimesh.creation.box(extents=(1, 2, 0.5)))
+    path = tmp_path / "cube.obj"
+    trimesh.creation.box(extents=(0.5, 0.5, 3)).export(path)
+    s.add_file(str(path), transform=np.diag([1.0, 1.0, 1.0, 1.0]))
+    return s
+
+
+def test_a_pickled_scene_is_the_same_scene(tmp_path):
+    s = built_scene(tmp_path)
+    copy = pickle.loads(pickle.dumps(s))
+    assert copy.objects() == s.objects() == ["g", "g/tetra", "box", "cube"]
+    for name in s.objects():
+        assert copy.bounds(name) == s.bounds(name)
+    assert bits(copy.render(view=OBLIQUE, hidden=True)) == bits(s.render(view=OBLIQUE, hidden=True))
+    loaded = kepler.Scene.load(str(ROOT / "scenes" / "city.toml"))
+    assert pickle.loads(pickle.dumps(loaded)).objects() == loaded.objects()
+
+
+def test_tile_errors_are_kepler_errors():
+    s = kepler.Scene.load(str(ROOT / "scenes" / "cube.toml"))
+    with pytest.raises(kepler.KeplerError, match="lower bounds must be less"):
+        s.render_tile(((1.0, 0.0), (0.0, 1.0)))
+    with pytest.raises(kepler.KeplerError, match="not a tile"):
+        kepler.stitch([b"nonsense"])
+    with pytest.raises(kepler.KeplerError, match="at least one"):
+        s.tile_windows(None, (0, 3))
+    with pytest.raises(kepler.KeplerError, match="no objects"):
+        kepler.Scene().tile_windows()
+
+
+def test_render_tiles_on_a_local_dask_cluster(tmp_path):
+    from dask.distributed import Client, LocalCluster
+
+    city = kepler.Scene.load(str(ROOT / "scenes" / "city.toml"))
+    built = built_scene(tmp_path)
+    with LocalCluster(
+        n_workers=2,
+        threads_per_worker=1,
+        processes=True,
+        dashboard_address=None,
+        env={"RAYON_NUM_THREADS": "1"},
+    ) as cluster, Client(cluster) as client:
+        for scene, view in ((city, None), (city, PERSPECTIVE), (built, OBLIQUE)):
+            lines = kepler.dask.render_tiles(scene, view, tiles=(4, 4), client=client, hidden=True)
+            assert bits(lines) == bits(scene.render(view=view, hidden=True))
+        # The tiles really ran in the worker processes.
+        assert len(client.scheduler_info()["workers"]) == 2
+
+
+def test_render_tiles_starts_its_own_cluster():
+    s = kepler.Scene.load(str(ROOT / "scenes" / "solids.toml"))
+    lines = kepler.dask.render_tiles(s, OBLIQUE, tiles=(3, 3), order=True)
+    assert bits(lines) == bits(s.render(view=OBLIQUE, order=True))
