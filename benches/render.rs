@@ -10,15 +10,18 @@
 //! The group "render crowds" times the cases of issue 16 that once grew with the square of
 //! their size: a fan, an array of separate objects, stacked copies, a flat mesh edge-on.
 //!
+//! The group "render tiles" times the metropolis whole and in tiles (issue 17).
+//!
 //!   cargo bench --bench render
 //!   cargo bench --bench render -- crowds
+//!   cargo bench --bench render -- tiles
 
 use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{Criterion, SamplingMode, Throughput, criterion_group, criterion_main};
 use kepler::geometry::{Point3, Vector3};
-use kepler::hidden::{EdgeSelection, Options, draw};
+use kepler::hidden::{EdgeSelection, Options, draw, tiles};
 use kepler::mesh::Mesh;
 use kepler::scene::Scene;
 use kepler::views::View;
@@ -220,5 +223,43 @@ fn render_crowds(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, render_70k, render_1m, render_crowds);
+/// The bundled metropolis (22,790 objects) drawn whole, and in 2×2 and 8×8 tiles drawn one
+/// after another in this process and stitched: what tiling costs on one machine (each tile
+/// draws only the objects that reach it, but objects that straddle borders are drawn in
+/// every tile they reach). The speed-up of tiles on Dask workers is measured by
+/// `scripts/tiles.py`.
+fn render_tiles(c: &mut Criterion) {
+    let scene = kepler::scene::file::load(std::path::Path::new("scenes/metropolis.toml"))
+        .expect("the bundled metropolis");
+    let view = kepler::views::ViewOptions::default()
+        .resolve(scene.camera())
+        .expect("view");
+    let view = view.with_aspect(1.5).expect("view");
+    let options = Options::default();
+    let mut group = c.benchmark_group("render tiles");
+    group
+        .sample_size(10)
+        .sampling_mode(SamplingMode::Flat)
+        .measurement_time(Duration::from_secs(20));
+    group.throughput(Throughput::Elements(22_790));
+    group.bench_function("metropolis whole", |b| {
+        b.iter(|| draw(black_box(&scene), &view, &options).expect("drawing"))
+    });
+    for grid in [[2, 2], [8, 8]] {
+        let windows = tiles::tile_windows(&scene, &view, grid).expect("windows");
+        group.bench_function(format!("metropolis {}×{} tiles", grid[0], grid[1]), |b| {
+            b.iter(|| {
+                let parts: Vec<_> = windows
+                    .iter()
+                    .map(|w| tiles::draw_tile(black_box(&scene), &view, &options, w))
+                    .collect::<Result<_, _>>()
+                    .expect("tiles");
+                tiles::stitch(&parts, &options).expect("stitched")
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, render_70k, render_1m, render_crowds, render_tiles);
 criterion_main!(benches);

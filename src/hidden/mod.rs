@@ -426,7 +426,7 @@ fn chained(mut pass: Pass, mut pieces: Vec<Piece>, options: &Options) -> Drawing
 /// edges in [`Pass::lines`].
 struct Leaf<'a> {
     id: ObjectId,
-    /// Its index among the scene's mesh objects (but exact copies), the same in every tile.
+    /// Its index among the scene's mesh objects, the same in every tile.
     global: u32,
     mesh: &'a Mesh,
     pictures: Vec<[f64; 2]>,
@@ -468,18 +468,32 @@ impl<'a> Pass<'a> {
     fn new(scene: &'a Scene, view: &View, tile: Option<TilePlanes>) -> Result<Pass<'a>> {
         let picture = Picture::of(view);
         let (meshes, clip) = pictured(scene, view)?;
+        // In a tile, the objects that may reach it, each with its index among all (so named
+        // the same in every tile). Exact copies share their CBOX: a copy and its first are
+        // left out together, so the copies found among the rest are those of the whole.
         let all = meshes.len();
-        let meshes = without_copies(meshes);
-        let copies = all - meshes.len();
-        let kept = meshes.len();
-        let leaves: Vec<Leaf> = meshes
+        let meshes: Vec<(usize, (ObjectId, &Mesh))> = meshes
             .into_iter()
             .enumerate()
             .filter(|(_, (id, _))| {
                 tile.as_ref()
                     .is_none_or(|t| !t.surely_outside(&scene.cbox(*id).corners()))
             })
-            .map(|(global, (id, mesh))| Leaf {
+            .collect();
+        let outside_tile = all - meshes.len();
+        let (globals, meshes): (Vec<usize>, Vec<(ObjectId, &Mesh)>) = meshes.into_iter().unzip();
+        // Exact copies of an earlier mesh are left out (see [`originals`]): a copy hides
+        // exactly what the first hides, meets nothing the first does not (coincident faces
+        // make no intersection line), and its edges are the first's. Copies stacked in one
+        // place would otherwise cost every pair of them.
+        let first = originals(&meshes);
+        let copies = (0..meshes.len()).filter(|&n| first[n] != n).count();
+        let leaves: Vec<Leaf> = meshes
+            .into_iter()
+            .zip(globals)
+            .enumerate()
+            .filter(|(n, _)| first[*n] == *n)
+            .map(|(_, ((id, mesh), global))| Leaf {
                 id,
                 global: global as u32,
                 mesh,
@@ -488,7 +502,6 @@ impl<'a> Pass<'a> {
                 lines: 0..0,
             })
             .collect();
-        let outside_tile = kept - leaves.len();
         Ok(Pass {
             tile,
             outside_tile,
@@ -1612,20 +1625,6 @@ fn cut_picture(picture: &Picture, eye: &Eye, l: &Line, cut: Option<&Cut>) -> [f6
         Some(c) => cut_point(picture, eye, &c.zero.form, &l.a, &l.b),
         None => l.ends[0],
     }
-}
-
-/// The mesh objects, without those whose mesh is an exact copy of an earlier one's (see
-/// [`originals`]): a copy hides exactly what the first hides, meets nothing the first does not
-/// (coincident faces make no intersection line), and its edges are the first's. Copies stacked
-/// in one place would otherwise cost every pair of them.
-fn without_copies(meshes: Vec<(ObjectId, &Mesh)>) -> Vec<(ObjectId, &Mesh)> {
-    let first = originals(&meshes);
-    meshes
-        .into_iter()
-        .enumerate()
-        .filter(|&(n, _)| first[n] == n)
-        .map(|(_, m)| m)
-        .collect()
 }
 
 /// For each mesh object, the index of the first whose mesh is the same (the same vertices, bit

@@ -150,6 +150,8 @@ pub struct Object {
     cbox: OnceLock<Aabb>,
     inbox: OnceLock<Option<Inbox>>,
     tribox: OnceLock<TriboxBounds>,
+    /// The exponents of a mesh's coordinates (see [`Scene::exponents`]).
+    exponents: OnceLock<Exponents>,
 }
 
 impl Object {
@@ -162,6 +164,7 @@ impl Object {
             cbox: OnceLock::new(),
             inbox: OnceLock::new(),
             tribox: OnceLock::new(),
+            exponents: OnceLock::new(),
         }
     }
 
@@ -313,6 +316,7 @@ impl Scene {
             o.cbox = OnceLock::new();
             o.inbox = OnceLock::new();
             o.tribox = OnceLock::new();
+            o.exponents = OnceLock::new();
             match o.parent {
                 Some(p) => id = p,
                 None => break,
@@ -814,11 +818,15 @@ impl Scene {
     pub fn exponents(&self) -> Exponents {
         self.objects
             .values()
-            .filter_map(Object::mesh)
-            .flat_map(|m| m.vertices())
-            .fold(Exponents::NONE, |e, p| {
-                e.union(Exponents::of(p.coords.as_slice()))
+            .filter_map(|o| {
+                let mesh = o.mesh()?;
+                Some(*o.exponents.get_or_init(|| {
+                    mesh.vertices().iter().fold(Exponents::NONE, |e, p| {
+                        e.union(Exponents::of(p.coords.as_slice()))
+                    })
+                }))
             })
+            .fold(Exponents::NONE, Exponents::union)
     }
 
     /// The scene scaled by `2^exponent`, exactly (the same objects, with the same ids and
@@ -873,6 +881,7 @@ impl Scene {
             o.cbox = OnceLock::new();
             o.inbox = OnceLock::new();
             o.tribox = OnceLock::new();
+            o.exponents = OnceLock::new();
         }
         Ok(Scene {
             objects,

@@ -3,7 +3,8 @@
 
 use super::{Eye, View, ViewError};
 use crate::geometry::exact::{accurate_sum, expansion, two_product, two_sum};
-use crate::geometry::kernel::{builds_exactly, plain_dot};
+use crate::geometry::kernel::{Polynomial, builds_exactly, plain_dot};
+use crate::geometry::predicates::Side;
 use crate::geometry::{Point3, Vector3};
 use crate::mesh::Mesh;
 use crate::scene::{ObjectId, Scene};
@@ -259,6 +260,21 @@ impl Picture {
     /// assert!(!pic.in_front(&Point3::new(5.0, 5.0, 10.0)));
     /// ```
     pub fn in_front(&self, p: &Point3) -> bool {
-        !self.perspective || self.form(2, p).last().is_some_and(|&top| top > 0.0)
+        if !self.perspective {
+            return true;
+        }
+        // The depth's floating-point estimate decides when its error bound allows (exactly
+        // as the expansion would), else the exact expansion.
+        let depth = Side {
+            origin: self.origin,
+            normal: self.rows[2],
+            offset: 0.0,
+            x: *p,
+        }
+        .estimate();
+        if depth.value.is_finite() && depth.value.abs() > depth.bound {
+            return depth.value > 0.0;
+        }
+        self.form(2, p).last().is_some_and(|&top| top > 0.0)
     }
 }
