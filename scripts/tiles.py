@@ -73,7 +73,7 @@ def main():
                 Client(cluster) as client:
             started = time.perf_counter() - clock
             clock = time.perf_counter()
-            client.scatter(scene, broadcast=True)
+            client.scatter(scene, broadcast=True, hash=False)
             sent = time.perf_counter() - clock
             tiled_time, tiled = timed(lambda: kepler.dask.render_tiles(
                 scene, tiles=tiles, client=client, hidden=True))

@@ -61,7 +61,9 @@ def render_tiles(
         )
         client = Client(cluster)
     try:
-        shared = client.scatter(scene, broadcast=True)
+        # A key of its own (not the content's hash): a scene scattered again while an earlier
+        # copy is being released would otherwise race with its release.
+        shared = client.scatter(scene, broadcast=True, hash=False)
         futures = [
             client.submit(_tile, shared, window, view, edges, crease_angle, pure=False)
             for window in windows
