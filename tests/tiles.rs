@@ -122,7 +122,7 @@ fn lattices_cut_through_vertices_and_along_edges() {
             let at = [rng.int(0, 3), rng.int(0, 3), rng.int(0, 2)];
             let size = [rng.int(1, 2), rng.int(1, 2), rng.pick(&[1.0, 1.5])];
             scene
-                .add_mesh(None, &format!("box{i}"), cuboid_at(size, at))
+                .add_mesh(None, format!("box{i}"), cuboid_at(size, at))
                 .unwrap();
         }
         let views = [
@@ -186,7 +186,7 @@ fn random_boxes_in_random_views_and_grids() {
                 rng.range(0.2, 2.0),
             ];
             scene
-                .add_mesh(None, &format!("b{i}"), cuboid_at(size, at))
+                .add_mesh(None, format!("b{i}"), cuboid_at(size, at))
                 .unwrap();
         }
         let direction = rng.vector(1.0);
@@ -218,7 +218,7 @@ fn an_eye_inside_the_scene_clips_the_tiles_too() {
     for i in 0..4 {
         let at = [f64::from(i) * 3.0 - 6.0, 2.0, -1.0];
         scene
-            .add_mesh(None, &format!("b{i}"), cuboid_at([2.0, 2.0, 2.0], at))
+            .add_mesh(None, format!("b{i}"), cuboid_at([2.0, 2.0, 2.0], at))
             .unwrap();
     }
     scene
@@ -259,7 +259,7 @@ fn extreme_scales_and_offsets() {
         {
             let at = at.map(|c| c * scale + offset);
             scene
-                .add_mesh(None, &format!("b{i}"), cuboid_at([scale; 3], at))
+                .add_mesh(None, format!("b{i}"), cuboid_at([scale; 3], at))
                 .unwrap();
         }
         let view = View::orthographic(Vector3::new(-1.0, -2.0, -1.5), Vector3::z()).unwrap();
@@ -281,7 +281,7 @@ fn a_tile_draws_only_inside_its_window() {
     for i in 0..10 {
         let at = [f64::from(i) * 2.0, 0.0, 0.0];
         scene
-            .add_mesh(None, &format!("b{i}"), cuboid_at([1.0, 1.0, 1.0], at))
+            .add_mesh(None, format!("b{i}"), cuboid_at([1.0, 1.0, 1.0], at))
             .unwrap();
     }
     let view = View::standard();

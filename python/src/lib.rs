@@ -333,6 +333,9 @@ fn absolute(path: &str) -> String {
     std::path::absolute(path).map_or_else(|_| path.to_string(), |p| p.display().to_string())
 }
 
+/// What `Scene.__reduce__` returns: the function that rebuilds a scene, and its argument.
+type Reduced<'py> = (Bound<'py, PyAny>, (Vec<Bound<'py, PyAny>>,));
+
 /// A scene: a graph of named objects (groups and meshes), as kepler's scene files describe.
 #[pyclass(module = "kepler")]
 struct Scene {
@@ -485,10 +488,7 @@ impl Scene {
 
     /// Pickling: the scene is rebuilt from the calls that built it (files are read again, by
     /// their absolute paths).
-    fn __reduce__<'py>(
-        &self,
-        py: Python<'py>,
-    ) -> PyResult<(Bound<'py, PyAny>, (Vec<Bound<'py, PyAny>>,))> {
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<Reduced<'py>> {
         let rebuild = py.import("kepler._kepler")?.getattr("_rebuild")?;
         let steps = self
             .steps
