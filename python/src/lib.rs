@@ -267,12 +267,13 @@ fn finished(drawing: Drawing, keep: bool, order: bool) -> Vec<Polyline> {
         .collect()
 }
 
-/// An error unless the scene has something to draw.
-fn drawable(scene: &Graph) -> PyResult<()> {
+/// The view a drawing of the scene is made in (see [`view_of`], framed to the SVG page's
+/// aspect); an error unless the scene has something to draw.
+fn drawing_view(scene: &Graph, view: Option<&Bound<'_, PyDict>>) -> PyResult<View> {
     if scene.mesh_objects(scene.roots()).is_empty() {
         return Err(err("the scene has no objects to draw"));
     }
-    Ok(())
+    view_of(scene, view, SvgOptions::default().drawing_aspect())
 }
 
 /// Draws the scene as the command line's `render` does (see [`finished`]).
@@ -289,8 +290,7 @@ fn draw(
 ) -> PyResult<Vec<Polyline>> {
     let options = options_of(edges, hidden, crease_angle)?;
     let keep = keeps_overlaps(overlaps)?;
-    drawable(scene)?;
-    let view = view_of(scene, view, SvgOptions::default().drawing_aspect())?;
+    let view = drawing_view(scene, view)?;
     py.detach(|| {
         hidden::draw(scene, &view, &options)
             .map(|d| finished(d, keep, order))
@@ -629,8 +629,7 @@ impl Scene {
         view: Option<&Bound<'_, PyDict>>,
         tiles: (usize, usize),
     ) -> PyResult<Vec<Window>> {
-        drawable(&self.graph)?;
-        let view = view_of(&self.graph, view, SvgOptions::default().drawing_aspect())?;
+        let view = drawing_view(&self.graph, view)?;
         let windows = tile_windows(&self.graph, &view, [tiles.0, tiles.1]).map_err(err)?;
         Ok(windows.iter().map(|w| (w.x.into(), w.y.into())).collect())
     }
@@ -647,8 +646,7 @@ impl Scene {
         crease_angle: f64,
     ) -> PyResult<Bound<'py, PyBytes>> {
         let options = options_of(edges, true, crease_angle)?;
-        drawable(&self.graph)?;
-        let view = view_of(&self.graph, view, SvgOptions::default().drawing_aspect())?;
+        let view = drawing_view(&self.graph, view)?;
         let window = Rectangle::new(window.0.into(), window.1.into()).map_err(err)?;
         let graph = &self.graph;
         let bytes = py

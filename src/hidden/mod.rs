@@ -584,7 +584,7 @@ impl<'a> Pass<'a> {
                     continue;
                 }
                 let ends = [mesh.vertices()[a], mesh.vertices()[b]];
-                if self.tile.as_ref().is_some_and(|t| t.surely_outside(&ends)) {
+                if tile.is_some_and(|t| t.surely_outside(&ends)) {
                     // Wholly outside the tile: nothing of it is drawn there, and where it
                     // crosses a contour or pierces a face is outside too.
                     outside_tile += 1;
@@ -614,7 +614,6 @@ impl<'a> Pass<'a> {
                 });
                 if clipped {
                     let i = self.lines.len() - 1;
-                    let tile = self.tile.as_ref();
                     self.cuts
                         .extend(frustum_cuts(clip, tile, eye, (i, &self.lines[i], None)));
                 }
@@ -675,6 +674,7 @@ impl<'a> Pass<'a> {
     fn intersections(&mut self) {
         let clock = Instant::now();
         let (eye, clip) = (self.eye, self.clip);
+        let tile = self.tile.as_ref();
         let ids: Vec<ObjectId> = self.leaves.iter().map(|l| l.id).collect();
         let leaf_of: HashMap<ObjectId, u32> = ids
             .iter()
@@ -717,7 +717,7 @@ impl<'a> Pass<'a> {
                     .map(|k| clip.is_none_or(|n| sign_at(k)(&n.depth()) == Ordering::Greater));
                 let inside = [0, 1].map(|k| {
                     clip.is_none_or(|n| n.contains_by(sign_at(k)))
-                        && self.tile.as_ref().is_none_or(|t| t.contains_by(sign_at(k)))
+                        && tile.is_none_or(|t| t.contains_by(sign_at(k)))
                 });
                 if front == [false, false] {
                     // Wholly behind the eye: nothing of it is drawn or bounds what is seen.
@@ -757,7 +757,6 @@ impl<'a> Pass<'a> {
                 let line = self.lines.len() - 1;
                 if self.lines[line].clipped {
                     let meet = self.meets.last();
-                    let tile = self.tile.as_ref();
                     let cuts = frustum_cuts(clip, tile, &eye, (line, &self.lines[line], meet));
                     self.cuts.extend(cuts);
                 }
@@ -1415,20 +1414,17 @@ fn line_pieces(
     cuts: &[&Cut],
 ) -> (Vec<Piece>, Counters) {
     let meet = &m.meet;
-    let mut inner: Vec<(OnLine, &Cut)> = cuts.iter().map(|&c| (c.point(), c)).collect();
+    let mut sorted: Vec<(OnLine, &Cut)> = cuts.iter().map(|&c| (c.point(), c)).collect();
     // Stable: the cuts come roughly sorted already.
-    inner.sort_by(|x, y| meet.compare(eye, &x.0, &y.0).then(x.1.key.cmp(&y.1.key)));
+    sorted.sort_by(|x, y| meet.compare(eye, &x.0, &y.0).then(x.1.key.cmp(&y.1.key)));
     // Each point once (the smallest key), with whether a tile's plane passes through it.
-    let mut borders: Vec<bool> = Vec::with_capacity(inner.len());
-    let mut k = 0;
-    while k < inner.len() {
-        let mut border = inner[k].1.key[0] == TILE_CUT;
-        while k + 1 < inner.len() && meet.compare(eye, &inner[k].0, &inner[k + 1].0).is_eq() {
-            border |= inner[k + 1].1.key[0] == TILE_CUT;
-            inner.remove(k + 1);
+    let mut inner: Vec<(OnLine, &Cut, bool)> = Vec::with_capacity(sorted.len());
+    for (point, cut) in sorted {
+        let border = cut.key[0] == TILE_CUT;
+        match inner.last_mut() {
+            Some(last) if meet.compare(eye, &last.0, &point).is_eq() => last.2 |= border,
+            _ => inner.push((point, cut, border)),
         }
-        borders.push(border);
-        k += 1;
     }
     let points: Vec<OnLine> = std::iter::once(m.ends[0])
         .chain(inner.iter().map(|x| x.0))
@@ -1478,7 +1474,7 @@ fn line_pieces(
             let answer = occluders.visp((&approximate, radius), hides, &mut counters);
             Some(answer == Visibility::Visible)
         };
-        let border = k > 0 && borders[k - 1];
+        let border = k > 0 && inner[k - 1].2;
         runs.step(state, along(k), border, || drawn(k));
     }
     (runs.finish(l.ends[1]), counters)
@@ -1582,7 +1578,7 @@ fn frustum_cuts(
     eye: &Eye,
     (i, l, m): (usize, &Line, Option<&MeetLine>),
 ) -> Vec<(usize, Cut)> {
-    let frustum = clip.into_iter().flat_map(|c| c.forms().collect::<Vec<_>>());
+    let frustum = clip.iter().flat_map(|c| c.forms());
     let frustum = frustum
         .enumerate()
         .map(|(k, form)| (form, [3, k as u32, 0, 0]));
