@@ -336,10 +336,19 @@ fn tiles_of_different_scenes_and_bad_bytes_are_refused() {
     ));
     let bytes = a.to_bytes();
     assert!(TileDrawing::from_bytes(&bytes[..bytes.len() - 1]).is_err());
+    // The first line's class (after the header, the eye, the slack, the count, the line's
+    // name): one that does not exist.
     let mut flipped = bytes.clone();
-    let n = flipped.len();
-    flipped[n - 63 + 13] = 9; // a class that does not exist
+    flipped[8 + 4 + 1 + 25 + 8 + 8 + 13] = 9;
     assert!(TileDrawing::from_bytes(&flipped).is_err());
+    // A point that is not finite.
+    let mut flipped = bytes.clone();
+    flipped[8 + 4 + 1 + 25 + 8 + 8 + 15..][..8].copy_from_slice(&f64::NAN.to_le_bytes());
+    assert!(TileDrawing::from_bytes(&flipped).is_err());
+    // Every shorter prefix is refused too.
+    for k in 0..bytes.len() {
+        assert!(TileDrawing::from_bytes(&bytes[..k]).is_err());
+    }
     assert!(Window::grid([0.0; 2], [1.0; 2], [0, 1]).is_err());
     assert!(Window::grid([0.0; 2], [f64::INFINITY; 2], [1, 1]).is_err());
 }

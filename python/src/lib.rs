@@ -7,7 +7,7 @@
 
 use kepler::geometry::{Point3, Vector3};
 use kepler::hidden::tiles::{TileDrawing, draw_tile, tile_windows};
-use kepler::hidden::{self, Drawing, EdgeClass, EdgeSelection};
+use kepler::hidden::{self, Drawing, EdgeClass, EdgeSelection, Overlaps};
 use kepler::mesh::{Mesh, Validation};
 use kepler::output::{SvgOptions, ordered};
 use kepler::queries::include::{IncludeIndex, Inclusion};
@@ -223,7 +223,12 @@ fn edges_of(edges: &str) -> PyResult<EdgeSelection> {
 }
 
 /// The hidden-line options from Python's arguments.
-fn options_of(edges: &str, hidden: bool, crease_angle: f64) -> PyResult<hidden::Options> {
+fn options_of(
+    edges: &str,
+    hidden: bool,
+    crease_angle: f64,
+    overlaps: &str,
+) -> PyResult<hidden::Options> {
     if !(crease_angle.is_finite() && (0.0..=180.0).contains(&crease_angle)) {
         return Err(err(format!(
             "crease_angle must be between 0 and 180 degrees, not {crease_angle}"
@@ -233,28 +238,24 @@ fn options_of(edges: &str, hidden: bool, crease_angle: f64) -> PyResult<hidden::
         edges: edges_of(edges)?,
         crease_angle,
         hidden,
+        overlaps: overlaps_of(overlaps)?,
     })
 }
 
-/// Whether `overlaps` asks to keep overlapping lines.
-fn keeps_overlaps(overlaps: &str) -> PyResult<bool> {
+/// What `overlaps` asks for: each stretch of line once, or every piece kept.
+fn overlaps_of(overlaps: &str) -> PyResult<Overlaps> {
     match overlaps {
-        "once" => Ok(false),
-        "keep" => Ok(true),
+        "once" => Ok(Overlaps::Once),
+        "keep" => Ok(Overlaps::Keep),
         other => Err(err(format!(
             "overlaps must be 'once' or 'keep', not '{other}'"
         ))),
     }
 }
 
-/// A drawing finished as the command line's `render` finishes it: each stretch of line once
-/// unless `keep`, paths in pen order when `order`; as Python polylines.
-fn finished(drawing: Drawing, keep: bool, order: bool) -> Vec<Polyline> {
-    let drawing = if keep {
-        drawing
-    } else {
-        hidden::without_overlaps(&drawing).0
-    };
+/// A drawing finished as the command line's `render` finishes it (the pass has drawn each
+/// stretch of line once when asked): paths in pen order when `order`; as Python polylines.
+fn finished(drawing: Drawing, order: bool) -> Vec<Polyline> {
     let drawing = if order { ordered(&drawing) } else { drawing };
     drawing
         .polylines
@@ -288,12 +289,11 @@ fn draw(
     overlaps: &str,
     order: bool,
 ) -> PyResult<Vec<Polyline>> {
-    let options = options_of(edges, hidden, crease_angle)?;
-    let keep = keeps_overlaps(overlaps)?;
+    let options = options_of(edges, hidden, crease_angle, overlaps)?;
     let view = drawing_view(scene, view)?;
     py.detach(|| {
         hidden::draw(scene, &view, &options)
-            .map(|d| finished(d, keep, order))
+            .map(|d| finished(d, order))
             .map_err(|e| e.to_string())
     })
     .map_err(err)
@@ -645,7 +645,7 @@ impl Scene {
         edges: &str,
         crease_angle: f64,
     ) -> PyResult<Bound<'py, PyBytes>> {
-        let options = options_of(edges, true, crease_angle)?;
+        let options = options_of(edges, true, crease_angle, "keep")?;
         let view = drawing_view(&self.graph, view)?;
         let window = Rectangle::new(window.0.into(), window.1.into()).map_err(err)?;
         let graph = &self.graph;
@@ -714,9 +714,9 @@ fn stitch(
     overlaps: &str,
     order: bool,
 ) -> PyResult<Vec<Polyline>> {
-    let keep = keeps_overlaps(overlaps)?;
     let options = hidden::Options {
         hidden,
+        overlaps: overlaps_of(overlaps)?,
         ..hidden::Options::default()
     };
     py.detach(|| {
@@ -726,7 +726,7 @@ fn stitch(
             .collect::<Result<Vec<_>, _>>()
             .map_err(|e| e.to_string())?;
         kepler::hidden::tiles::stitch(&tiles, &options)
-            .map(|d| finished(d, keep, order))
+            .map(|d| finished(d, order))
             .map_err(|e| e.to_string())
     })
     .map_err(err)

@@ -1,5 +1,6 @@
 //! Chaining pieces into maximal polylines.
 
+use super::marks::Mark;
 use super::{EdgeClass, Polyline};
 use foldhash::fast::FixedState;
 use rayon::prelude::*;
@@ -24,6 +25,8 @@ pub(crate) struct Piece {
     pub t: [f64; 2],
     /// Whether a tile's plane passes through each end (see [`super::tiles`]).
     pub border: [bool; 2],
+    /// What its ends are, exactly (see [`super::marks`]).
+    pub marks: [Mark; 2],
 }
 
 /// Chains the pieces of each class and visibility into polylines, joining pieces at ends

@@ -64,12 +64,13 @@ mod cover;
 mod drawing;
 mod edges;
 pub mod ideographs;
+mod marks;
 mod overlaps;
 pub mod tiles;
 pub mod verify;
 
 pub use drawing::{Drawing, EdgeClass, Polyline, StageReport};
-pub use overlaps::{OverlapReport, without_overlaps};
+pub use overlaps::OverlapReport;
 
 use crate::geometry::exact::ldexp;
 use crate::geometry::kernel::Polynomial;
@@ -90,6 +91,7 @@ use crate::views::{Eye, Picture, View, ViewError};
 use chain::{Piece, chain};
 use cover::{Occluders, PicturedMesh};
 use geo::{Line as GeoLine, coord};
+use marks::{Mark, MarkKey};
 use rayon::prelude::*;
 use rstar::RTree;
 use rstar::primitives::{GeomWithData, Rectangle};
@@ -156,11 +158,30 @@ pub enum EdgeSelection {
     Mesh,
 }
 
+/// Whether a drawing draws every piece of every line, or each stretch of a picture line once
+/// (see `overlaps.rs`).
+///
+/// ```
+/// assert_eq!(kepler::hidden::Overlaps::default(), kepler::hidden::Overlaps::Keep);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Overlaps {
+    /// Every piece of every line, also where pieces of two lines run along one stretch of the
+    /// picture (two boxes touching along an edge draw it twice).
+    #[default]
+    Keep,
+    /// Each stretch once: of the pieces along it, the one drawn on top (visible over hidden,
+    /// then the later class in [`EdgeClass::ALL`]). What a pen plotter should draw; the
+    /// command line's default.
+    Once,
+}
+
 /// The options of the hidden-line pass.
 ///
 /// ```
 /// let o = kepler::hidden::Options::default();
 /// assert_eq!((o.crease_angle, o.hidden), (30.0, true));
+/// assert_eq!(o.overlaps, kepler::hidden::Overlaps::Keep);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Options {
@@ -170,6 +191,8 @@ pub struct Options {
     pub crease_angle: f64,
     /// Whether the drawing keeps the hidden pieces (as polylines with `visible == false`).
     pub hidden: bool,
+    /// Whether a stretch along which pieces of several lines run is drawn by each or once.
+    pub overlaps: Overlaps,
 }
 
 impl Default for Options {
@@ -178,6 +201,7 @@ impl Default for Options {
             edges: EdgeSelection::Feature,
             crease_angle: 30.0,
             hidden: true,
+            overlaps: Overlaps::Keep,
         }
     }
 }
@@ -224,9 +248,19 @@ struct MeetLine {
     meet: Meet,
     ends: [OnLine; 2],
     on_faces: [(ObjectId, usize); 2],
+    /// The names of its ends (see [`MarkKey`]).
+    keys: [MarkKey; 2],
 }
 
 impl Line {
+    /// The index among the scene's mesh objects of the edge's object (of the first object of
+    /// an intersection segment): the same in every tile, so cuts are named by it.
+    fn object(&self) -> u32 {
+        match self.id {
+            LineId::Edge(o, _) | LineId::Meet(o, _, _) => o,
+        }
+    }
+
     /// Whether the line's picture bounds regions where the visible surface changes.
     fn is_contour(&self) -> bool {
         matches!(self.class, EdgeClass::Silhouette | EdgeClass::Boundary)
@@ -241,7 +275,7 @@ impl Line {
 /// cuts' pictures are built from their forms. `key` names the cut from the indices of what
 /// makes it, the same in a transformed scene (of two cuts at one point, the one with the
 /// smaller key is drawn).
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 struct Cut {
     zero: Zero,
     sighted: Option<[f64; 2]>,
@@ -308,8 +342,8 @@ pub fn draw_with_progress(
     progress: &(dyn Fn(u64, u64) + Sync),
 ) -> Result<Drawing> {
     let (drawing, shift) = in_working_range::<_, DrawError>(scene, view, |scene, view| {
-        let (pass, pieces) = decided(scene, view, None, options, progress)?;
-        Ok(chained(pass, pieces, options))
+        let (mut pass, pieces) = decided(scene, view, None, options, progress)?;
+        Ok(chained(&mut pass, pieces, options))
     })?;
     Ok(scaled_back(drawing, view.is_perspective(), shift))
 }
@@ -403,12 +437,26 @@ fn decided<'a>(
     Ok((pass, pieces))
 }
 
-/// Stage 5 of the pass: the drawing chained from the pieces.
-fn chained(mut pass: Pass, mut pieces: Vec<Piece>, options: &Options) -> Drawing {
+/// Stage 5 of the pass: the drawing chained from the pieces, each stretch of line once when
+/// the options ask for it. The pass keeps the stages' reports.
+fn chained(pass: &mut Pass, pieces: Vec<Piece>, options: &Options) -> Drawing {
     let clock = Instant::now();
-    if !options.hidden {
-        pieces.retain(|p| p.visible);
+    let (pieces, report) = finished(&*pass, pieces, options);
+    match report {
+        Some(r) => {
+            let done = format!(
+                "{} groups of {} segments on one line drawn once ({:.6} of line no longer drawn \
+                 twice)",
+                r.groups, r.segments, r.removed_length
+            );
+            pass.stage("overlaps", clock, done, None);
+        }
+        None => {
+            let skipped = "each stretch drawn once (asked to keep overlapping pieces)";
+            pass.stage("overlaps", clock, String::new(), Some(skipped.to_string()));
+        }
     }
+    let clock = Instant::now();
     let polylines = chain(&pieces);
     pass.stage(
         "chains",
@@ -418,7 +466,26 @@ fn chained(mut pass: Pass, mut pieces: Vec<Piece>, options: &Options) -> Drawing
     );
     Drawing {
         polylines,
-        stages: pass.stages,
+        stages: pass.stages.clone(),
+    }
+}
+
+/// The pieces a drawing chains: hidden ones dropped unless the options ask for them, each
+/// stretch of a picture line once when they ask for that (with what was removed).
+fn finished<P: marks::Provenance>(
+    provenance: &P,
+    mut pieces: Vec<Piece>,
+    options: &Options,
+) -> (Vec<Piece>, Option<OverlapReport>) {
+    if !options.hidden {
+        pieces.retain(|p| p.visible);
+    }
+    match options.overlaps {
+        Overlaps::Once => {
+            let (pieces, report) = overlaps::drawn_once(provenance, pieces);
+            (pieces, Some(report))
+        }
+        Overlaps::Keep => (pieces, None),
     }
 }
 
@@ -458,6 +525,8 @@ struct Pass<'a> {
     tile: Option<TilePlanes>,
     /// The mesh objects left out because their CBOX lies outside the tile.
     outside_tile: usize,
+    /// See [`Provenance::slack`](marks::Provenance::slack).
+    slack: f64,
 }
 
 impl<'a> Pass<'a> {
@@ -502,7 +571,9 @@ impl<'a> Pass<'a> {
                 lines: 0..0,
             })
             .collect();
+        let slack = picture_slack(scene, &picture, leaves.iter().map(|l| l.id));
         Ok(Pass {
+            slack,
             tile,
             outside_tile,
             clip,
@@ -676,10 +747,12 @@ impl<'a> Pass<'a> {
         let (eye, clip) = (self.eye, self.clip);
         let tile = self.tile.as_ref();
         let ids: Vec<ObjectId> = self.leaves.iter().map(|l| l.id).collect();
-        let leaf_of: HashMap<ObjectId, u32> = ids
+        // Each object's index among the scene's mesh objects (the same in every tile), for
+        // naming cuts.
+        let leaf_of: HashMap<ObjectId, u32> = self
+            .leaves
             .iter()
-            .enumerate()
-            .map(|(n, &id)| (id, n as u32))
+            .map(|leaf| (leaf.id, leaf.global))
             .collect();
         let pairs = overlapping_cboxes(self.scene, &ids);
         let apart = ids.len() * (ids.len() + 1) / 2 - pairs.len();
@@ -749,10 +822,12 @@ impl<'a> Pass<'a> {
                     vertices: [0; 2],
                     id: LineId::Meet(leaves[i].global, leaves[j].global, k as u32),
                 });
+                let meshes = [i, j].map(|n| (leaves[n].global, leaves[n].mesh));
                 self.meets.push(MeetLine {
                     meet: s.meet,
                     ends: s.ends,
                     on_faces: [(id0, s.faces[0]), (id1, s.faces[1])],
+                    keys: marks::end_keys(&s.ends, meshes, &s.triangles, s.faces),
                 });
                 let line = self.lines.len() - 1;
                 if self.lines[line].clipped {
@@ -1057,11 +1132,11 @@ impl<'a> Pass<'a> {
                 if n.is_multiple_of(1024) || n == total {
                     progress(n, total);
                 }
-                let mut line_cuts: Vec<&Cut> = by_line[first_cut[l]..first_cut[l + 1]]
+                let mut line_cuts: Vec<(u32, &Cut)> = by_line[first_cut[l]..first_cut[l + 1]]
                     .iter()
-                    .map(|&k| &cuts[k as usize].1)
+                    .map(|&k| (k, &cuts[k as usize].1))
                     .collect();
-                line_cuts.sort_unstable_by(|x, y| x.zero.t.total_cmp(&y.zero.t));
+                line_cuts.sort_unstable_by(|x, y| x.1.zero.t.total_cmp(&y.1.zero.t));
                 match lines[l].meet {
                     Some(m) => line_pieces(
                         &occluders,
@@ -1100,6 +1175,22 @@ impl<'a> Pass<'a> {
         timed(&mut self.stages, "visibility", clock, done, None);
         all
     }
+}
+
+/// How far the picture of a point of the objects `ids` may lie from the picture line of its
+/// plane of sight beyond its rounding (see [`Provenance::slack`](marks::Provenance::slack)):
+/// an orthographic picture's rows are rounded unit vectors, whose products with the view
+/// direction are within a few units in the last place of zero, times the depth of a point
+/// from the picture's origin.
+fn picture_slack(scene: &Scene, picture: &Picture, ids: impl Iterator<Item = ObjectId>) -> f64 {
+    if picture.is_perspective() {
+        return 0.0;
+    }
+    let (_, origin) = picture.rows();
+    let extent = ids
+        .flat_map(|id| scene.cbox(id).corners())
+        .fold(0.0f64, |m, c| m.max((c - origin).amax()));
+    16.0 * f64::EPSILON * extent
 }
 
 /// Records a stage that started at `clock` (a free function, for stages that hold borrows of
@@ -1157,7 +1248,7 @@ fn crossing(
             .filter(|&k| ends_in_front[k])
             .filter_map(|k| {
                 let zero = Form::Sight([c.a, c.b][k], off?).zero_on(eye, &l.a, &l.b)?;
-                let key = [0, c.leaf, c.vertices[k], 0];
+                let key = [0, c.object(), c.vertices[k], 0];
                 Some(Cut::on_edge(zero, Some(c.ends[k]), key))
             })
             .collect();
@@ -1172,7 +1263,7 @@ fn crossing(
                 && let Some(z) = form.zero_on(eye, &l.a, &l.b)
             {
                 let [u, v] = c.vertices;
-                cuts.push(Cut::on_edge(z, None, [1, c.leaf, u.min(v), u.max(v)]));
+                cuts.push(Cut::on_edge(z, None, [1, c.object(), u.min(v), u.max(v)]));
             }
         }
         return Some(cuts);
@@ -1203,7 +1294,7 @@ fn crossing(
     Some(vec![Cut::on_edge(
         zero,
         None,
-        [2, c.leaf, u.min(v), u.max(v)],
+        [2, c.object(), u.min(v), u.max(v)],
     )])
 }
 
@@ -1264,7 +1355,7 @@ fn crossing_line(eye: &Eye, m: &MeetLine, l: &Line, c: &Line) -> Option<Vec<Cut>
                 let form = meet.increasing(eye, Form::Sight(p, off));
                 let inside = meet.sign_at(eye, x, &form) == Ordering::Less
                     && meet.sign_at(eye, y, &form) == Ordering::Greater;
-                let key = [0, c.leaf, c.vertices[k], 0];
+                let key = [0, c.object(), c.vertices[k], 0];
                 inside.then(|| Cut::on_line(form, rough(&form), Some(picture), key))
             })
             .collect();
@@ -1290,12 +1381,12 @@ fn crossing_line(eye: &Eye, m: &MeetLine, l: &Line, c: &Line) -> Option<Vec<Cut>
         reversed(&sight)
     };
     let (sighted, key) = if sc == zero {
-        (Some(c.ends[0]), [0, c.leaf, c.vertices[0], 0])
+        (Some(c.ends[0]), [0, c.object(), c.vertices[0], 0])
     } else if sd == zero {
-        (Some(c.ends[1]), [0, c.leaf, c.vertices[1], 0])
+        (Some(c.ends[1]), [0, c.object(), c.vertices[1], 0])
     } else {
         let [u, v] = c.vertices;
-        (None, [2, c.leaf, u.min(v), u.max(v)])
+        (None, [2, c.object(), u.min(v), u.max(v)])
     };
     Some(vec![Cut::on_line(form, rough(&form), sighted, key)])
 }
@@ -1326,7 +1417,7 @@ fn pieces(
     picture: &Picture,
     (clip, tile): (Option<Clip>, Option<&TilePlanes>),
     (line, l): (usize, &Line),
-    cuts: &[&Cut],
+    cuts: &[(u32, &Cut)],
 ) -> (Vec<Piece>, Counters) {
     let mut counters = Counters::default();
     if l.back && !l.clipped {
@@ -1337,6 +1428,7 @@ fn pieces(
             line,
             t: [0.0, 1.0],
             border: [false; 2],
+            marks: [Mark::First, Mark::Last],
         };
         return (vec![piece], counters);
     }
@@ -1346,19 +1438,19 @@ fn pieces(
     let mut sorted = cuts.to_vec();
     for i in 1..sorted.len() {
         let mut j = i;
-        while j > 0 && order(sorted[j], sorted[j - 1]) == Ordering::Less {
+        while j > 0 && order(sorted[j].1, sorted[j - 1].1) == Ordering::Less {
             sorted.swap(j, j - 1);
             j -= 1;
         }
     }
     // Each point once, with whether a tile's plane passes through it.
-    let mut bounds: Vec<(&Cut, bool)> = Vec::with_capacity(sorted.len());
+    let mut bounds: Vec<((u32, &Cut), bool)> = Vec::with_capacity(sorted.len());
     for c in sorted {
-        let border = c.key[0] == TILE_CUT;
+        let border = c.1.key[0] == TILE_CUT;
         match bounds.last_mut() {
-            Some((last, on_border)) if order(last, c) == Ordering::Equal => {
+            Some((last, on_border)) if order(last.1, c.1) == Ordering::Equal => {
                 *on_border |= border;
-                if c.key < last.key {
+                if c.1.key < last.1.key {
                     *last = c;
                 }
             }
@@ -1368,14 +1460,16 @@ fn pieces(
     let mut runs = Runs::new(l, line);
     for k in 0..=bounds.len() {
         let (lo, border) = match k.checked_sub(1).map(|k| bounds[k]) {
-            Some((c, border)) => (Some(c), border),
+            Some(((index, c), border)) => (Some((index, c)), border),
             None => (None, false),
         };
+        let mark = lo.map_or(Mark::First, |(index, _)| Mark::Cut(index));
+        let lo = lo.map(|(_, c)| c);
         let sample = Sample::between(
             eye,
             a,
             b,
-            [lo.map(|c| &c.zero), bounds.get(k).map(|c| &c.0.zero)],
+            [lo.map(|c| &c.zero), bounds.get(k).map(|c| &c.0.1.zero)],
         );
         let sign = |form: &Form| sample.sign(form, eye, a, b);
         let state = if l.clipped && !inside(clip, tile, sign) {
@@ -1392,7 +1486,7 @@ fn pieces(
             let answer = occluders.visp((&approximate, radius), hides, &mut counters);
             Some(answer == Visibility::Visible)
         };
-        runs.step(state, lo.map_or(0.0, |c| c.zero.t), border, || {
+        runs.step(state, (lo.map_or(0.0, |c| c.zero.t), mark), border, || {
             cut_picture(picture, eye, l, lo)
         });
     }
@@ -1411,16 +1505,19 @@ fn line_pieces(
     picture: &Picture,
     (clip, tile): (Option<Clip>, Option<&TilePlanes>),
     (line, l, m): (usize, &Line, &MeetLine),
-    cuts: &[&Cut],
+    cuts: &[(u32, &Cut)],
 ) -> (Vec<Piece>, Counters) {
     let meet = &m.meet;
-    let mut sorted: Vec<(OnLine, &Cut)> = cuts.iter().map(|&c| (c.point(), c)).collect();
+    let mut sorted: Vec<(OnLine, (u32, &Cut))> = cuts.iter().map(|&c| (c.1.point(), c)).collect();
     // Stable: the cuts come roughly sorted already.
-    sorted.sort_by(|x, y| meet.compare(eye, &x.0, &y.0).then(x.1.key.cmp(&y.1.key)));
+    sorted.sort_by(|x, y| {
+        meet.compare(eye, &x.0, &y.0)
+            .then(x.1.1.key.cmp(&y.1.1.key))
+    });
     // Each point once (the smallest key), with whether a tile's plane passes through it.
-    let mut inner: Vec<(OnLine, &Cut, bool)> = Vec::with_capacity(sorted.len());
+    let mut inner: Vec<(OnLine, (u32, &Cut), bool)> = Vec::with_capacity(sorted.len());
     for (point, cut) in sorted {
-        let border = cut.key[0] == TILE_CUT;
+        let border = cut.1.key[0] == TILE_CUT;
         match inner.last_mut() {
             Some(last) if meet.compare(eye, &last.0, &point).is_eq() => last.2 |= border,
             _ => inner.push((point, cut, border)),
@@ -1437,7 +1534,7 @@ fn line_pieces(
         if k == points.len() - 1 {
             return l.ends[1];
         }
-        match inner[k - 1].1.sighted {
+        match inner[k - 1].1.1.sighted {
             Some(p) => p,
             None => meet.picture(picture, eye, &points[k]),
         }
@@ -1446,7 +1543,13 @@ fn line_pieces(
     let places: Vec<Point3> = points.iter().map(|p| meet.approximate(eye, p)).collect();
     let magnitudes: Vec<f64> = points.iter().map(|p| meet.magnitude(p)).collect();
     // Each point's rough parameter along the line, for the pieces' provenance.
-    let along = |k: usize| if k == 0 { 0.0 } else { inner[k - 1].1.zero.t };
+    let along = |k: usize| {
+        if k == 0 {
+            (0.0, Mark::First)
+        } else {
+            (inner[k - 1].1.1.zero.t, Mark::Cut(inner[k - 1].1.0))
+        }
+    };
     let mut counters = Counters::default();
     let mut runs = Runs::new(l, line);
     for k in 0..points.len() - 1 {
@@ -1491,10 +1594,21 @@ struct Runs {
     /// The picture of the line's first end.
     first: [f64; 2],
     out: Vec<Piece>,
-    /// The current run: its state (`None` where the view clips it away, else its
-    /// visibility), the picture of its start, its start's parameter and whether a tile's
-    /// plane passes through its start.
-    run: Option<(Option<bool>, [f64; 2], f64, bool)>,
+    /// The current run.
+    run: Option<Run>,
+}
+
+/// A run of pieces of one state along a line, from its start.
+#[derive(Debug, Clone, Copy)]
+struct Run {
+    /// `None` where the view clips the line away, else the run's visibility.
+    state: Option<bool>,
+    /// The picture of its start.
+    start: [f64; 2],
+    /// Its start's rough parameter and mark.
+    from: (f64, Mark),
+    /// Whether a tile's plane passes through its start.
+    border: bool,
 }
 
 impl Runs {
@@ -1510,40 +1624,61 @@ impl Runs {
         }
     }
 
-    /// The next piece's state, from parameter `t` (where a tile's plane passes if `border`);
-    /// where it changes, the run ends at the picture `at` of the piece's start.
-    fn step(&mut self, state: Option<bool>, t: f64, border: bool, at: impl FnOnce() -> [f64; 2]) {
+    /// The piece of the current run, ending at the picture `end` of the point `to`, where a
+    /// tile's plane passes if `border`.
+    fn piece(&self, run: &Run, end: [f64; 2], to: (f64, Mark), border: bool) -> Option<Piece> {
+        let visible = run.state?;
+        Some(Piece {
+            class: self.class,
+            visible,
+            ends: [run.start, end],
+            line: self.line,
+            t: [run.from.0, to.0],
+            border: [run.border, border],
+            marks: [run.from.1, to.1],
+        })
+    }
+
+    /// The next piece's state, from the point `at` (where a tile's plane passes if `border`);
+    /// where it changes, the run ends at the picture `picture` of the piece's start.
+    fn step(
+        &mut self,
+        state: Option<bool>,
+        at: (f64, Mark),
+        border: bool,
+        picture: impl FnOnce() -> [f64; 2],
+    ) {
         match self.run {
-            Some((s, start, from, on_border)) if s != state => {
-                let at = at();
-                if let Some(visible) = s {
-                    self.out.push(Piece {
-                        class: self.class,
-                        visible,
-                        ends: [start, at],
-                        line: self.line,
-                        t: [from, t],
-                        border: [on_border, border],
-                    });
+            Some(run) if run.state != state => {
+                let start = picture();
+                if let Some(p) = self.piece(&run, start, at, border) {
+                    self.out.push(p);
                 }
-                self.run = Some((state, at, t, border));
+                self.run = Some(Run {
+                    state,
+                    start,
+                    from: at,
+                    border,
+                });
             }
-            None => self.run = Some((state, self.first, 0.0, false)),
+            None => {
+                self.run = Some(Run {
+                    state,
+                    start: self.first,
+                    from: (0.0, Mark::First),
+                    border: false,
+                })
+            }
             _ => {}
         }
     }
 
     /// The runs, the last ending at `end`.
     fn finish(mut self, end: [f64; 2]) -> Vec<Piece> {
-        if let Some((Some(visible), start, from, on_border)) = self.run {
-            self.out.push(Piece {
-                class: self.class,
-                visible,
-                ends: [start, end],
-                line: self.line,
-                t: [from, 1.0],
-                border: [on_border, false],
-            });
+        if let Some(run) = self.run
+            && let Some(p) = self.piece(&run, end, (1.0, Mark::Last), false)
+        {
+            self.out.push(p);
         }
         if self.clipped {
             // A drawn end is inside the frustum, in front of the eye, so its picture is finite

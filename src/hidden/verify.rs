@@ -65,7 +65,8 @@
 //! ```
 
 use super::{
-    DrawError, Drawing, EdgeClass, Options, Pass, Piece, Result, chained, decided, scaled_back,
+    DrawError, Drawing, EdgeClass, Options, Overlaps, Pass, Piece, Result, chained, decided,
+    scaled_back,
 };
 use crate::geometry::exact::ldexp;
 use crate::geometry::kernel::{Between, Polynomial};
@@ -158,6 +159,7 @@ pub struct TracedPiece {
 /// let t = kepler::hidden::verify::Traced {
 ///     drawing: kepler::hidden::Drawing { polylines: Vec::new(), stages: Vec::new() },
 ///     pieces: Vec::new(),
+///     kept: None,
 /// };
 /// assert!(t.pieces.is_empty());
 /// ```
@@ -168,6 +170,9 @@ pub struct Traced {
     /// Every piece, hidden ones too (even when the drawing leaves them out), in the pass's
     /// order: by line, then along it.
     pub pieces: Vec<TracedPiece>,
+    /// When the drawing draws each stretch of line once ([`Overlaps::Once`]): the pieces
+    /// chained as they are, which check 3 compares them with.
+    pub kept: Option<Drawing>,
 }
 
 /// [`draw_with_progress`](super::draw_with_progress), keeping every piece with its 3-D line.
@@ -218,12 +223,15 @@ impl Traced {
         Traced {
             drawing: scaled_back(self.drawing, view.is_perspective(), -shift),
             pieces,
+            kept: self
+                .kept
+                .map(|d| scaled_back(d, view.is_perspective(), -shift)),
         }
     }
 }
 
 /// The drawing of a pass and its pieces, each traced to its line.
-fn traced(pass: Pass, pieces: Vec<Piece>, options: &Options) -> Traced {
+fn traced(mut pass: Pass, pieces: Vec<Piece>, options: &Options) -> Traced {
     let mut sources: Vec<Option<Source>> = pass
         .lines
         .iter()
@@ -254,9 +262,21 @@ fn traced(pass: Pass, pieces: Vec<Piece>, options: &Options) -> Traced {
             })
         })
         .collect();
+    // The pieces chained as they are, for check 3, when the drawing draws each stretch once.
+    let kept = (options.overlaps == Overlaps::Once).then(|| {
+        let stages = pass.stages.clone();
+        let keep = Options {
+            overlaps: Overlaps::Keep,
+            ..*options
+        };
+        let kept = chained(&mut pass, pieces.clone(), &keep);
+        pass.stages = stages;
+        kept
+    });
     Traced {
-        drawing: chained(pass, pieces, options),
+        drawing: chained(&mut pass, pieces, options),
         pieces: pieces_traced,
+        kept,
     }
 }
 
@@ -1245,7 +1265,7 @@ fn drawing(options: &Options, traced: &Traced, report: &mut Verification) {
                 .or_default() += 1;
         }
     }
-    for l in &traced.drawing.polylines {
+    for l in &traced.kept.as_ref().unwrap_or(&traced.drawing).polylines {
         for w in l.points.windows(2) {
             report.segments += 1;
             *count

@@ -135,7 +135,7 @@ pub(crate) fn reversed(form: &Form) -> Form {
 
 impl Meet {
     /// The form of plane `A` (`side` 0) or `B` (1).
-    fn plane(&self, side: usize) -> Form {
+    pub(crate) fn plane(&self, side: usize) -> Form {
         Form::Plane(self.planes[side])
     }
 
@@ -391,6 +391,68 @@ impl Meet {
         self.sight_form(eye, x).sign()
     }
 
+    /// The point `p` lifted for exact arithmetic relative to `origin`: `(W·(p − origin), W)`
+    /// with its positive weight `W` (see the module documentation), in the ring `R`. Every
+    /// affine function of `p` times `W` is affine in these four values.
+    pub(crate) fn lifted<R: Ring>(&self, eye: &Eye, p: &OnLine, origin: &Point3) -> ([R; 3], R) {
+        match p {
+            OnLine::Vertex { point, .. } => (difference(point, origin), R::from_f64(1.0)),
+            OnLine::Crossing {
+                edge: [a, b],
+                plane,
+                ..
+            } => {
+                // W = oO(a) − oO(b) > 0 (a on the positive side), W·X = oO(a)·b − oO(b)·a.
+                let (fa, fb) = (
+                    plane.at(eye, a).evaluate::<R>(),
+                    plane.at(eye, b).evaluate::<R>(),
+                );
+                let (da, db) = (difference::<R>(a, origin), difference::<R>(b, origin));
+                let x = [0, 1, 2].map(|k| fa.clone() * db[k].clone() - fb.clone() * da[k].clone());
+                (x, fa - fb)
+            }
+            OnLine::Cut(cut) => {
+                // D·(Z − origin) = D·(Z − o) + D·(o − origin), with D > 0 (the form increases
+                // along the line).
+                let along = |kind| {
+                    Along {
+                        meet: self,
+                        eye,
+                        kind,
+                    }
+                    .value::<R>()
+                };
+                let d = along(Kind::Slope(cut));
+                let r = difference::<R>(&self.planes[0][0], origin);
+                let x = [0, 1, 2].map(|k| along(Kind::Offset(cut, k)) + d.clone() * r[k].clone());
+                (x, d)
+            }
+        }
+    }
+
+    /// The degree of [`Meet::lifted`]'s values in the inputs.
+    pub(crate) fn lifted_degree(&self, eye: &Eye, p: &OnLine) -> u32 {
+        match p {
+            OnLine::Vertex { .. } => 1,
+            OnLine::Crossing { edge, plane, .. } => plane.at(eye, &edge[0]).degree() + 1,
+            OnLine::Cut(_) => 7,
+        }
+    }
+
+    /// The binary exponents of the inputs that define the line and `p`.
+    pub(crate) fn exponents_with(&self, eye: &Eye, p: &OnLine) -> Exponents {
+        let planes = self.planes.iter().flatten();
+        let e = planes.fold(eye_exponents(eye), |e, q| e.union(point_exponents(q)));
+        match p {
+            OnLine::Vertex { point, .. } => e.union(point_exponents(point)),
+            OnLine::Crossing { edge, plane, .. } => e
+                .union(point_exponents(&edge[0]))
+                .union(point_exponents(&edge[1]))
+                .union(form_exponents(plane)),
+            OnLine::Cut(cut) => e.union(form_exponents(cut)),
+        }
+    }
+
     /// The form of [`Meet::sight_side`] at `x`, as a polynomial (degree 6).
     fn sight_form(&self, eye: &Eye, x: &Point3) -> Minor<Orientation> {
         let [a, b] = self.planes;
@@ -608,7 +670,7 @@ impl Affine<'_> {
 /// `(c − e) × (d − c)` (equal, and without the cancellation of two long vectors for a distant
 /// eye); at infinity, `−det[c − x, d − x, u] = (x − c)·((d − c) × u)`. A sight form vanishes at
 /// `c`, a plane's at `p`.
-fn gradient<R: Ring>(eye: &Eye, form: &Form) -> [R; 3] {
+pub(crate) fn gradient<R: Ring>(eye: &Eye, form: &Form) -> [R; 3] {
     match form {
         Form::Plane([p, q, r]) => cross(&difference(r, p), &difference(q, p)),
         Form::Sight(c, d) => match eye {
@@ -619,35 +681,35 @@ fn gradient<R: Ring>(eye: &Eye, form: &Form) -> [R; 3] {
     }
 }
 
-fn difference<R: Ring>(p: &Point3, q: &Point3) -> [R; 3] {
+pub(crate) fn difference<R: Ring>(p: &Point3, q: &Point3) -> [R; 3] {
     [0, 1, 2].map(|k| R::from_f64(p[k]) - R::from_f64(q[k]))
 }
 
-fn cross<R: Ring>(a: &[R; 3], b: &[R; 3]) -> [R; 3] {
+pub(crate) fn cross<R: Ring>(a: &[R; 3], b: &[R; 3]) -> [R; 3] {
     let m = |i: usize, j: usize| a[i].clone() * b[j].clone() - a[j].clone() * b[i].clone();
     [m(1, 2), m(2, 0), m(0, 1)]
 }
 
-fn dot<R: Ring>(a: &[R; 3], b: &[R; 3]) -> R {
+pub(crate) fn dot<R: Ring>(a: &[R; 3], b: &[R; 3]) -> R {
     a[0].clone() * b[0].clone() + a[1].clone() * b[1].clone() + a[2].clone() * b[2].clone()
 }
 
-fn det<R: Ring>(a: &[R; 3], b: &[R; 3], c: &[R; 3]) -> R {
+pub(crate) fn det<R: Ring>(a: &[R; 3], b: &[R; 3], c: &[R; 3]) -> R {
     dot(a, &cross(b, c))
 }
 
-fn point_exponents(p: &Point3) -> Exponents {
+pub(crate) fn point_exponents(p: &Point3) -> Exponents {
     Exponents::of(p.coords.as_slice())
 }
 
-fn eye_exponents(eye: &Eye) -> Exponents {
+pub(crate) fn eye_exponents(eye: &Eye) -> Exponents {
     match eye {
         Eye::Point(e) => point_exponents(e),
         Eye::Infinity(u) => Exponents::of(u.as_slice()),
     }
 }
 
-fn form_exponents(form: &Form) -> Exponents {
+pub(crate) fn form_exponents(form: &Form) -> Exponents {
     match form {
         Form::Plane(t) => t
             .iter()

@@ -12,7 +12,8 @@
 //! them ask of a segment or a pair of meshes: the exact sign of a plane's form at a point of an
 //! edge and the picture of the point where the edge crosses the plane, built once from the
 //! input (`along`); the lines where two meshes' faces pierce each other (`intersections`);
-//! the faces a solid seen from outside hides by itself (`own_solid`); the frustum both clip
+//! the faces a solid seen from outside hides by itself (`own_solid`); whether two lines' pictures lie on one line and the order of points along
+//! it (`collinear`); the frustum both clip
 //! to when a perspective eye is inside the scene (`frustum`); and the power of two that brings
 //! a scene of extreme coordinates into the range where the kernel is exact (`range`).
 //!
@@ -25,6 +26,7 @@
 //! ```
 
 pub(crate) mod along;
+pub(crate) mod collinear;
 pub(crate) mod frustum;
 pub mod include;
 pub(crate) mod intersections;

@@ -9,7 +9,7 @@ use kepler::geometry::Vector3;
 use kepler::geometry::polygon::bounding_box;
 use kepler::hidden::ideographs::{Ideograph, ideographs};
 use kepler::hidden::verify::{Traced, draw_traced, verify};
-use kepler::hidden::{self, Drawing, EdgeClass, EdgeSelection};
+use kepler::hidden::{self, Drawing, EdgeClass, EdgeSelection, Overlaps};
 use kepler::output::{
     DxfFormat, HatchLayer, PageTransform, Shading, SvgOptions, ordered, page_transform, pen_order,
     pen_travel, write_dxf, write_json, write_svg_with_hatches,
@@ -169,6 +169,11 @@ pub fn run(args: Args) -> Result<()> {
         edges: args.edges,
         crease_angle,
         hidden: args.hidden == Hidden::Dashed,
+        overlaps: if args.keep_overlaps {
+            Overlaps::Keep
+        } else {
+            Overlaps::Once
+        },
     };
     let (scene, culled) = match args.ideograph_below {
         Some(mm2) => {
@@ -352,6 +357,7 @@ fn draw(scene: &Scene, view: &View, options: &hidden::Options, traced: bool) -> 
         Traced {
             drawing: hidden::draw_with_progress(scene, view, options, &progress)?,
             pieces: Vec::new(),
+            kept: None,
         }
     };
     if let Some(bar) = bar {
@@ -360,48 +366,29 @@ fn draw(scene: &Scene, view: &View, options: &hidden::Options, traced: bool) -> 
     Ok(traced)
 }
 
-/// The drawing as written: each stretch of line once (unless `--keep-overlaps`), paths in
-/// pen order with `--order`; and the `--stats` lines of those two steps.
+/// The drawing as written: paths in pen order with `--order` (the pass has drawn each stretch
+/// of line once unless `--keep-overlaps`); and the `--stats` line of that step.
 fn for_plotters(drawing: &Drawing, args: &Args) -> (Drawing, String) {
     let mut stats = String::new();
     let clock = Instant::now();
-    let mut drawing = if args.keep_overlaps {
-        let _ = writeln!(
-            stats,
-            "overlaps       {:>7}  skipped: kept (--keep-overlaps)",
-            ""
-        );
-        drawing.clone()
-    } else {
-        let (clean, report) = hidden::without_overlaps(drawing);
-        let _ = writeln!(
-            stats,
-            "overlaps       {:>7.4}  {} groups of {} segments on one line drawn once ({:.6} of \
-             line no longer drawn twice)",
-            clock.elapsed().as_secs_f64(),
-            report.groups,
-            report.segments,
-            report.removed_length
-        );
-        clean
-    };
-    let clock = Instant::now();
-    let before = pen_travel(&drawing);
-    if args.order {
-        drawing = ordered(&drawing);
+    let before = pen_travel(drawing);
+    let drawing = if args.order {
+        let drawing = ordered(drawing);
         let _ = writeln!(
             stats,
             "order          {:>7.4}  pen travel between paths {before:.6} -> {:.6} (view coordinates)",
             clock.elapsed().as_secs_f64(),
             pen_travel(&drawing)
         );
+        drawing
     } else {
         let _ = writeln!(
             stats,
             "order          {:>7}  skipped: pen travel between paths {before:.6} (--order shortens it)",
             ""
         );
-    }
+        drawing.clone()
+    };
     (drawing, stats)
 }
 

@@ -1,0 +1,267 @@
+//! Step 1 of overlap removal: the lines whose pictures lie on one line, grouped exactly.
+//!
+//! A filter finds candidates, an exact predicate decides. Each line's picture is known
+//! roughly from the rounded ends of its pieces (the first piece's start and the last one's
+//! end, each within [`rounding`] of an exact point of the line's picture): its angle
+//! `θ ∈ [0, π)` and offset `ρ` (the signed distance of the line from the picture's origin)
+//! with bounds on their errors. Two lines with one picture line have intervals that overlap
+//! in both, so the lines are sorted by angle and cut into runs of overlapping intervals,
+//! each run sorted by offset and cut again; within a run, each line is compared exactly
+//! ([`Support::same_picture`]) with one line of each group found so far. A line near `θ = 0`
+//! or `π` enters twice, once on each side (its offset negated). A line too short for useful
+//! bounds is compared exactly with every line that has a piece passing near it (an R-tree of
+//! the pieces' boxes, built only when there is such a line).
+
+use super::{Span, rounding};
+use crate::hidden::chain::Piece;
+use crate::hidden::marks::Provenance;
+use crate::queries::collinear::Support;
+use rstar::primitives::{GeomWithData, Rectangle};
+use rstar::{AABB, RTree};
+use std::f64::consts::PI;
+
+/// A line's picture, roughly: its angle and offset, each with a bound on its error.
+#[derive(Debug, Clone, Copy)]
+struct Entry {
+    span: usize,
+    theta: f64,
+    theta_error: f64,
+    rho: f64,
+    rho_error: f64,
+}
+
+/// The groups (span indices, increasing; groups by their first) of two or more lines whose
+/// pictures lie on one line.
+pub(super) fn groups<P: Provenance>(
+    provenance: &P,
+    spans: &[Span],
+    pieces: &[Piece],
+) -> Vec<Vec<usize>> {
+    let slack = provenance.slack();
+    let mut entries = Vec::with_capacity(spans.len());
+    let mut short = Vec::new();
+    for (s, span) in spans.iter().enumerate() {
+        let p = pieces[span.pieces.start].ends[0];
+        let q = pieces[span.pieces.end - 1].ends[1];
+        match entry(s, p, q, slack) {
+            Some(e) => {
+                entries.push(e);
+                // Near θ = 0 or π the line enters again on the other side, its normal reversed.
+                if e.theta - e.theta_error < 0.0 {
+                    entries.push(Entry {
+                        theta: e.theta + PI,
+                        rho: -e.rho,
+                        ..e
+                    });
+                }
+                if e.theta + e.theta_error >= PI {
+                    entries.push(Entry {
+                        theta: e.theta - PI,
+                        rho: -e.rho,
+                        ..e
+                    });
+                }
+            }
+            None => short.push(s),
+        }
+    }
+    let mut exact = Grouping::new(provenance, spans);
+    for run in runs(entries, |e| (e.theta, e.theta_error)) {
+        for run in runs(run, |e| (e.rho, e.rho_error)) {
+            exact.within(&run);
+        }
+    }
+    if !short.is_empty() {
+        exact.short(&short, pieces);
+    }
+    exact.groups()
+}
+
+/// The entry of a line whose pieces run from `p` to `q`, or `None` when its picture is too
+/// short (or too far out) for the bounds.
+fn entry(span: usize, p: [f64; 2], q: [f64; 2], slack: f64) -> Option<Entry> {
+    let error = 2.0 * (rounding(p, slack) + rounding(q, slack));
+    let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
+    let length = dx.hypot(dy);
+    if !(length.is_finite() && length > 16.0 * error) {
+        return None;
+    }
+    let mut theta = dy.atan2(dx);
+    if theta < 0.0 {
+        theta += PI;
+    }
+    if theta >= PI {
+        theta -= PI;
+    }
+    // Each end moved by at most `error / 2` turns the line by at most `error / length`
+    // (doubled for the roundings of the angle).
+    let theta_error = 2.0 * error / length + 16.0 * f64::EPSILON;
+    let middle = [p[0] / 2.0 + q[0] / 2.0, p[1] / 2.0 + q[1] / 2.0];
+    let (sin, cos) = theta.sin_cos();
+    let rho = cos * middle[1] - sin * middle[0];
+    let far = middle[0].abs().max(middle[1].abs()) * 2f64.sqrt();
+    let rho_error = 2.0 * (far * theta_error + error) + 16.0 * f64::EPSILON * far;
+    Some(Entry {
+        span,
+        theta,
+        theta_error,
+        rho,
+        rho_error,
+    })
+}
+
+/// The entries cut into maximal runs of two or more whose intervals `(value ± error)` chain
+/// into one (an entry whose interval meets no other's is left out).
+fn runs(mut entries: Vec<Entry>, interval: impl Fn(&Entry) -> (f64, f64)) -> Vec<Vec<Entry>> {
+    let low = |e: &Entry| {
+        let (v, r) = interval(e);
+        v - r
+    };
+    entries.sort_unstable_by(|x, y| low(x).total_cmp(&low(y)).then(x.span.cmp(&y.span)));
+    let mut out: Vec<Vec<Entry>> = Vec::new();
+    let mut run: Vec<Entry> = Vec::new();
+    let mut high = f64::NEG_INFINITY;
+    for e in entries {
+        let (v, r) = interval(&e);
+        if v - r > high {
+            if run.len() > 1 {
+                out.push(std::mem::take(&mut run));
+            }
+            run.clear();
+            high = f64::NEG_INFINITY;
+        }
+        high = high.max(v + r);
+        run.push(e);
+    }
+    if run.len() > 1 {
+        out.push(run);
+    }
+    out
+}
+
+/// Lines grouped exactly: a union-find over the spans.
+struct Grouping<'a, P> {
+    provenance: &'a P,
+    spans: &'a [Span],
+    parent: Vec<usize>,
+    /// Each span's support, once known, and whether its picture is a line.
+    supports: Vec<Option<(Support, bool)>>,
+}
+
+impl<'a, P: Provenance> Grouping<'a, P> {
+    fn new(provenance: &'a P, spans: &'a [Span]) -> Self {
+        Grouping {
+            provenance,
+            spans,
+            parent: (0..spans.len()).collect(),
+            supports: vec![None; spans.len()],
+        }
+    }
+
+    /// Span `s`'s support when its picture is a line.
+    fn support(&mut self, s: usize) -> Option<Support> {
+        let (provenance, span) = (self.provenance, &self.spans[s]);
+        let (support, pictured) = *self.supports[s].get_or_insert_with(|| {
+            let support = provenance.support(span.line);
+            (support, support.is_pictured(provenance.eye()))
+        });
+        pictured.then_some(support)
+    }
+
+    fn root(&mut self, mut s: usize) -> usize {
+        while self.parent[s] != s {
+            self.parent[s] = self.parent[self.parent[s]];
+            s = self.parent[s];
+        }
+        s
+    }
+
+    /// Whether spans `s` and `t` lie on one picture line (exactly); joins them if so.
+    fn join_if_same(&mut self, s: usize, t: usize) -> bool {
+        let (a, b) = (self.root(s), self.root(t));
+        if a == b {
+            return true;
+        }
+        let (Some(x), Some(y)) = (self.support(s), self.support(t)) else {
+            return false;
+        };
+        if !x.same_picture(&y, self.provenance.eye()) {
+            return false;
+        }
+        self.parent[a.max(b)] = a.min(b);
+        true
+    }
+
+    /// Groups the lines of one run of candidates: each compared with one line of each group
+    /// found in the run so far.
+    fn within(&mut self, run: &[Entry]) {
+        let mut firsts: Vec<usize> = Vec::new();
+        for e in run {
+            if self.support(e.span).is_none() {
+                continue;
+            }
+            if !firsts.iter().any(|&f| self.join_if_same(f, e.span)) {
+                firsts.push(e.span);
+            }
+        }
+    }
+
+    /// Compares each short line with the lines that have a piece whose box, grown by the
+    /// rounding, meets the short line's.
+    fn short(&mut self, short: &[usize], pieces: &[Piece]) {
+        let slack = self.provenance.slack();
+        let boxed = |s: &Span| {
+            let mut lo = [f64::INFINITY; 2];
+            let mut hi = [f64::NEG_INFINITY; 2];
+            for p in &pieces[s.pieces.clone()] {
+                for e in p.ends {
+                    let r = 2.0 * rounding(e, slack);
+                    for k in 0..2 {
+                        lo[k] = lo[k].min(e[k] - r);
+                        hi[k] = hi[k].max(e[k] + r);
+                    }
+                }
+            }
+            (lo, hi)
+        };
+        let boxes: Vec<GeomWithData<Rectangle<[f64; 2]>, usize>> = self
+            .spans
+            .iter()
+            .enumerate()
+            .filter_map(|(s, span)| {
+                let (lo, hi) = boxed(span);
+                let finite = lo.iter().chain(&hi).all(|x| x.is_finite());
+                finite.then(|| GeomWithData::new(Rectangle::from_corners(lo, hi), s))
+            })
+            .collect();
+        let tree = RTree::bulk_load(boxes);
+        for &s in short {
+            let (lo, hi) = boxed(&self.spans[s]);
+            if !lo.iter().chain(&hi).all(|x| x.is_finite()) {
+                continue;
+            }
+            let mut near: Vec<usize> = tree
+                .locate_in_envelope_intersecting(&AABB::from_corners(lo, hi))
+                .map(|g| g.data)
+                .filter(|&t| t != s)
+                .collect();
+            near.sort_unstable();
+            for t in near {
+                self.join_if_same(s, t);
+            }
+        }
+    }
+
+    /// The groups of two or more spans.
+    fn groups(mut self) -> Vec<Vec<usize>> {
+        let n = self.parent.len();
+        let mut members: Vec<Vec<usize>> = vec![Vec::new(); n];
+        for s in 0..n {
+            let r = self.root(s);
+            members[r].push(s);
+        }
+        let mut out: Vec<Vec<usize>> = members.into_iter().filter(|m| m.len() > 1).collect();
+        out.sort_unstable_by_key(|m| m[0]);
+        out
+    }
+}
