@@ -27,192 +27,17 @@
 
 use kepler::geometry::predicates::orient3d;
 use kepler::geometry::{Point3, Vector3};
-use kepler::hidden::{Drawing, EdgeClass, EdgeSelection, Options, draw};
-use kepler::mesh::Mesh;
-use kepler::scene::Scene;
-use kepler::views::{Picture, View};
+use kepler::hidden::{Drawing, EdgeClass, EdgeSelection, Options};
 use std::cmp::Ordering;
 
 mod common;
 use common::exact::{P2, RefEye, RefView, V, opposite, qdet, qlerp, qp, ulps2};
+use common::invariance::{
+    Setup, Solid, Transform, ViewSpec, box_solid, check, drawing, dyadic, outward, over_scenes,
+    random_view, segments, small_vector,
+};
 use common::{Q, Rng, qcross, qdot, qsub};
 use num_traits::Zero;
-
-/// A solid as input: vertices and polygon faces.
-#[derive(Clone, Debug)]
-struct Solid {
-    vertices: Vec<Point3>,
-    faces: Vec<Vec<u32>>,
-}
-
-impl Solid {
-    fn mesh(&self) -> Mesh {
-        Mesh::from_polygons(self.vertices.clone(), self.faces.clone()).unwrap()
-    }
-
-    fn map(&self, f: &impl Fn(&Point3) -> Point3) -> Solid {
-        Solid {
-            vertices: self.vertices.iter().map(f).collect(),
-            faces: self.faces.clone(),
-        }
-    }
-
-    /// Each face split into a fan of triangles.
-    fn triangulated(&self) -> Solid {
-        Solid {
-            vertices: self.vertices.clone(),
-            faces: self
-                .faces
-                .iter()
-                .flat_map(|f| (1..f.len() - 1).map(move |i| vec![f[0], f[i], f[i + 1]]))
-                .collect(),
-        }
-    }
-
-    fn reversed(&self) -> Solid {
-        Solid {
-            vertices: self.vertices.clone(),
-            faces: self
-                .faces
-                .iter()
-                .map(|f| f.iter().rev().copied().collect())
-                .collect(),
-        }
-    }
-}
-
-/// A view as input.
-#[derive(Clone, Copy, Debug)]
-enum ViewSpec {
-    Orthographic {
-        direction: Vector3,
-        up: Vector3,
-    },
-    Perspective {
-        eye: Point3,
-        target: Point3,
-        up: Vector3,
-    },
-}
-
-impl ViewSpec {
-    fn view(&self) -> Option<View> {
-        match *self {
-            ViewSpec::Orthographic { direction, up } => View::orthographic(direction, up).ok(),
-            ViewSpec::Perspective { eye, target, up } => {
-                View::perspective(eye, target, up, 40.0).ok()
-            }
-        }
-    }
-
-    fn is_perspective(&self) -> bool {
-        matches!(self, ViewSpec::Perspective { .. })
-    }
-}
-
-/// A transformation of scene and view.
-#[derive(Clone, Copy, Debug)]
-enum Transform {
-    /// `x[axis] ↦ -x[axis]`.
-    Mirror(usize),
-    /// `x ↦ (x[p[0]], x[p[1]], x[p[2]])`.
-    Permute([usize; 3]),
-    /// `x ↦ 2^k·x`.
-    Scale(i32),
-    /// `x ↦ x + t` (points only).
-    Translate([f64; 3]),
-}
-
-impl Transform {
-    /// The linear part, on a vector.
-    fn vector(&self, v: &Vector3) -> Vector3 {
-        match *self {
-            Transform::Mirror(a) => {
-                let mut w = *v;
-                w[a] = -w[a];
-                w
-            }
-            Transform::Permute(p) => Vector3::new(v[p[0]], v[p[1]], v[p[2]]),
-            Transform::Scale(_) | Transform::Translate(_) => *v,
-        }
-    }
-
-    fn point(&self, x: &Point3) -> Point3 {
-        match *self {
-            Transform::Scale(k) => Point3::from(x.coords * 2f64.powi(k)),
-            Transform::Translate(t) => {
-                let y = Point3::new(x.x + t[0], x.y + t[1], x.z + t[2]);
-                assert_eq!(y - Vector3::from(t), *x, "translation not exact");
-                y
-            }
-            _ => Point3::from(self.vector(&x.coords)),
-        }
-    }
-
-    fn view(&self, v: &ViewSpec) -> ViewSpec {
-        match *v {
-            ViewSpec::Orthographic { direction, up } => ViewSpec::Orthographic {
-                direction: self.vector(&direction),
-                up: self.vector(&up),
-            },
-            ViewSpec::Perspective { eye, target, up } => ViewSpec::Perspective {
-                eye: self.point(&eye),
-                target: self.point(&target),
-                up: self.vector(&up),
-            },
-        }
-    }
-
-    /// How the picture is expected to change, from the two views' picture maps: `(sx, sy,
-    /// c)` with `(x, y) ↦ (sx·c·x, sy·c·y)`, or `None` where the transformed view's frame is
-    /// not exactly the transformed frame (its normalisation rounded differently).
-    fn picture(&self, before: &View, after: &View) -> Option<(f64, f64, f64)> {
-        let (r, _) = Picture::of(before).rows();
-        let (s, _) = Picture::of(after).rows();
-        let sign = |k: usize| {
-            let t = self.vector(&r[k]);
-            if s[k] == t {
-                Some(1.0)
-            } else if s[k] == -t {
-                Some(-1.0)
-            } else {
-                None
-            }
-        };
-        let (sx, sy, sz) = (sign(0)?, sign(1)?, sign(2)?);
-        let perspective = before.is_perspective();
-        if perspective && sz != 1.0 {
-            return None;
-        }
-        let c = match *self {
-            Transform::Scale(k) if !perspective => 2f64.powi(k),
-            _ => 1.0,
-        };
-        Some((sx, sy, c))
-    }
-}
-
-fn dyadic(rng: &mut Rng, lo: i32, hi: i32) -> f64 {
-    rng.int(4 * lo, 4 * hi) / 4.0
-}
-
-fn box_solid(min: [f64; 3], max: [f64; 3]) -> Solid {
-    let m = kepler::solids::box_between(min, max).unwrap();
-    Solid {
-        vertices: m.vertices().to_vec(),
-        faces: m.faces().iter().map(|f| f.vertices().to_vec()).collect(),
-    }
-}
-
-/// A solid of the given vertices and faces, turned outward.
-fn outward(vertices: Vec<Point3>, faces: Vec<Vec<u32>>) -> Solid {
-    let s = Solid { vertices, faces };
-    if s.mesh().volume() < 0.0 {
-        s.reversed()
-    } else {
-        s
-    }
-}
 
 fn random_solid(rng: &mut Rng) -> Solid {
     match rng.below(3) {
@@ -260,90 +85,25 @@ fn random_scene(rng: &mut Rng) -> Vec<Solid> {
     (0..2 + rng.below(2)).map(|_| random_solid(rng)).collect()
 }
 
-fn small_vector(rng: &mut Rng) -> Vector3 {
-    loop {
-        let v = Vector3::new(rng.int(-4, 4), rng.int(-4, 4), rng.int(-4, 4));
-        if v != Vector3::zeros() {
-            return v;
-        }
-    }
-}
-
-fn random_view(rng: &mut Rng, perspective: bool) -> ViewSpec {
-    loop {
-        let up = small_vector(rng);
-        let spec = if perspective {
-            let eye = Point3::from(small_vector(rng) * 8.0);
-            if eye.coords.norm() < 24.0 {
-                continue;
-            }
-            let target = Point3::new(dyadic(rng, -1, 1), dyadic(rng, -1, 1), dyadic(rng, -1, 1));
-            ViewSpec::Perspective { eye, target, up }
-        } else {
-            ViewSpec::Orthographic {
-                direction: small_vector(rng),
-                up,
-            }
-        };
-        if spec.view().is_some() {
-            return spec;
-        }
-    }
-}
+/// The families' setup: random scenes of solids that pierce each other, every edge drawn.
+const SETUP: Setup = Setup {
+    options: Options {
+        edges: EdgeSelection::All,
+        crease_angle: 30.0,
+        hidden: true,
+        overlaps: kepler::hidden::Overlaps::Keep,
+    },
+    seeds: 40,
+    base: 0x1e14_0000,
+    scene: random_scene,
+    about: |d| intersections(d) > 0,
+};
 
 fn options() -> Options {
     Options {
         edges: EdgeSelection::All,
         ..Options::default()
     }
-}
-
-fn drawing(solids: &[Solid], view: &View) -> Drawing {
-    let mut scene = Scene::new();
-    for (i, s) in solids.iter().enumerate() {
-        scene.add_mesh(None, format!("s{i}"), s.mesh()).unwrap();
-    }
-    draw(&scene, view, &options()).unwrap()
-}
-
-type Segment = (EdgeClass, bool, [[u64; 2]; 2]);
-
-/// The drawing's segments, sorted: each with its ends in order, `-0` read as `0`.
-fn segments(d: &Drawing, map: impl Fn([f64; 2]) -> [f64; 2]) -> Vec<Segment> {
-    let bits = |p: [f64; 2]| map(p).map(|x| if x == 0.0 { 0u64 } else { x.to_bits() });
-    let mut out: Vec<Segment> = d
-        .polylines
-        .iter()
-        .flat_map(|p| {
-            p.points.windows(2).map(move |w| {
-                let (a, b) = (bits(w[0]), bits(w[1]));
-                (p.class, p.visible, if a <= b { [a, b] } else { [b, a] })
-            })
-        })
-        .collect();
-    out.sort_unstable_by_key(|x| (x.0 as u8, x.1, x.2));
-    out
-}
-
-/// Where two segment lists differ, for the failure message.
-fn difference(a: &[Segment], b: &[Segment]) -> String {
-    let only = |x: &[Segment], y: &[Segment]| -> Vec<String> {
-        x.iter()
-            .filter(|s| !y.contains(s))
-            .take(4)
-            .map(|(c, v, e)| {
-                let p = e.map(|p| p.map(f64::from_bits));
-                format!("{c:?} {v} {p:?}")
-            })
-            .collect()
-    };
-    format!(
-        "{} vs {} segments; only in the first: {:?}; only in the second: {:?}",
-        a.len(),
-        b.len(),
-        only(a, b),
-        only(b, a)
-    )
 }
 
 fn intersections(d: &Drawing) -> usize {
@@ -353,107 +113,14 @@ fn intersections(d: &Drawing) -> usize {
         .count()
 }
 
-/// What a family of checks covered.
-#[derive(Default, Debug)]
-struct Tally {
-    /// The scene's seed.
-    seed: u64,
-    compared: usize,
-    skipped: usize,
-    with_intersections: usize,
-}
-
-/// Draws the scene and its transformed copy (solids also passed through `solids`) and checks
-/// that the second drawing is the first with the expected picture change.
-fn check(
-    tally: &mut Tally,
-    name: &str,
-    scene: &[Solid],
-    spec: &ViewSpec,
-    t: Option<Transform>,
-    solids: impl Fn(&Solid) -> Solid,
-) {
-    let view = spec.view().unwrap();
-    let changed = |s: &Solid| match t {
-        Some(t) => solids(&s.map(&|p| t.point(p))),
-        None => solids(s),
-    };
-    // A quad whose vertices, moved far, no longer pass the meshes' planarity check (done in
-    // floating point) is split into triangles in both scenes.
-    let scene: Vec<Solid> = scene
-        .iter()
-        .map(|s| {
-            let c = changed(s);
-            if Mesh::from_polygons(c.vertices, c.faces).is_ok() {
-                s.clone()
-            } else {
-                s.triangulated()
-            }
-        })
-        .collect();
-    let scene = &scene[..];
-    let spec2 = t.map_or(*spec, |t| t.view(spec));
-    let scene2: Vec<Solid> = scene.iter().map(changed).collect();
-    let Some(view2) = spec2.view() else {
-        tally.skipped += 1;
-        return;
-    };
-    let (sx, sy, c) = match t {
-        Some(t) => match t.picture(&view, &view2) {
-            Some(m) => m,
-            None => {
-                tally.skipped += 1;
-                return;
-            }
-        },
-        None => (1.0, 1.0, 1.0),
-    };
-    let d1 = drawing(scene, &view);
-    let d2 = drawing(&scene2, &view2);
-    let a = segments(&d1, |p| [sx * c * p[0], sy * c * p[1]]);
-    let b = segments(&d2, |p| p);
-    assert!(
-        a == b,
-        "{name}, seed {}: {t:?}, view {spec:?}: {}",
-        tally.seed,
-        difference(&a, &b)
-    );
-    tally.compared += 1;
-    if intersections(&d1) > 0 {
-        tally.with_intersections += 1;
-    }
-}
-
-const SEEDS: u64 = 40;
-
-/// Runs `family` over the random scenes, in both projections, and checks that it covered
-/// scenes with intersection lines.
-fn over_scenes(name: &str, family: impl Fn(&mut Tally, &mut Rng, &[Solid], &ViewSpec)) -> Tally {
-    let mut tally = Tally::default();
-    for seed in 0..SEEDS {
-        let mut rng = Rng(0x1e14_0000 + seed);
-        tally.seed = seed;
-        let scene = random_scene(&mut rng);
-        for perspective in [false, true] {
-            let spec = random_view(&mut rng, perspective);
-            family(&mut tally, &mut rng, &scene, &spec);
-        }
-    }
-    assert!(
-        tally.with_intersections >= tally.compared / 2 && tally.compared >= SEEDS as usize,
-        "{name}: too few cases with intersection lines: {tally:?}"
-    );
-    eprintln!("{name}: {tally:?}");
-    tally
-}
-
 #[test]
 fn mirroring_mirrors_the_drawing() {
-    over_scenes("mirror", |tally, rng, scene, spec| {
+    over_scenes(&SETUP, "mirror", |tally, rng, scene, spec| {
         let t = Transform::Mirror(rng.below(3));
-        check(tally, "mirror", scene, spec, Some(t), Solid::clone);
+        check(&SETUP, tally, "mirror", scene, spec, Some(t), Solid::clone);
         // Mirrored and reversed: solids turned outward again.
         check(
+            &SETUP,
             tally,
             "mirror+reverse",
             scene,
@@ -466,8 +133,8 @@ fn mirroring_mirrors_the_drawing() {
 
 #[test]
 fn reversing_faces_changes_nothing() {
-    over_scenes("reverse", |tally, rng, scene, spec| {
-        check(tally, "reverse", scene, spec, None, Solid::reversed);
+    over_scenes(&SETUP, "reverse", |tally, rng, scene, spec| {
+        check(&SETUP, tally, "reverse", scene, spec, None, Solid::reversed);
         // Some solids reversed, the others not.
         let pick = rng.next_u64();
         let some: Vec<Solid> = scene
@@ -481,16 +148,25 @@ fn reversing_faces_changes_nothing() {
                 }
             })
             .collect();
-        check(tally, "reverse some", &some, spec, None, Solid::reversed);
+        check(
+            &SETUP,
+            tally,
+            "reverse some",
+            &some,
+            spec,
+            None,
+            Solid::reversed,
+        );
     });
 }
 
 #[test]
 fn permuting_axes_permutes_the_drawing() {
     const PERMUTATIONS: [[usize; 3]; 5] = [[1, 2, 0], [2, 0, 1], [1, 0, 2], [0, 2, 1], [2, 1, 0]];
-    let tally = over_scenes("permute", |tally, _, scene, spec| {
+    let tally = over_scenes(&SETUP, "permute", |tally, _, scene, spec| {
         for p in PERMUTATIONS {
             check(
+                &SETUP,
                 tally,
                 "permute",
                 scene,
@@ -507,9 +183,10 @@ fn permuting_axes_permutes_the_drawing() {
 
 #[test]
 fn scaling_by_powers_of_two_scales_the_drawing() {
-    over_scenes("scale", |tally, rng, scene, spec| {
+    over_scenes(&SETUP, "scale", |tally, rng, scene, spec| {
         for k in [1, -1, 60, -60, rng.int(-59, 59) as i32] {
             check(
+                &SETUP,
                 tally,
                 "scale",
                 scene,
@@ -523,7 +200,7 @@ fn scaling_by_powers_of_two_scales_the_drawing() {
 
 #[test]
 fn translating_scene_and_eye_changes_nothing_in_perspective() {
-    over_scenes("translate", |tally, rng, scene, spec| {
+    over_scenes(&SETUP, "translate", |tally, rng, scene, spec| {
         if !spec.is_perspective() {
             return;
         }
@@ -537,7 +214,7 @@ fn translating_scene_and_eye_changes_nothing_in_perspective() {
         ];
         for t in offsets {
             let t = Some(Transform::Translate(t));
-            check(tally, "translate", scene, spec, t, Solid::clone);
+            check(&SETUP, tally, "translate", scene, spec, t, Solid::clone);
         }
     });
 }
@@ -546,7 +223,7 @@ fn translating_scene_and_eye_changes_nothing_in_perspective() {
 fn translating_along_an_orthographic_view_changes_nothing() {
     // Views along an axis, with any up direction across it: their frames have exact zeros
     // along the axis, so a translation along it leaves every exact picture unchanged.
-    over_scenes("translate along", |tally, rng, scene, _| {
+    over_scenes(&SETUP, "translate along", |tally, rng, scene, _| {
         let axis = rng.below(3);
         let mut direction = Vector3::zeros();
         direction[axis] = if rng.below(2) == 0 { 1.0 } else { -2.0 };
@@ -560,7 +237,15 @@ fn translating_along_an_orthographic_view_changes_nothing() {
             let mut t = [0.0; 3];
             t[axis] = offset;
             let t = Some(Transform::Translate(t));
-            check(tally, "translate along", scene, &spec, t, Solid::clone);
+            check(
+                &SETUP,
+                tally,
+                "translate along",
+                scene,
+                &spec,
+                t,
+                Solid::clone,
+            );
         }
     });
 }
@@ -688,7 +373,7 @@ fn intersection_line_vertices_are_within_two_ulps_of_exact_points() {
         for perspective in [false, true] {
             let spec = random_view(&mut rng, perspective);
             let view = spec.view().unwrap();
-            let d = drawing(&scene, &view);
+            let d = drawing(&scene, &view, &options());
             let rv = RefView::new(&view);
             let refs = references(&scene, &rv);
             let scale = d
@@ -727,7 +412,7 @@ fn the_checks_see_a_changed_drawing() {
     let mut rng = Rng(0x1e14_0000);
     let scene = random_scene(&mut rng);
     let spec = random_view(&mut rng, false);
-    let d = drawing(&scene, &spec.view().unwrap());
+    let d = drawing(&scene, &spec.view().unwrap(), &options());
     let mut changed = d.clone();
     let p = changed
         .polylines

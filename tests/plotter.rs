@@ -48,7 +48,7 @@ fn along(s: &[P; 2], t: &[P; 2]) -> Option<(Q, Q)> {
 
 /// Checks the cleaned drawing against the drawing (both of points that are exact); returns
 /// how many pairs of the drawing's segments overlapped.
-fn check(name: &str, drawing: &Drawing, clean: &Drawing) -> usize {
+fn check_clean(name: &str, drawing: &Drawing, clean: &Drawing) -> usize {
     let after = segments(clean);
     for (i, (_, s)) in after.iter().enumerate() {
         for (_, t) in &after[i + 1..] {
@@ -162,7 +162,7 @@ fn touching_and_stacked_boxes_are_drawn_once() {
                 let clean = draw(&scene, view, &once).unwrap();
                 let name = format!("boxes at {offset}, view {k}");
                 if k < 3 {
-                    overlapping += check(&name, &drawing, &clean);
+                    overlapping += check_clean(&name, &drawing, &clean);
                 } else {
                     shorter(&name, &drawing, &clean);
                 }
@@ -173,4 +173,157 @@ fn touching_and_stacked_boxes_are_drawn_once() {
         overlapping > 20,
         "only {overlapping} overlapping pairs: the test tests little"
     );
+}
+
+// ---------------------------------------------------------------------------------------------
+// Invariance: the same stretches removed wherever the scene is placed (issue 27).
+
+use common::Rng;
+use common::invariance::{
+    Setup, Solid, Transform, ViewSpec, box_solid, check, dyadic, over_scenes, overlaps_removed,
+    small_vector,
+};
+use kepler::geometry::Point3;
+use kepler::hidden::EdgeSelection;
+
+/// Boxes on a quarter lattice, each touching the last along a face (beside it, on top of it,
+/// or sunk into it by a quarter), and tetrahedra on lattice points, some standing on a box's
+/// face: many stretches of line drawn twice, and intersection lines.
+fn touching_scene(rng: &mut Rng) -> Vec<Solid> {
+    let mut solids = Vec::new();
+    let mut lo = [0; 3].map(|_| dyadic(rng, -2, 0));
+    for _ in 0..2 + rng.below(3) {
+        let size = [0; 3].map(|_| rng.int(2, 8) / 4.0);
+        let hi = [0, 1, 2].map(|k| lo[k] + size[k]);
+        solids.push(box_solid(lo, hi));
+        let axis = rng.below(3);
+        let sunk = if rng.below(3) == 0 { 0.25 } else { 0.0 };
+        lo[axis] = hi[axis] - sunk;
+        let across = (axis + 1 + rng.below(2)) % 3;
+        lo[across] += rng.int(-2, 2) / 4.0;
+    }
+    for _ in 0..rng.below(3) {
+        let p: Vec<Point3> = (0..4)
+            .map(|_| Point3::new(dyadic(rng, -2, 2), dyadic(rng, -2, 2), dyadic(rng, -2, 2)))
+            .collect();
+        if kepler::geometry::predicates::orient3d(&p[0], &p[1], &p[2], &p[3])
+            != std::cmp::Ordering::Equal
+        {
+            let faces = vec![vec![0, 1, 2], vec![0, 3, 1], vec![1, 3, 2], vec![0, 2, 3]];
+            solids.push(common::invariance::outward(p, faces));
+        }
+    }
+    solids
+}
+
+const fn once(edges: EdgeSelection) -> Options {
+    Options {
+        edges,
+        crease_angle: 30.0,
+        hidden: true,
+        overlaps: Overlaps::Once,
+    }
+}
+
+const FEATURE: Setup = Setup {
+    options: once(EdgeSelection::Feature),
+    seeds: 24,
+    base: 0x2700_0000,
+    scene: touching_scene,
+    about: |d| !overlaps_removed(d).starts_with("0 groups"),
+};
+
+const ALL: Setup = Setup {
+    options: once(EdgeSelection::All),
+    seeds: 16,
+    base: 0x2701_0000,
+    scene: touching_scene,
+    about: |d| !overlaps_removed(d).starts_with("0 groups"),
+};
+
+#[test]
+fn overlaps_removed_the_same_when_mirrored_reversed_or_permuted() {
+    for setup in [&FEATURE, &ALL] {
+        over_scenes(
+            setup,
+            "mirror, reverse, permute",
+            |tally, rng, scene, spec| {
+                let mirror = Transform::Mirror(rng.below(3));
+                check(
+                    setup,
+                    tally,
+                    "mirror",
+                    scene,
+                    spec,
+                    Some(mirror),
+                    Solid::clone,
+                );
+                check(
+                    setup,
+                    tally,
+                    "mirror+reverse",
+                    scene,
+                    spec,
+                    Some(mirror),
+                    Solid::reversed,
+                );
+                check(setup, tally, "reverse", scene, spec, None, Solid::reversed);
+                let p = [[1, 2, 0], [2, 0, 1], [1, 0, 2]][rng.below(3)];
+                check(
+                    setup,
+                    tally,
+                    "permute",
+                    scene,
+                    spec,
+                    Some(Transform::Permute(p)),
+                    Solid::clone,
+                );
+            },
+        );
+    }
+}
+
+#[test]
+fn overlaps_removed_the_same_when_scaled_or_translated() {
+    for setup in [&FEATURE, &ALL] {
+        over_scenes(setup, "scale, translate", |tally, rng, scene, spec| {
+            for k in [1, -60, 60, rng.int(-59, 59) as i32] {
+                let t = Some(Transform::Scale(k));
+                check(setup, tally, "scale", scene, spec, t, Solid::clone);
+            }
+            // Coordinates are multiples of 1/4: exact after any of these moves.
+            let offsets = [1e8, 2f64.powi(40), -(2f64.powi(50))];
+            if spec.is_perspective() {
+                for o in offsets {
+                    let t = Some(Transform::Translate([o, -o / 2.0, o / 4.0]));
+                    check(setup, tally, "translate", scene, spec, t, Solid::clone);
+                }
+            } else {
+                // Along an axis of view: the picture does not move.
+                let axis = rng.below(3);
+                let mut direction = Vector3::zeros();
+                direction[axis] = if rng.below(2) == 0 { 1.0 } else { -2.0 };
+                let mut up = small_vector(rng);
+                up[axis] = 0.0;
+                if up == Vector3::zeros() {
+                    up[(axis + 1) % 3] = 1.0;
+                }
+                let along = ViewSpec::Orthographic { direction, up };
+                for o in offsets {
+                    let mut t = [0.0; 3];
+                    t[axis] = o;
+                    let t = Some(Transform::Translate(t));
+                    check(
+                        setup,
+                        tally,
+                        "translate along",
+                        scene,
+                        &along,
+                        t,
+                        Solid::clone,
+                    );
+                }
+            }
+        });
+    }
 }

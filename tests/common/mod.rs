@@ -3,6 +3,7 @@
 #![allow(dead_code)]
 
 pub mod exact;
+pub mod invariance;
 
 use kepler::geometry::Vector3;
 use num_rational::BigRational;
