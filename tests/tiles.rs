@@ -9,7 +9,7 @@ use common::Rng;
 use common::exact::cuboid_at;
 use kepler::geometry::{Point3, Vector3};
 use kepler::hidden::tiles::{TileDrawing, draw_tile, stitch, tile_windows};
-use kepler::hidden::{DrawError, Drawing, EdgeSelection, Options, draw};
+use kepler::hidden::{DrawError, Drawing, EdgeSelection, Options, Overlaps, draw};
 use kepler::scene::{Scene, file};
 use kepler::views::{View, Window};
 use std::path::Path;
@@ -351,4 +351,160 @@ fn tiles_of_different_scenes_and_bad_bytes_are_refused() {
     }
     assert!(Window::grid([0.0; 2], [1.0; 2], [0, 1]).is_err());
     assert!(Window::grid([0.0; 2], [f64::INFINITY; 2], [1, 1]).is_err());
+}
+
+/// Both ways of finishing a drawing: every piece, and each stretch once.
+fn both(options: Options) -> [Options; 2] {
+    [
+        options,
+        Options {
+            overlaps: Overlaps::Once,
+            ..options
+        },
+    ]
+}
+
+/// The windows cut by vertical borders at `xs` and horizontal ones at `ys` (each list
+/// sorted, without repeats): they cover the picture once.
+fn cut_by(xs: &[f64], ys: &[f64]) -> Vec<Window> {
+    let bands = |b: &[f64]| -> Vec<[f64; 2]> {
+        let mut edges = vec![f64::NEG_INFINITY];
+        edges.extend_from_slice(b);
+        edges.push(f64::INFINITY);
+        edges.windows(2).map(|w| [w[0], w[1]]).collect()
+    };
+    let (bx, by) = (bands(xs), bands(ys));
+    by.iter()
+        .flat_map(|&y| bx.iter().map(move |&x| Window::new(x, y).unwrap()))
+        .collect()
+}
+
+/// The city seen along (−1, −2, −3) in 2×2 and 4×4 tiles: a border passed 2.6e-16 from a
+/// silhouette's vertex, and the border's cut survived stitching as an extra vertex, because
+/// pieces were ordered by their rough parameters (issue 27).
+#[test]
+fn the_city_seen_along_minus_1_minus_2_minus_3() {
+    let scene = file::load(Path::new("scenes/city.toml")).unwrap();
+    let view = View::orthographic(Vector3::new(-1.0, -2.0, -3.0), Vector3::z()).unwrap();
+    for options in both(Options::default()) {
+        for grid in [[2, 2], [4, 4], [3, 5]] {
+            let windows = tile_windows(&scene, &view, grid).unwrap();
+            let what = format!("city along (-1, -2, -3), grid {grid:?}, {options:?}");
+            same(&scene, &view, &options, &windows, &what);
+        }
+    }
+}
+
+/// Dyadic boxes and tetrahedra, touching and sunk, in random views (along the axes, oblique,
+/// in perspective), cut by borders through points of the drawing (pictures of vertices, of
+/// cuts where lines cross, of intersection lines' ends) and one unit in the last place to
+/// either side of them.
+#[test]
+fn borders_through_vertices_cuts_and_crossings_and_an_ulp_beside() {
+    let mut rng = Rng(2727);
+    let mut cases = 0;
+    for round in 0..24 {
+        let mut scene = Scene::new();
+        for i in 0..4 + rng.below(3) {
+            let at = [0; 3].map(|_| rng.int(0, 12) / 4.0);
+            let size = [0; 3].map(|_| rng.int(2, 8) / 4.0);
+            scene
+                .add_mesh(None, format!("box{i}"), cuboid_at(size, at))
+                .unwrap();
+        }
+        let view = match round % 4 {
+            0 => View::orthographic(Vector3::new(0.0, -1.0, 0.0), Vector3::z()),
+            1 => View::orthographic(rng.vector(1.0), Vector3::z()),
+            2 => View::orthographic(Vector3::new(-1.0, -2.0, -3.0), Vector3::z()),
+            _ => View::perspective(
+                Point3::from(rng.vector(4.0) + Vector3::new(1.5, -9.0, 6.0)),
+                Point3::new(1.5, 1.5, 1.0),
+                Vector3::z(),
+                50.0,
+            ),
+        };
+        let Ok(view) = view else { continue };
+        let whole = draw(&scene, &view, &Options::default()).unwrap();
+        let points: Vec<[f64; 2]> = whole
+            .polylines
+            .iter()
+            .flat_map(|p| p.points.iter().copied())
+            .collect();
+        for _ in 0..3 {
+            // Two borders each way through points of the drawing, moved by an ulp or not.
+            let mut border = |k: usize| -> Vec<f64> {
+                let mut b: Vec<f64> = (0..2)
+                    .map(|_| {
+                        let c = rng.pick(&points)[k];
+                        match rng.below(3) {
+                            0 => c.next_down(),
+                            1 => c,
+                            _ => c.next_up(),
+                        }
+                    })
+                    .collect();
+                b.sort_by(f64::total_cmp);
+                b.dedup();
+                b
+            };
+            let (xs, ys) = (border(0), border(1));
+            let windows = cut_by(&xs, &ys);
+            for edges in [EdgeSelection::Feature, EdgeSelection::All] {
+                for options in both(options(edges, true)) {
+                    let what = format!("round {round}, borders {xs:?} {ys:?}, {options:?}");
+                    same(&scene, &view, &options, &windows, &what);
+                    cases += 1;
+                }
+            }
+        }
+    }
+    assert!(cases >= 250, "{cases} cases");
+}
+
+/// Every bundled scene in random views (oblique orthographic and perspective from around
+/// it) and random grids from 1×1 to 16×16 (the whole 16×16 for the smaller scenes: each
+/// tile of a scene whose one object spans the picture does that object's work again), with
+/// overlaps kept and drawn once.
+#[test]
+fn bundled_scenes_in_random_views_and_grids() {
+    let mut rng = Rng(1616);
+    let scenes = [
+        ("cube", true),
+        ("solids", true),
+        ("polyhedra", true),
+        ("torus", false),
+        ("meshes", false),
+        ("city", false),
+    ];
+    for (n, (name, small)) in scenes.into_iter().enumerate() {
+        let scene = file::load(Path::new(&format!("scenes/{name}.toml"))).unwrap();
+        let bounds = scene
+            .mesh_objects(scene.roots())
+            .iter()
+            .map(|(id, _)| scene.cbox(*id))
+            .reduce(|a, b| a.union(&b))
+            .unwrap();
+        let centre = Point3::from([0, 1, 2].map(|k| (bounds.min[k] + bounds.max[k]) / 2.0));
+        let size = (0..3)
+            .map(|k| bounds.max[k] - bounds.min[k])
+            .fold(0.0, f64::max);
+        for v in [n % 2, 1 - n % 2] {
+            let view = if v == 0 {
+                View::orthographic(rng.vector(1.0), rng.vector(1.0))
+            } else {
+                let eye = centre + rng.vector(1.0).normalize() * (2.0 * size);
+                View::perspective(eye, centre, Vector3::z(), rng.range(30.0, 70.0))
+            };
+            let Ok(view) = view else { continue };
+            let grid = if small && v == 0 {
+                [16, 16]
+            } else {
+                [1 + rng.below(16), 1 + rng.below(3)]
+            };
+            let windows = tile_windows(&scene, &view, grid).unwrap();
+            let options = both(Options::default())[v];
+            let what = format!("{name}, view {view:?}, grid {grid:?}, {options:?}");
+            same(&scene, &view, &options, &windows, &what);
+        }
+    }
 }
