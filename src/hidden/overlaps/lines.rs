@@ -16,8 +16,10 @@ use super::{Span, rounding};
 use crate::hidden::chain::Piece;
 use crate::hidden::marks::Provenance;
 use crate::queries::collinear::Support;
+use rayon::prelude::*;
 use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::{AABB, RTree};
+use std::collections::HashMap;
 use std::f64::consts::PI;
 
 /// A line's picture, roughly: its angle and offset, each with a bound on its error.
@@ -112,12 +114,15 @@ fn entry(span: usize, p: [f64; 2], q: [f64; 2], slack: f64) -> Option<Entry> {
 
 /// The entries cut into maximal runs of two or more whose intervals `(value ± error)` chain
 /// into one (an entry whose interval meets no other's is left out).
-fn runs(mut entries: Vec<Entry>, interval: impl Fn(&Entry) -> (f64, f64)) -> Vec<Vec<Entry>> {
+fn runs(
+    mut entries: Vec<Entry>,
+    interval: impl Fn(&Entry) -> (f64, f64) + Sync,
+) -> Vec<Vec<Entry>> {
     let low = |e: &Entry| {
         let (v, r) = interval(e);
         v - r
     };
-    entries.sort_unstable_by(|x, y| low(x).total_cmp(&low(y)).then(x.span.cmp(&y.span)));
+    entries.par_sort_unstable_by(|x, y| low(x).total_cmp(&low(y)).then(x.span.cmp(&y.span)));
     let mut out: Vec<Vec<Entry>> = Vec::new();
     let mut run: Vec<Entry> = Vec::new();
     let mut high = f64::NEG_INFINITY;
@@ -144,8 +149,9 @@ struct Grouping<'a, P> {
     provenance: &'a P,
     spans: &'a [Span],
     parent: Vec<usize>,
-    /// Each span's support, once known, and whether its picture is a line.
-    supports: Vec<Option<(Support, bool)>>,
+    /// The supports of the spans compared so far, and whether their pictures are lines (few
+    /// spans are: a map, not a slot for each).
+    supports: HashMap<usize, (Support, bool)>,
 }
 
 impl<'a, P: Provenance> Grouping<'a, P> {
@@ -154,14 +160,14 @@ impl<'a, P: Provenance> Grouping<'a, P> {
             provenance,
             spans,
             parent: (0..spans.len()).collect(),
-            supports: vec![None; spans.len()],
+            supports: HashMap::new(),
         }
     }
 
     /// Span `s`'s support when its picture is a line.
     fn support(&mut self, s: usize) -> Option<Support> {
         let (provenance, span) = (self.provenance, &self.spans[s]);
-        let (support, pictured) = *self.supports[s].get_or_insert_with(|| {
+        let (support, pictured) = *self.supports.entry(s).or_insert_with(|| {
             let support = provenance.support(span.line);
             (support, support.is_pictured(provenance.eye()))
         });
