@@ -163,6 +163,8 @@ impl Support {
     /// support must be pictured.
     pub(crate) fn sight_sign(&self, eye: &Eye, x: &LinePoint) -> Ordering {
         match (self, x) {
+            // The edge's own ends: the exact determinant would take its slowest path to zero.
+            (Support::Edge([a, b]), LinePoint::Vertex(p)) if p == a || p == b => Ordering::Equal,
             (Support::Edge([a, b]), LinePoint::Vertex(p)) => eye.orient3d(a, b, p),
             (Support::Meet { meet, .. }, LinePoint::Vertex(p)) => meet.sight_side(eye, p),
             _ => SightAt {

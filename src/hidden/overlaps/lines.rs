@@ -6,8 +6,11 @@
 //! `θ ∈ [0, π)` and offset `ρ` (the signed distance of the line from the picture's origin)
 //! with bounds on their errors. Two lines with one picture line have intervals that overlap
 //! in both, so the lines are sorted by angle and cut into runs of overlapping intervals,
-//! each run sorted by offset and cut again; within a run, each line is compared exactly
-//! ([`Support::same_picture`]) with one line of each group found so far. A line near `θ = 0`
+//! each run sorted by offset and cut again, and again by the lines' extents along the run's
+//! direction (lines on one picture line that do not reach each other, floors of a tower or
+//! buildings along a street, share no stretch: they need not be grouped). Within a run
+//! (the runs in parallel), each line is compared exactly ([`Support::same_picture`]) with
+//! the first line of each class found so far. A line near `θ = 0`
 //! or `π` enters twice, once on each side (its offset negated). A line too short for useful
 //! bounds is compared exactly with every line that has a piece passing near it (an R-tree of
 //! the pieces' boxes, built only when there is such a line).
@@ -22,7 +25,8 @@ use rstar::{AABB, RTree};
 use std::collections::HashMap;
 use std::f64::consts::PI;
 
-/// A line's picture, roughly: its angle and offset, each with a bound on its error.
+/// A line's picture, roughly: its angle and offset, each with a bound on its error, and the
+/// rounded pictures of its first and last ends, each within `margin` of the exact one.
 #[derive(Debug, Clone, Copy)]
 struct Entry {
     span: usize,
@@ -30,10 +34,12 @@ struct Entry {
     theta_error: f64,
     rho: f64,
     rho_error: f64,
+    ends: [[f64; 2]; 2],
+    margin: f64,
 }
 
 /// The groups (span indices, increasing; groups by their first) of two or more lines whose
-/// pictures lie on one line.
+/// pictures lie on one line and may share a stretch.
 pub(super) fn groups<P: Provenance>(
     provenance: &P,
     spans: &[Span],
@@ -67,16 +73,66 @@ pub(super) fn groups<P: Provenance>(
             None => short.push(s),
         }
     }
+    let candidates: Vec<Vec<Entry>> = runs(entries, |e| (e.theta, e.theta_error))
+        .into_iter()
+        .flat_map(|run| runs(run, |e| (e.rho, e.rho_error)))
+        .flat_map(along)
+        .collect();
+    let found: Vec<Vec<Vec<usize>>> = candidates
+        .par_iter()
+        .map(|run| classes(provenance, spans, run))
+        .collect();
     let mut exact = Grouping::new(provenance, spans);
-    for run in runs(entries, |e| (e.theta, e.theta_error)) {
-        for run in runs(run, |e| (e.rho, e.rho_error)) {
-            exact.within(&run);
+    for class in found.iter().flatten() {
+        for &s in &class[1..] {
+            exact.join(class[0], s);
         }
     }
     if !short.is_empty() {
         exact.short(&short, pieces);
     }
     exact.groups()
+}
+
+/// A run of lines with one picture line, roughly, cut into runs whose extents along it
+/// overlap: lines whose pieces share a stretch are in one. Along a direction within a small
+/// angle of the exact picture line, projections keep the order of its points, and each end's
+/// projection is within its rounding bound of the exact end's.
+fn along(run: Vec<Entry>) -> Vec<Vec<Entry>> {
+    let (sin, cos) = run[0].theta.sin_cos();
+    runs(run, move |e| {
+        let [lo, hi] = {
+            let [a, b] = e.ends.map(|p| cos * p[0] + sin * p[1]);
+            [a.min(b), a.max(b)]
+        };
+        let rounding = 4.0 * f64::EPSILON * (lo.abs() + hi.abs());
+        ((lo + hi) / 2.0, (hi - lo) / 2.0 + e.margin + rounding)
+    })
+}
+
+/// The lines of one run of candidates grouped exactly: each compared with the first line of
+/// each class found so far; classes of two or more (span indices, the first first).
+fn classes<P: Provenance>(provenance: &P, spans: &[Span], run: &[Entry]) -> Vec<Vec<usize>> {
+    let eye = provenance.eye();
+    let mut classes: Vec<(Support, Vec<usize>)> = Vec::new();
+    for e in run {
+        let support = provenance.support(spans[e.span].line);
+        if !support.is_pictured(eye) {
+            continue;
+        }
+        match classes
+            .iter_mut()
+            .find(|(first, _)| first.same_picture(&support, eye))
+        {
+            Some((_, members)) => members.push(e.span),
+            None => classes.push((support, vec![e.span])),
+        }
+    }
+    classes
+        .into_iter()
+        .filter(|(_, m)| m.len() > 1)
+        .map(|(_, m)| m)
+        .collect()
 }
 
 /// The entry of a line whose pieces run from `p` to `q`, or `None` when its picture is too
@@ -109,6 +165,8 @@ fn entry(span: usize, p: [f64; 2], q: [f64; 2], slack: f64) -> Option<Entry> {
         theta_error,
         rho,
         rho_error,
+        ends: [p, q],
+        margin: rounding(p, slack) + rounding(q, slack),
     })
 }
 
@@ -198,17 +256,11 @@ impl<'a, P: Provenance> Grouping<'a, P> {
         true
     }
 
-    /// Groups the lines of one run of candidates: each compared with one line of each group
-    /// found in the run so far.
-    fn within(&mut self, run: &[Entry]) {
-        let mut firsts: Vec<usize> = Vec::new();
-        for e in run {
-            if self.support(e.span).is_none() {
-                continue;
-            }
-            if !firsts.iter().any(|&f| self.join_if_same(f, e.span)) {
-                firsts.push(e.span);
-            }
+    /// Joins the groups of spans `s` and `t`.
+    fn join(&mut self, s: usize, t: usize) {
+        let (a, b) = (self.root(s), self.root(t));
+        if a != b {
+            self.parent[a.max(b)] = a.min(b);
         }
     }
 

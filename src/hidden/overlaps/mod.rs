@@ -32,11 +32,12 @@
 //!    lines whose pieces pass near them.
 //! 2. **A sweep along each group** ([`sweep`]). The ends of the group's pieces are sorted
 //!    along the picture line exactly (the turn of their lines of sight; a certified filter on
-//!    the rounded pictures decides all but near ties), equal points taken together. Each
-//!    stretch between consecutive points goes to the highest rank covering it, consecutive
-//!    stretches of one rank are joined, and a group whose stretches are never covered twice
-//!    is left as it was. No point is made: where several ends are one exact point, the one
-//!    named by the smallest [`MarkKey`](super::marks::MarkKey) is drawn.
+//!    the rounded pictures decides all but near ties), equal points taken together. The line
+//!    falls into runs covered by pieces without a gap; in a run covered twice somewhere, each
+//!    stretch between consecutive points goes to the highest rank covering it and
+//!    consecutive stretches of one rank are joined; a run never covered twice is left as it
+//!    was. No point is made: where several ends are one exact point, the one named by the
+//!    smallest [`MarkKey`](super::marks::MarkKey) is drawn.
 //!
 //! Cost: the sorts of step 1 (`n log n` in the lines, nothing quadratic in a crowded point),
 //! then `m log m` exact comparisons, nearly all decided by the filter, in a group of `m`
@@ -120,26 +121,24 @@ pub(crate) fn drawn_once<P: Provenance>(
 ) -> (Vec<Piece>, OverlapReport) {
     let spans = spans(&pieces);
     let groups = lines::groups(provenance, &spans, &pieces);
-    let swept: Vec<Option<Vec<Piece>>> = groups
+    let found: Vec<Vec<sweep::Overlap>> = groups
         .par_iter()
         .map(|group| sweep::sweep(provenance, group, &spans, &pieces))
         .collect();
     let mut report = OverlapReport::default();
     let mut replaced = vec![false; pieces.len()];
     let mut made = Vec::new();
-    for (group, swept) in groups.iter().zip(swept) {
-        let Some(swept) = swept else { continue };
+    for overlap in found.into_iter().flatten() {
         report.groups += 1;
         let mut length = 0.0;
-        for &s in group {
-            for k in spans[s].pieces.clone() {
-                replaced[k] = true;
-                report.segments += 1;
-                length += distance(pieces[k].ends);
-            }
+        for &k in &overlap.pieces {
+            replaced[k] = true;
+            report.segments += 1;
+            length += distance(pieces[k].ends);
         }
-        report.removed_length += length - swept.iter().map(|p| distance(p.ends)).sum::<f64>();
-        made.extend(swept);
+        report.removed_length +=
+            length - overlap.drawn.iter().map(|p| distance(p.ends)).sum::<f64>();
+        made.extend(overlap.drawn);
     }
     if report.groups == 0 {
         return (pieces, report);

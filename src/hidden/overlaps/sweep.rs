@@ -10,14 +10,16 @@ use super::{Span, rank, rounding, unranked};
 use crate::hidden::EdgeClass;
 use crate::hidden::chain::Piece;
 use crate::hidden::marks::{Mark, MarkKey, Provenance};
-use crate::queries::collinear::{LinePoint, turn};
+use crate::queries::collinear::turn;
 use std::cmp::Ordering;
 
-/// A piece's end in the sweep: the point, its name, its rounded picture, and whether a piece
-/// of rank `rank` begins (`+1`) or ends (`−1`) there.
-#[derive(Debug, Clone)]
+/// A piece's end in the sweep: the piece, its line and mark, the point's name and rounded
+/// picture, and whether a piece of rank `rank` begins (`+1`) or ends (`−1`) there.
+#[derive(Debug, Clone, Copy)]
 struct Event {
-    point: LinePoint,
+    piece: usize,
+    line: usize,
+    mark: Mark,
     key: MarkKey,
     picture: [f64; 2],
     rank: usize,
@@ -38,7 +40,7 @@ struct Order<'a, P> {
 impl<P: Provenance> Order<'_, P> {
     /// The exact order of `x` and `y` along the sweep.
     fn compare(&self, x: &Event, y: &Event) -> Ordering {
-        if x.point == y.point {
+        if (x.line, x.mark) == (y.line, y.mark) {
             return Ordering::Equal;
         }
         if let Some(g) = self.direction {
@@ -54,7 +56,8 @@ impl<P: Provenance> Order<'_, P> {
                 return Ordering::Greater;
             }
         }
-        match turn(self.provenance.eye(), &self.off, &x.point, &y.point) {
+        let point = |e: &Event| self.provenance.point(e.line, e.mark);
+        match turn(self.provenance.eye(), &self.off, &point(x), &point(y)) {
             Ordering::Equal => Ordering::Equal,
             t if t == self.forward => Ordering::Less,
             _ => Ordering::Greater,
@@ -62,14 +65,22 @@ impl<P: Provenance> Order<'_, P> {
     }
 }
 
-/// The group's pieces with each stretch drawn once, in the sweep's direction; `None` when no
-/// stretch of the group is covered twice (the group is left as it is).
+/// A stretch of the group's picture line covered twice or more, drawn once: the pieces that
+/// cover it (indices into the pieces) and what replaces them.
+pub(super) struct Overlap {
+    pub pieces: Vec<usize>,
+    pub drawn: Vec<Piece>,
+}
+
+/// The group's stretches covered twice or more (each a maximal run of the line covered by
+/// pieces without a gap), each drawn once, in the sweep's direction; the group's other
+/// pieces are left as they are.
 pub(super) fn sweep<P: Provenance>(
     provenance: &P,
     group: &[usize],
     spans: &[Span],
     pieces: &[Piece],
-) -> Option<Vec<Piece>> {
+) -> Vec<Overlap> {
     let eye = provenance.eye();
     let first = &spans[group[0]];
     let support = provenance.support(first.line);
@@ -77,7 +88,7 @@ pub(super) fn sweep<P: Provenance>(
     let [p0, p1] = support.points();
     let forward = turn(eye, &off, &p0, &p1);
     if forward == Ordering::Equal {
-        return None;
+        return Vec::new();
     }
     let order = Order {
         provenance,
@@ -94,13 +105,16 @@ pub(super) fn sweep<P: Provenance>(
         let span = &spans[s];
         let [q0, q1] = provenance.support(span.line).points();
         let along = s == group[0] || turn(eye, &off, &q0, &q1) == forward;
-        for p in &pieces[span.pieces.clone()] {
-            let (lo, hi) = if along { (0, 1) } else { (1, 0) };
-            for (k, delta) in [(lo, 1), (hi, -1)] {
+        let (lo, hi) = if along { (0, 1) } else { (1, 0) };
+        for k in span.pieces.clone() {
+            let p = &pieces[k];
+            for (end, delta) in [(lo, 1), (hi, -1)] {
                 events.push(Event {
-                    point: provenance.point(span.line, p.marks[k]),
-                    key: provenance.key(span.line, p.marks[k]),
-                    picture: p.ends[k],
+                    piece: k,
+                    line: span.line,
+                    mark: p.marks[end],
+                    key: provenance.key(span.line, p.marks[end]),
+                    picture: p.ends[end],
                     rank: rank(p.class, p.visible),
                     delta,
                 });
@@ -108,24 +122,27 @@ pub(super) fn sweep<P: Provenance>(
         }
     }
     events.sort_by(|x, y| order.compare(x, y));
-    let stretches = stretches(&events, &order)?;
-    Some(
-        stretches
-            .into_iter()
-            .map(|(rank, ends)| {
-                let (class, visible) = unranked(rank);
-                Piece {
-                    class,
-                    visible,
-                    ends,
-                    line: first.line,
-                    t: [0.0, 0.0],
-                    border: [false; 2],
-                    marks: [Mark::First, Mark::Last],
-                }
-            })
-            .collect(),
-    )
+    overlaps(&events, &order)
+        .into_iter()
+        .map(|(covering, stretches)| Overlap {
+            pieces: covering,
+            drawn: stretches
+                .into_iter()
+                .map(|(rank, ends)| {
+                    let (class, visible) = unranked(rank);
+                    Piece {
+                        class,
+                        visible,
+                        ends,
+                        line: first.line,
+                        t: [0.0, 0.0],
+                        border: [false; 2],
+                        marks: [Mark::First, Mark::Last],
+                    }
+                })
+                .collect(),
+        })
+        .collect()
 }
 
 /// The rounded direction from `p` to `q` as a unit vector, when the line is long enough for
@@ -137,17 +154,22 @@ fn direction(p: [f64; 2], q: [f64; 2], slack: f64) -> Option<[f64; 2]> {
     (length.is_finite() && length > 64.0 * error).then(|| [d[0] / length, d[1] / length])
 }
 
-/// The stretches between consecutive points of the sorted events, each with the highest rank
-/// covering it, consecutive ones of one rank joined; `None` when none is covered twice.
-fn stretches<P: Provenance>(
-    events: &[Event],
-    order: &Order<P>,
-) -> Option<Vec<(usize, [[f64; 2]; 2])>> {
+/// A run's stretches: each rank with its ends.
+type Stretches = Vec<(usize, [[f64; 2]; 2])>;
+
+/// The runs of the line covered without a gap (in the sorted events) that are covered twice
+/// somewhere, each with its pieces and its stretches between consecutive points, each
+/// stretch given the highest rank covering it and consecutive ones of one rank joined. Where
+/// several ends are one point, the one with the smallest key is drawn.
+fn overlaps<P: Provenance>(events: &[Event], order: &Order<P>) -> Vec<(Vec<usize>, Stretches)> {
     let mut count = vec![0i32; 2 * EdgeClass::ALL.len()];
     let mut covering = 0i32;
+    let mut out = Vec::new();
+    // The current run: its pieces, whether it is covered twice, its stretches (each with
+    // its rank, ends and the index of its last point).
+    let mut pieces: Vec<usize> = Vec::new();
     let mut twice = false;
-    // Each stretch with its rank, its ends and the index of its last point.
-    let mut out: Vec<(usize, [[f64; 2]; 2], usize)> = Vec::new();
+    let mut stretches: Vec<(usize, [[f64; 2]; 2], usize)> = Vec::new();
     let mut from: Option<[f64; 2]> = None;
     let (mut i, mut position) = (0, 0);
     while i < events.len() {
@@ -155,32 +177,42 @@ fn stretches<P: Provenance>(
         while j < events.len() && order.compare(&events[i], &events[j]) == Ordering::Equal {
             j += 1;
         }
-        // The point drawn here: the end named by the smallest key.
         let here = events[i..j]
             .iter()
             .min_by_key(|e| e.key)
             .map_or(events[i].picture, |e| e.picture);
         if let (Some(start), Some(top)) = (from, count.iter().rposition(|&c| c > 0)) {
             twice |= covering >= 2;
-            match out.last_mut() {
+            match stretches.last_mut() {
                 Some(last) if last.0 == top && last.2 + 1 == position => {
                     last.1[1] = here;
                     last.2 = position;
                 }
-                _ => out.push((top, [start, here], position)),
+                _ => stretches.push((top, [start, here], position)),
             }
         }
         for e in &events[i..j] {
             count[e.rank] += e.delta;
             covering += e.delta;
+            if e.delta > 0 {
+                pieces.push(e.piece);
+            }
+        }
+        if covering == 0 {
+            // A gap: the run ends here.
+            let run = std::mem::take(&mut stretches);
+            if std::mem::take(&mut twice) {
+                let ends = run
+                    .into_iter()
+                    .map(|(rank, ends, _)| (rank, ends))
+                    .collect();
+                out.push((std::mem::take(&mut pieces), ends));
+            }
+            pieces.clear();
         }
         from = Some(here);
         position += 1;
         i = j;
     }
-    twice.then(|| {
-        out.into_iter()
-            .map(|(rank, ends, _)| (rank, ends))
-            .collect()
-    })
+    out
 }

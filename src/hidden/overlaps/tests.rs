@@ -140,7 +140,7 @@ fn reference(pass: &Pass, pieces: &[Piece]) -> Vec<Segment> {
         let [p0, p1] = &pictured[&group[0]];
         let d = [&p1[0] - &p0[0], &p1[1] - &p0[1]];
         let position = |x: &[Q; 2]| (&x[0] - &p0[0]) * &d[0] + (&x[1] - &p0[1]) * &d[1];
-        // (position, key, picture, rank, +1 / −1)
+        // (position, key, picture, rank, +1 / −1, piece)
         let mut events = Vec::new();
         let members: Vec<usize> = (0..pieces.len())
             .filter(|&k| group.contains(&pieces[k].line))
@@ -153,12 +153,14 @@ fn reference(pass: &Pass, pieces: &[Piece]) -> Vec<Segment> {
             };
             let (a, b) = (at(0), at(1));
             let (lo, hi) = if a.0 < b.0 { (a, b) } else { (b, a) };
-            events.push((lo.0, lo.1, lo.2, rank(p.class, p.visible), 1));
-            events.push((hi.0, hi.1, hi.2, rank(p.class, p.visible), -1));
+            events.push((lo.0, lo.1, lo.2, rank(p.class, p.visible), 1, k));
+            events.push((hi.0, hi.1, hi.2, rank(p.class, p.visible), -1, k));
         }
         events.sort_by(|x, y| x.0.cmp(&y.0));
+        // Runs of the line covered without a gap, each drawn once if covered twice.
         let mut count = [0i32; 10];
         let (mut covering, mut twice) = (0, false);
+        let mut run: Vec<usize> = Vec::new();
         let mut swept: Vec<(usize, [[f64; 2]; 2], usize)> = Vec::new();
         let mut from: Option<[f64; 2]> = None;
         let (mut i, mut position) = (0, 0);
@@ -180,17 +182,23 @@ fn reference(pass: &Pass, pieces: &[Piece]) -> Vec<Segment> {
             for e in &events[i..j] {
                 count[e.3] += e.4;
                 covering += e.4;
+                if e.4 > 0 {
+                    run.push(e.5);
+                }
+            }
+            if covering == 0 {
+                if twice {
+                    run.iter().for_each(|&k| replaced[k] = true);
+                    out.extend(swept.drain(..).map(|(r, ends, _)| {
+                        let (class, visible) = unranked(r);
+                        segment(class, visible, ends)
+                    }));
+                }
+                (twice, run, swept) = (false, Vec::new(), Vec::new());
             }
             from = Some(here);
             position += 1;
             i = j;
-        }
-        if twice {
-            members.iter().for_each(|&k| replaced[k] = true);
-            out.extend(swept.into_iter().map(|(r, ends, _)| {
-                let (class, visible) = unranked(r);
-                segment(class, visible, ends)
-            }));
         }
     }
     out.extend(
