@@ -25,17 +25,14 @@ use rstar::{AABB, RTree};
 use std::collections::HashMap;
 use std::f64::consts::PI;
 
-/// A line's picture, roughly: its angle and offset, each with a bound on its error, and the
-/// rounded pictures of its first and last ends, each within `margin` of the exact one.
+/// A line's picture, roughly: its angle and offset, each with a bound on its error.
 #[derive(Debug, Clone, Copy)]
 struct Entry {
-    span: usize,
+    span: u32,
     theta: f64,
     theta_error: f64,
     rho: f64,
     rho_error: f64,
-    ends: [[f64; 2]; 2],
-    margin: f64,
 }
 
 /// The groups (span indices, increasing; groups by their first) of two or more lines whose
@@ -76,7 +73,7 @@ pub(super) fn groups<P: Provenance>(
     let candidates: Vec<Vec<Entry>> = runs(entries, |e| (e.theta, e.theta_error))
         .into_iter()
         .flat_map(|run| runs(run, |e| (e.rho, e.rho_error)))
-        .flat_map(along)
+        .flat_map(|run| along(run, spans, pieces, slack))
         .collect();
     let found: Vec<Vec<Vec<usize>>> = candidates
         .par_iter()
@@ -98,15 +95,21 @@ pub(super) fn groups<P: Provenance>(
 /// overlap: lines whose pieces share a stretch are in one. Along a direction within a small
 /// angle of the exact picture line, projections keep the order of its points, and each end's
 /// projection is within its rounding bound of the exact end's.
-fn along(run: Vec<Entry>) -> Vec<Vec<Entry>> {
+fn along(run: Vec<Entry>, spans: &[Span], pieces: &[Piece], slack: f64) -> Vec<Vec<Entry>> {
     let (sin, cos) = run[0].theta.sin_cos();
     runs(run, move |e| {
+        let span = &spans[e.span as usize];
+        let ends = [
+            pieces[span.pieces.start].ends[0],
+            pieces[span.pieces.end - 1].ends[1],
+        ];
         let [lo, hi] = {
-            let [a, b] = e.ends.map(|p| cos * p[0] + sin * p[1]);
+            let [a, b] = ends.map(|p| cos * p[0] + sin * p[1]);
             [a.min(b), a.max(b)]
         };
+        let margin = rounding(ends[0], slack) + rounding(ends[1], slack);
         let rounding = 4.0 * f64::EPSILON * (lo.abs() + hi.abs());
-        ((lo + hi) / 2.0, (hi - lo) / 2.0 + e.margin + rounding)
+        ((lo + hi) / 2.0, (hi - lo) / 2.0 + margin + rounding)
     })
 }
 
@@ -116,7 +119,8 @@ fn classes<P: Provenance>(provenance: &P, spans: &[Span], run: &[Entry]) -> Vec<
     let eye = provenance.eye();
     let mut classes: Vec<(Support, Vec<usize>)> = Vec::new();
     for e in run {
-        let support = provenance.support(spans[e.span].line);
+        let span = e.span as usize;
+        let support = provenance.support(spans[span].line);
         if !support.is_pictured(eye) {
             continue;
         }
@@ -124,8 +128,8 @@ fn classes<P: Provenance>(provenance: &P, spans: &[Span], run: &[Entry]) -> Vec<
             .iter_mut()
             .find(|(first, _)| first.same_picture(&support, eye))
         {
-            Some((_, members)) => members.push(e.span),
-            None => classes.push((support, vec![e.span])),
+            Some((_, members)) => members.push(span),
+            None => classes.push((support, vec![span])),
         }
     }
     classes
@@ -160,13 +164,11 @@ fn entry(span: usize, p: [f64; 2], q: [f64; 2], slack: f64) -> Option<Entry> {
     let far = middle[0].abs().max(middle[1].abs()) * 2f64.sqrt();
     let rho_error = 2.0 * (far * theta_error + error) + 16.0 * f64::EPSILON * far;
     Some(Entry {
-        span,
+        span: span as u32,
         theta,
         theta_error,
         rho,
         rho_error,
-        ends: [p, q],
-        margin: rounding(p, slack) + rounding(q, slack),
     })
 }
 

@@ -143,14 +143,14 @@ pub(crate) fn drawn_once<P: Provenance>(
     if report.groups == 0 {
         return (pieces, report);
     }
-    let mut out: Vec<Piece> = pieces
-        .into_iter()
-        .zip(replaced)
-        .filter(|(_, r)| !r)
-        .map(|(p, _)| p)
-        .collect();
-    out.extend(made);
-    (out, report)
+    let mut pieces = pieces;
+    let mut k = 0;
+    pieces.retain(|_| {
+        k += 1;
+        !replaced[k - 1]
+    });
+    pieces.extend(made);
+    (pieces, report)
 }
 
 /// The pieces' lines, each with its run of pieces (the pieces come grouped by line).
