@@ -262,16 +262,21 @@ impl Stitched {
     /// The tiles' lines (each once, by name) and their pieces, an error where two tiles
     /// describe one line differently.
     fn gather(tiles: &[&TileDrawing]) -> Result<Stitched> {
-        let mut lines: Vec<TileLine> = tiles.iter().flat_map(|t| t.lines.iter().copied()).collect();
-        lines.sort_by_key(|l| l.id);
-        lines.dedup_by(|a, b| a.id == b.id && a == b);
-        if lines.windows(2).any(|w| w[0].id == w[1].id) {
-            return Err(DrawError::Tiles(
-                "the tiles are not of one scene (a line differs between them)".to_string(),
-            ));
+        // Each line once (by reference: a line's support is large), the same in every tile.
+        let mut first: HashMap<LineId, &TileLine> = HashMap::new();
+        for line in tiles.iter().flat_map(|t| &t.lines) {
+            let seen = *first.entry(line.id).or_insert(line);
+            if seen != line {
+                return Err(DrawError::Tiles(
+                    "the tiles are not of one scene (a line differs between them)".to_string(),
+                ));
+            }
         }
+        let mut ids: Vec<LineId> = first.keys().copied().collect();
+        ids.sort_unstable();
+        let lines: Vec<TileLine> = ids.iter().map(|id| *first[id]).collect();
         let index: HashMap<LineId, usize> =
-            lines.iter().enumerate().map(|(k, l)| (l.id, k)).collect();
+            ids.iter().enumerate().map(|(k, &id)| (id, k)).collect();
         let (mut cuts, mut pieces) = (Vec::new(), Vec::new());
         for t in tiles {
             for p in &t.pieces {
