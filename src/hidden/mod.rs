@@ -1408,7 +1408,8 @@ fn rough_parameter(eye: &Eye, form: &Form, a: &Point3, b: &Point3) -> f64 {
 /// The visible and hidden runs of the edge `l` (index `line`) cut at `cuts` (sorted by their
 /// approximate parameters), and the stages that decided its pieces. The cuts are put in their
 /// exact order along the edge (their parameters' error bounds leave only near ties to decide
-/// exactly), those at one point taken once (the smallest key); each piece between two
+/// exactly, and a near tie's parameter is then correctly rounded, so the pieces' ranges follow
+/// that order), those at one point taken once (the smallest key); each piece between two
 /// consecutive cuts is decided at a point strictly inside it ([`Sample`]).
 fn pieces(
     occluders: &Occluders,
@@ -1444,19 +1445,35 @@ fn pieces(
         }
     }
     // Each point once, with whether a tile's plane passes through it.
-    let mut bounds: Vec<((u32, &Cut), bool)> = Vec::with_capacity(sorted.len());
-    for c in sorted {
-        let border = c.1.key[0] == TILE_CUT;
-        match bounds.last_mut() {
-            Some((last, on_border)) if order(last.1, c.1) == Ordering::Equal => {
+    let mut merged: Vec<((u32, Cut), bool)> = Vec::with_capacity(sorted.len());
+    for (index, c) in sorted {
+        let border = c.key[0] == TILE_CUT;
+        match merged.last_mut() {
+            Some((last, on_border)) if order(&last.1, c) == Ordering::Equal => {
                 *on_border |= border;
-                if c.1.key < last.1.key {
-                    *last = c;
+                if c.key < last.1.key {
+                    *last = (index, *c);
                 }
             }
-            _ => bounds.push((c, border)),
+            _ => merged.push(((index, *c), border)),
         }
     }
+    // The pieces' parameter ranges in the exact order too (verify checks the pieces by them):
+    // a near tie's rough parameters may be out of order, so each point near another takes its
+    // parameter correctly rounded, which is monotone.
+    let near: Vec<bool> = (0..merged.len())
+        .map(|k| {
+            let z = &merged[k].0.1.zero;
+            let near = |j: usize| merged.get(j).is_some_and(|(c, _)| c.1.zero.near(z));
+            (k > 0 && near(k - 1)) || near(k + 1)
+        })
+        .collect();
+    for (((_, cut), _), near) in merged.iter_mut().zip(near) {
+        if near {
+            cut.zero = cut.zero.correctly_rounded(eye, a, b);
+        }
+    }
+    let bounds: Vec<((u32, &Cut), bool)> = merged.iter().map(|((i, c), b)| ((*i, c), *b)).collect();
     let mut runs = Runs::new(l, line);
     for k in 0..=bounds.len() {
         let (lo, border) = match k.checked_sub(1).map(|k| bounds[k]) {

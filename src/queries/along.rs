@@ -16,7 +16,8 @@
 //! `O(a) - O(b)`) are exact expansions rounded once: within 1.5 units in the last place. Where
 //! the inputs' exponents are too far apart for exact expansions (a scene scaled by `2^±280`,
 //! say), the same two values are computed as rationals and each rounded once at its own scale
-//! ([`rounded_ratio`]): the same bits as the expansions would give, scaled.
+//! ([`rounded_ratio`](super::ratio::rounded_ratio)): the same bits as the expansions would
+//! give, scaled.
 //!
 //! The arithmetic for polynomials written once over any [`Ring`] lives here too: [`Filtered`]
 //! (estimates with the kernel's certified bounds) and [`Expanded`] (exact expansions).
@@ -30,10 +31,10 @@ use crate::geometry::kernel::{
 };
 use crate::geometry::predicates::{Orient3d, Orientation, Side};
 use crate::geometry::{Point3, Vector3};
+use crate::queries::ratio::{nearest_ratio, rounded_ratio};
 use crate::views::{Eye, Picture};
-use num_bigint::BigInt;
 use num_rational::BigRational;
-use num_traits::{One, Signed, ToPrimitive, Zero as _};
+use num_traits::{Signed, ToPrimitive, Zero as _};
 use std::cmp::Ordering;
 use std::ops::{Add, Mul, Neg, Sub};
 
@@ -186,6 +187,35 @@ impl Zero {
     /// order them).
     fn apart(&self, other: &Zero) -> bool {
         (self.t - other.t).abs() > (self.error + other.error) * (1.0 + 4.0 * UNIT_ROUNDOFF)
+    }
+
+    /// Whether the two zeros are a near tie: their parameters' error bounds leave their order
+    /// to exact signs, so the parameters themselves may be out of that order.
+    pub(crate) fn near(&self, other: &Zero) -> bool {
+        !self.apart(other)
+    }
+
+    /// The zero with its parameter `f(a) / (f(a) − f(b))` correctly rounded (its error bound
+    /// then half a unit in the last place). Rounding to nearest is monotone, so near ties put
+    /// in their exact order (see [`Zero::compare`]) get parameters in that order too, and a
+    /// zero apart from them keeps its own on the right side: the pieces of an edge then have
+    /// parameter ranges in order along it (by which `verify` checks them and tiles are
+    /// stitched). Unchanged where the engine builds points in plain floating point.
+    pub(crate) fn correctly_rounded(&self, eye: &Eye, a: &Point3, b: &Point3) -> Zero {
+        if !builds_exactly() {
+            return *self;
+        }
+        let at = |x| FormAt {
+            form: &self.form,
+            eye,
+            x,
+        };
+        let t = nearest_ratio(&at(a), &Difference(at(a), at(b)));
+        Zero {
+            t,
+            error: 2.0 * UNIT_ROUNDOFF * t.abs() + f64::MIN_POSITIVE,
+            ..*self
+        }
     }
 
     /// The exact sign of the form at a sample of the edge, as if it were rising: `Greater`
@@ -783,55 +813,4 @@ pub(crate) fn exact_sign_rational<P: Polynomial>(p: &P) -> Ordering {
     } else {
         Ordering::Less
     }
-}
-
-/// `n / d` with each exact polynomial rounded once to the nearest double, then divided (the
-/// rule of every constructed coordinate; see [`crate::geometry::kernel::ratio`]); where the
-/// inputs' exponents do not allow exact expansions, the same rule from rationals, each value
-/// rounded at its own scale so that nothing overflows on the way.
-pub(crate) fn rounded_ratio<N: Polynomial, D: Polynomial>(n: &N, d: &D) -> f64 {
-    if !builds_exactly() {
-        return plain_ratio(n, d);
-    }
-    if n.exponents().exact_for(n.degree()) && d.exponents().exact_for(d.degree()) {
-        return estimate(&n.expansion()) / estimate(&d.expansion());
-    }
-    let (n, d) = (n.evaluate::<BigRational>(), d.evaluate::<BigRational>());
-    let (xn, en) = split(&n);
-    let (xd, ed) = split(&d);
-    times_power_of_two(xn / xd, en - ed)
-}
-
-/// `x` as a double `m` rounded once and a power of two: `x ≈ m·2^e` with `m` in `[1, 2]`
-/// (`m = 0` for zero). For `x` in the normal range, `m·2^e` is `x` rounded to the nearest
-/// double.
-fn split(x: &BigRational) -> (f64, i64) {
-    if x.is_zero() {
-        return (0.0, 0);
-    }
-    let bits = |n: &BigInt| n.bits() as i64;
-    let mut e = bits(x.numer()) - bits(x.denom());
-    let scaled = |e: i64| {
-        let p = BigRational::from_integer(BigInt::one() << e.unsigned_abs());
-        if e >= 0 { x / p } else { x * p }
-    };
-    let mut y = scaled(e);
-    if y.abs() < BigRational::one() {
-        e -= 1;
-        y = scaled(e);
-    }
-    (y.to_f64().unwrap_or(f64::NAN), e)
-}
-
-/// `x·2^e`, exact while the result is normal.
-fn times_power_of_two(mut x: f64, mut e: i64) -> f64 {
-    while e > 1000 {
-        x *= 2f64.powi(1000);
-        e -= 1000;
-    }
-    while e < -1000 {
-        x *= 2f64.powi(-1000);
-        e += 1000;
-    }
-    x * 2f64.powi(e as i32)
 }

@@ -62,8 +62,8 @@
 pub(crate) use super::along::balance;
 use super::along::{
     Blend, Expanded, Filtered, Form, FormAt, cut_point, cut_point_of, exact_sign_rational,
-    rounded_ratio,
 };
+use super::ratio::rounded_ratio;
 use crate::geometry::kernel::{
     Difference, Estimate, Exponents, Polynomial, Product, Ring, expansion_sign, rounded,
     value_within,

@@ -34,6 +34,7 @@ pub(crate) mod meet;
 pub(crate) mod own_solid;
 pub mod projection_grid;
 pub(crate) mod range;
+pub(crate) mod ratio;
 pub(crate) mod sight;
 pub mod visp;
 
