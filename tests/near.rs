@@ -560,6 +560,48 @@ fn clipped_drawings_translate_bit_for_bit() {
     );
 }
 
+/// Issue 27, item 3: `verify` samples every piece of an intersection line, clipped ones
+/// included. Eyes inside dyadic rooms whose beam and sunk crate meet the walls and the floor
+/// along lines that cross the plane of the eye and the frustum's sides: no intersection piece
+/// goes unchecked, and each one's visibility flipped by hand is reported as a disagreement of
+/// VISP (at points where planes `x_k = c` cut the exact line). Before commit d4c0c48 such
+/// pieces were counted as not checked, and a flipped one passed.
+#[test]
+fn flipped_intersection_pieces_are_caught_in_clipped_views() {
+    use kepler::hidden::verify::{Check, Source};
+    let (mut flipped, mut wide) = (0, 0);
+    for (case, room) in dyadic_rooms(0x27_03, 8).iter().enumerate() {
+        let (scene, view) = (room.scene([0.0; 3]), room.view([0.0; 3]).unwrap());
+        let options = Options::default();
+        let good = draw_traced(&scene, &view, &options, &|_, _| {}).unwrap();
+        let report = verify(&scene, &view, &options, &good);
+        assert_eq!(report.disagreements, 0, "case {case}:\n{report}");
+        assert_eq!(report.unchecked_intersections, 0, "case {case}:\n{report}");
+        let depth = |p: &Point3| view.forward().dot(&(p - room.eye));
+        for (i, p) in good.pieces.iter().enumerate() {
+            if !matches!(p.source, Source::Intersection { .. }) {
+                continue;
+            }
+            wide += usize::from(depth(&p.line[0]).min(depth(&p.line[1])) < 0.0);
+            let mut bad = good.clone();
+            bad.pieces[i].visible = !p.visible;
+            let report = verify(&scene, &view, &options, &bad);
+            assert!(
+                report
+                    .described
+                    .iter()
+                    .any(|d| d.check == Check::Visibility),
+                "case {case}: intersection piece {i} flipped, not caught:\n{report}"
+            );
+            flipped += 1;
+        }
+    }
+    assert!(
+        flipped >= 20 && wide >= 2,
+        "{flipped} pieces flipped, {wide} of lines crossing the plane of the eye"
+    );
+}
+
 /// Issue 27, item 1, for the visible-surface pass (`kepler surfaces`): from the eyes of
 /// [`clipped_drawings_translate_bit_for_bit`], translated with their rooms, every face has
 /// the same status, and every vertex of its visible polygons lies within 2⁻⁴⁴ (a few dozen
