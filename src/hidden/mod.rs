@@ -1252,6 +1252,13 @@ fn crossing(
                 Some(Cut::on_edge(zero, Some(c.ends[k]), key))
             })
             .collect();
+        // These cuts are made on a wide line too (its pictures play no part). Besides, where
+        // the visibility of `l` changes at an end of `c`, the outline also leaves the plane of
+        // both lines there through a contour edge ending at that end, whose crossing with `l`
+        // the general case below cuts at the same point (and the grid pairs it with `l`: both
+        // pictures hold the end's). So no such end is left uncut (tests/collinear_cuts.rs
+        // fails only without both).
+        //
         // Both lines lie in one plane through the eye, which meets a face of `c` not seen
         // edge-on only along `c`: behind `c`'s picture, `l` is hidden by the face exactly where
         // it lies behind the face's plane, so it is cut where it crosses that plane too (at an
