@@ -603,15 +603,13 @@ fn flipped_intersection_pieces_are_caught_in_clipped_views() {
 }
 
 /// Issue 27, item 1, for the visible-surface pass (`kepler surfaces`): from the eyes of
-/// [`clipped_drawings_translate_bit_for_bit`], translated with their rooms, every face has
-/// the same status, and every vertex of its visible polygons lies within 2⁻⁴⁴ (a few dozen
-/// units in the last place of the window) of one of the untranslated polygons' and the other
-/// way round. Not bit for bit: the pass clips by planes through points built from the eye in
-/// doubles (`Clip::sides`, the visible-surface pass builds its lines from planes through
-/// points), whose rounding moves with the eye, so a clipped vertex may move by a few units in
-/// the last place (in 22 of these 24 views).
+/// [`clipped_drawings_translate_bit_for_bit`], translated with their rooms, every face has the
+/// same status and the same visible polygons, bit for bit. The pass clips by the frustum's
+/// forms relative to the eye, as the hidden-line pass does (by planes through points built
+/// from the eye in doubles, before, a clipped vertex moved by a few units in the last place in
+/// 22 of these 24 views).
 #[test]
-fn clipped_surfaces_translate_up_to_the_frustum_points_rounding() {
+fn clipped_surfaces_translate_bit_for_bit() {
     use geo::CoordsIter;
     use kepler::surfaces::visible_surfaces;
     let shifts = [
@@ -632,19 +630,14 @@ fn clipped_surfaces_translate_up_to_the_frustum_points_rounding() {
             for (a, b) in base.iter().zip(&moved) {
                 let name = format!("case {case}, translated by {t:?}, face {}", a.face);
                 assert_eq!(a.visible.status, b.visible.status, "{name}");
-                let (p, q): (Vec<_>, Vec<_>) = (
-                    a.visible.polygons.coords_iter().collect(),
-                    b.visible.polygons.coords_iter().collect(),
-                );
-                for (x, y) in [(&p, &q), (&q, &p)] {
-                    for u in x {
-                        let near = y
-                            .iter()
-                            .map(|v| (u.x - v.x).abs().max((u.y - v.y).abs()))
-                            .fold(f64::INFINITY, f64::min);
-                        assert!(near <= 2f64.powi(-44), "{name}: a vertex moved by {near:e}");
-                    }
-                }
+                let bits = |v: &kepler::surfaces::FaceReport| -> Vec<[u64; 2]> {
+                    v.visible
+                        .polygons
+                        .coords_iter()
+                        .map(|c| [c.x, c.y].map(|x| (x + 0.0).to_bits()))
+                        .collect()
+                };
+                assert_eq!(bits(a), bits(b), "{name}");
                 faces += 1;
             }
         }

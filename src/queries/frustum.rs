@@ -21,15 +21,16 @@
 //!   ([`contour_in_front`]).
 //!
 //! The visible-surface pass (`surfaces`) cuts each face's visible polygons by the same five
-//! planes ([`Clip::sides`]) and keeps the parts inside.
+//! planes ([`Clip::planes`]) and keeps the parts inside.
 //!
-//! Each plane is given by points in doubles, so that each clipped end is the intersection of
-//! an input edge with a plane given exactly, constructed once like every other cut
-//! ([`cut_point`](crate::queries::along::cut_point)): the near plane through the frustum's near
-//! point and that point moved along the picture's right and up directions, each side plane
-//! through the eye and two points of the picture's edge (moves scaled by a power of two to the
-//! points' magnitude). Their rounding turns the planes by about 2⁻⁵³ radians from the exact
-//! frustum: immaterial for drawing, and every decision is made against the same planes.
+//! Each plane is a form `n·(x − eye) − d` ([`Form::Frustum`]) with a normal `n` in doubles (a
+//! sum of the view's frame vectors) and `d` the near distance or 0: given relative to the
+//! eye, so that moving scene and eye together leaves every plane as it is and the clipped
+//! drawing moves bit for bit. Each clipped end is the intersection of an input edge (or an
+//! intersection line, or a face's trace) with such a plane, constructed once like every other
+//! cut ([`cut_point`](crate::queries::along::cut_point)). The normals' rounding turns the
+//! planes by about 2⁻⁵³ radians from the exact frustum: immaterial for drawing, and every
+//! decision is made against the same planes.
 
 use crate::geometry::kernel::{Difference, Polynomial, Product, rounded};
 use crate::geometry::predicates::Side;
@@ -47,9 +48,6 @@ pub(crate) struct Clip {
     /// The planes as forms relative to the eye (near, left, right, bottom, top), each with its
     /// sign inside.
     planes: [(Form, Ordering); 5],
-    /// The same planes through points, for the visible-surface pass (see [`Boundary`]), each
-    /// with its sign inside.
-    sides: [(Boundary, Ordering); 5],
     /// The eye.
     eye: Point3,
     /// The view's forward direction: the depth of `x` is `forward·(x − eye)`.
@@ -82,10 +80,19 @@ impl Clip {
             .planes
             .map(|(_, normal, offset)| (Form::Frustum(normal, offset), Ordering::Greater));
         let [h, v] = view.window()?;
+        // A point on the view's axis beyond the near plane is inside every plane: a plane
+        // whose form is not positive there has no inside (a degenerate view).
+        let inside = eye + view.forward() * (2.0 * view.near());
+        let eye_point = Eye::Point(eye);
+        if planes
+            .iter()
+            .any(|(form, sign)| form.sign_at(&eye_point, &inside) != *sign)
+        {
+            return None;
+        }
         let grown = 1.0 + 1.0 / (1u64 << 16) as f64;
         Some(Clip {
             planes,
-            sides: boundaries(view, eye)?,
             eye,
             forward: view.forward(),
             window: [h / v * grown, grown],
@@ -146,15 +153,15 @@ impl Clip {
         self.window
     }
 
-    /// The planes through points (near, left, right, bottom, top) for the visible-surface
-    /// pass, each with the sign of its form strictly inside the frustum.
-    pub(crate) fn sides(&self) -> impl Iterator<Item = (Boundary, Ordering)> + '_ {
-        self.sides.iter().copied()
-    }
-
     /// The planes as forms along lines.
     pub(crate) fn forms(&self) -> impl Iterator<Item = Form> + '_ {
         self.planes.iter().map(|p| p.0)
+    }
+
+    /// The planes as forms (near, left, right, bottom, top), each with its sign strictly
+    /// inside the frustum.
+    pub(crate) fn planes(&self) -> impl Iterator<Item = (Form, Ordering)> + '_ {
+        self.planes.iter().copied()
     }
 
     /// Whether `x` lies strictly inside the frustum, decided exactly.
@@ -209,72 +216,6 @@ pub(crate) fn ray_direction(picture: &Picture, front: &Point3, other: &Point3) -
             Product(at(k, front), at(2, other)),
         ))
     })
-}
-
-/// A plane of the frustum through points in doubles, as the visible-surface pass builds the
-/// lines of a face's plane (see `surfaces::vtp`): the near plane through three points, a side
-/// plane through the eye and two points. The points are placed symmetrically about the ones
-/// that define the plane (the near point moved right and left, a point of the picture's edge
-/// moved up and down, or right and left), so that a mirrored or permuted view gives the
-/// mirrored or permuted points; their rounding turns the planes by about 2⁻⁵³ radians from
-/// the exact frustum.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) enum Boundary {
-    /// The plane through three points.
-    Plane([Point3; 3]),
-    /// The plane through two points and the eye.
-    Sight(Point3, Point3),
-}
-
-impl Boundary {
-    /// The plane's form.
-    pub(crate) fn form(&self) -> Form {
-        match *self {
-            Boundary::Plane(t) => Form::Plane(t),
-            Boundary::Sight(p, q) => Form::Sight(p, q),
-        }
-    }
-}
-
-/// The frustum's planes through points (see [`Boundary`]), each with its sign inside; `None`
-/// where a plane has no inside (a degenerate view).
-fn boundaries(view: &View, eye: Point3) -> Option<[(Boundary, Ordering); 5]> {
-    let (forward, (right, up)) = (view.forward(), view.right_up());
-    let near = view.near();
-    let q = eye + forward * near;
-    // Moves of about the points' own magnitude (a power of two: exact products), so the
-    // rounding of the moved points tilts the planes as little as doubles allow.
-    let magnitude = q
-        .coords
-        .amax()
-        .max(eye.coords.amax())
-        .max(near)
-        .max(f64::MIN_POSITIVE);
-    let step = 2f64.powi((magnitude.log2().ceil() as i32).min(1022));
-    let [h, v] = view.window()?;
-    // Each side plane through the eye and two points about a point of the picture's edge.
-    let side = |across: Vector3, along: Vector3| {
-        let p = eye + (forward + across) * step;
-        Boundary::Sight(p - along * step, p + along * step)
-    };
-    let bounds = [
-        Boundary::Plane([q - right * step, q + right * step, q + up * step]),
-        side(-right * h, up),
-        side(right * h, up),
-        side(-up * v, right),
-        side(up * v, right),
-    ];
-    // Inside is where the centre of the picture is, beyond the near plane.
-    let inside = eye + forward * (2.0 * step);
-    let eye_point = Eye::Point(eye);
-    let mut sides = bounds.map(|b| (b, Ordering::Equal));
-    for (bound, sign) in &mut sides {
-        *sign = bound.form().sign_at(&eye_point, &inside);
-        if *sign == Ordering::Equal {
-            return None;
-        }
-    }
-    Some(sides)
 }
 
 /// A line's picture for [`Clip::framed`].

@@ -27,12 +27,12 @@
 
 use crate::geometry::exact::{estimate, expansion_product, expansion_sum, negated};
 use crate::geometry::kernel::{Difference, Estimate, Exponents, Polynomial, Ring};
-use crate::geometry::predicates::{Orient3d, Orientation};
+use crate::geometry::predicates::{self, Orient3d, Orientation};
 use crate::geometry::{Point3, Vector3};
 use crate::mesh::TextureFrame;
 use crate::views::{Eye, Picture};
 use num_rational::BigRational;
-use num_traits::ToPrimitive;
+use num_traits::{ToPrimitive, Zero};
 use std::cmp::Ordering;
 use std::ops::{Add, Mul, Neg, Sub};
 
@@ -43,6 +43,9 @@ pub(super) enum Kind {
     Sight(Point3, Point3),
     /// The plane through a triangle (an occluder face's plane, or F's own).
     Plane([Point3; 3]),
+    /// A plane of a perspective view's frustum, `n·(x − eye) − d` (see `queries/frustum.rs`):
+    /// given relative to the eye, so that moving scene and eye together leaves it unchanged.
+    Frustum(Vector3, f64),
 }
 
 impl Kind {
@@ -51,6 +54,15 @@ impl Kind {
         match self {
             Kind::Sight(a, b) => eye.determinant(a, b, x),
             Kind::Plane([p, q, r]) => Orientation::Point(Orient3d([*p, *q, *r, *x])),
+            Kind::Frustum(normal, offset) => Orientation::Side(predicates::Side {
+                origin: match eye {
+                    Eye::Point(e) => *e,
+                    Eye::Infinity(_) => Point3::origin(),
+                },
+                normal: *normal,
+                offset: *offset,
+                x: *x,
+            }),
         }
     }
 
@@ -71,6 +83,7 @@ impl Kind {
             (Kind::Plane([p, q, r]), _) => cross(&difference(r, p), &difference(q, p)),
             (Kind::Sight(a, b), Eye::Point(e)) => cross(&difference(a, e), &difference(b, e)),
             (Kind::Sight(a, b), Eye::Infinity(u)) => cross(&difference(b, a), &vector(u)),
+            (Kind::Frustum(normal, _), _) => vector(normal),
         }
     }
 
@@ -79,6 +92,9 @@ impl Kind {
         match self {
             Kind::Sight(a, b) => points_exponents(&[*a, *b]),
             Kind::Plane(t) => points_exponents(t),
+            Kind::Frustum(normal, offset) => {
+                Exponents::of(normal.as_slice()).union(Exponents::of(&[*offset]))
+            }
         }
     }
 }
@@ -155,6 +171,11 @@ impl Line {
             (Kind::Sight(a, b), Eye::Point(e)) => same(a, b) && same(a, e),
             // A sight plane contains the view direction, which F's plane does not.
             (Kind::Sight(..), Eye::Infinity(_)) => false,
+            // Parallel planes have parallel gradients: their cross product vanishes.
+            (Kind::Frustum(..), _) => {
+                let c = trace_direction::<BigRational>(frame, &self.kind);
+                c.iter().all(|x| x.is_zero())
+            }
         }
     }
 

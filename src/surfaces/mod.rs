@@ -599,19 +599,15 @@ impl Target {
         let framing = match clip {
             None => Framing::Inside,
             Some(c)
-                if c.sides().all(|(bound, inside)| {
-                    vertices
-                        .iter()
-                        .all(|v| bound.form().sign_at(&eye, v) == inside)
+                if c.planes().all(|(form, inside)| {
+                    vertices.iter().all(|v| form.sign_at(&eye, v) == inside)
                 }) =>
             {
                 Framing::Inside
             }
             Some(c)
-                if c.sides().any(|(bound, inside)| {
-                    vertices
-                        .iter()
-                        .all(|v| bound.form().sign_at(&eye, v) != inside)
+                if c.planes().any(|(form, inside)| {
+                    vertices.iter().all(|v| form.sign_at(&eye, v) != inside)
                 }) =>
             {
                 Framing::Outside

@@ -36,7 +36,7 @@ use crate::geometry::kernel::{Difference, Polynomial, Product};
 use crate::geometry::predicates::orient3d;
 use crate::mesh::TextureFrame;
 use crate::queries::along::{Form, cut_point, cut_point_on_plane};
-use crate::queries::frustum::{Boundary, Clip};
+use crate::queries::frustum::Clip;
 use crate::views::{Eye, Picture};
 use geo::{Coord, LineString, MultiPolygon, Polygon};
 use std::cell::RefCell;
@@ -271,6 +271,7 @@ impl<'a> Vtp<'a> {
         let points = match &self.lines[l as usize].kind {
             Kind::Sight(p, q) => vec![*p, *q],
             Kind::Plane(t) => t.to_vec(),
+            Kind::Frustum(..) => Vec::new(),
         };
         points
             .into_iter()
@@ -403,6 +404,7 @@ impl<'a> Vtp<'a> {
             match k {
                 Kind::Sight(p, q) => vec![*p, *q],
                 Kind::Plane(t) => t.to_vec(),
+                Kind::Frustum(..) => Vec::new(),
             }
         };
         match (ka, kb) {
@@ -587,11 +589,11 @@ impl<'a> Vtp<'a> {
     /// line of F's plane, or, for a plane parallel to F's, all of F's plane on one side).
     pub(super) fn clip(&mut self, clip: &Clip) {
         let mut region: Vec<(u32, Ordering)> = Vec::with_capacity(5);
-        for (form, inside) in clip.sides() {
-            let kind = match form {
-                Boundary::Plane(t) => Kind::Plane(t),
-                Boundary::Sight(a, b) => Kind::Sight(a, b),
+        for (form, inside) in clip.planes() {
+            let Form::Frustum(normal, offset) = form else {
+                continue;
             };
+            let kind = Kind::Frustum(normal, offset);
             match self.line(kind) {
                 Trace::Line(l, s) => region.push((l, times(inside, s))),
                 Trace::Constant(s) if s == inside => {}
@@ -1111,6 +1113,14 @@ fn key(kind: &Kind) -> ([u64; 9], Ordering) {
             }
             (k, Ordering::Greater)
         }
+        Kind::Frustum(normal, offset) => {
+            let mut k = [0; 9];
+            k[..3].copy_from_slice(normal.map(f64::to_bits).as_slice());
+            k[3] = offset.to_bits();
+            // A tag of its own (a sight plane's is all of the last three).
+            k[4..].fill(u64::MAX - 1);
+            (k, Ordering::Greater)
+        }
     }
 }
 
@@ -1195,6 +1205,7 @@ fn form(kind: &Kind) -> Form {
     match kind {
         Kind::Sight(a, b) => Form::Sight(*a, *b),
         Kind::Plane(t) => Form::Plane(*t),
+        Kind::Frustum(normal, offset) => Form::Frustum(*normal, *offset),
     }
 }
 
