@@ -9,6 +9,7 @@
 mod common;
 
 use common::Rng;
+use common::invariance::segments;
 use kepler::geometry::{Point3, Vector3};
 use kepler::hidden::verify::{draw_traced, verify};
 use kepler::hidden::{Drawing, EdgeClass, EdgeSelection, Options, draw};
@@ -279,27 +280,6 @@ fn mapped(scene: &Scene, f: impl Fn(Point3) -> Point3, reverse: bool) -> Scene {
     out
 }
 
-/// A drawing's segments as bits, each with its ends in order, sorted, its pictures mapped by
-/// `map` first.
-fn bit_segments(
-    d: &Drawing,
-    map: impl Fn([f64; 2]) -> [f64; 2],
-) -> Vec<(EdgeClass, bool, [[u64; 2]; 2])> {
-    let bits = |p: [f64; 2]| map(p).map(|x| (x + 0.0).to_bits());
-    let mut out: Vec<_> = d
-        .polylines
-        .iter()
-        .flat_map(|p| {
-            p.points.windows(2).map(move |w| {
-                let (a, b) = (bits(w[0]), bits(w[1]));
-                (p.class, p.visible, if a <= b { [a, b] } else { [b, a] })
-            })
-        })
-        .collect();
-    out.sort_unstable_by_key(|x| (x.0 as u8, x.1, x.2));
-    out
-}
-
 /// Clipped drawings are invariant like the others: an eye inside a room of boxes (piercing
 /// each other and the walls), the scene and the view mirrored in x or y, with x and y swapped,
 /// permuted cyclically (up too), and translated by 2^20, 2^40 and about 1e8 (dyadic), draw the
@@ -344,8 +324,8 @@ fn clipped_drawings_mirror_permute_and_translate() {
             ..Options::default()
         };
         let base = draw(&scene, &view, &options).unwrap();
-        let same = bit_segments(&base, |p| p);
-        let negated = bit_segments(&base, |p| [-p[0], p[1]]);
+        let same = segments(&base, |p| p);
+        let negated = segments(&base, |p| [-p[0], p[1]]);
         type Map = fn(Point3) -> Point3;
         let shift = |t: [f64; 3]| move |p: Point3| p + Vector3::from(t);
         let variants: [(&str, Map, bool, bool); 4] = [
@@ -363,7 +343,7 @@ fn clipped_drawings_mirror_permute_and_translate() {
             let moved = View::perspective(f(eye), f(target), up, fov).unwrap();
             let d = draw(&mapped(&scene, f, reverse), &moved, &options).unwrap();
             let want = if flips { &negated } else { &same };
-            assert!(bit_segments(&d, |p| p) == *want, "case {case}: {name}");
+            assert!(segments(&d, |p| p) == *want, "case {case}: {name}");
             compared += 1;
         }
         for t in [
@@ -375,7 +355,7 @@ fn clipped_drawings_mirror_permute_and_translate() {
             let moved = View::perspective(f(eye), f(target), Vector3::z(), fov).unwrap();
             let d = draw(&mapped(&scene, f, false), &moved, &options).unwrap();
             assert!(
-                bit_segments(&d, |p| p) == same,
+                segments(&d, |p| p) == same,
                 "case {case}: translated by {t:?}"
             );
             compared += 1;

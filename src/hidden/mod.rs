@@ -80,6 +80,7 @@ use crate::grid::SegmentGrid;
 use crate::mesh::Mesh;
 use crate::queries::Counters;
 use crate::queries::along::{Form, Sample, Zero, cut_point, hides_at};
+use crate::queries::collinear::corners;
 use crate::queries::frustum::{Clip, Framed, FramedLine, TilePlanes, contour_in_front, pictured};
 use crate::queries::intersections;
 use crate::queries::meet::{Meet, OnLine, balance, reversed};
@@ -1311,19 +1312,8 @@ fn crossing(
 /// never where it is.
 fn off_plane<'p>(eye: &Eye, l: &Line, near: impl Iterator<Item = &'p Point3>) -> Option<Point3> {
     let top = l.a.coords.amax().max(l.b.coords.amax());
-    let scale = if top.is_normal() {
-        2f64.powi((top.log2().ceil() as i32).min(1023))
-    } else {
-        1.0
-    };
-    let corners = [
-        Point3::origin(),
-        Point3::new(scale, 0.0, 0.0),
-        Point3::new(0.0, scale, 0.0),
-        Point3::new(0.0, 0.0, scale),
-    ];
     near.copied()
-        .chain(corners)
+        .chain(corners(top))
         .find(|w| eye.orient3d(&l.a, &l.b, w) != Ordering::Equal)
 }
 

@@ -715,6 +715,42 @@ pub(crate) fn cut_point_on_plane(
     cut_point(picture, eye, &Form::Plane(*plane), a, b)
 }
 
+/// A polynomial of the input written once over any [`Ring`]: its estimate (with the
+/// kernel's certified bound, in [`Filtered`]), its exact expansion (in [`Expanded`]) and its
+/// rational value all come from the one formula, so that they cannot disagree.
+pub(crate) trait Formula {
+    /// The formula in the ring `R`.
+    fn value<R: Ring>(&self) -> R;
+
+    /// Its degree in the inputs (see [`Polynomial::degree`]).
+    fn formula_degree(&self) -> u32;
+
+    /// The binary exponents of its inputs (see [`Polynomial::exponents`]).
+    fn formula_exponents(&self) -> Exponents;
+}
+
+impl<F: Formula> Polynomial for F {
+    fn estimate(&self) -> Estimate {
+        self.value::<Filtered>().0
+    }
+
+    fn expansion(&self) -> Vec<f64> {
+        self.value::<Expanded>().0
+    }
+
+    fn evaluate<R: Ring>(&self) -> R {
+        self.value()
+    }
+
+    fn degree(&self) -> u32 {
+        self.formula_degree()
+    }
+
+    fn exponents(&self) -> Exponents {
+        self.formula_exponents()
+    }
+}
+
 /// The ring of [`Estimate`]s: each operation's value rounded, its bound the kernel's
 /// ([`Estimate::product`], [`Estimate::difference`]; a sum is the difference with the negated
 /// operand, a negation is exact), so a formula evaluated here carries a certified bound.

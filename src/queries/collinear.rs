@@ -34,12 +34,12 @@
 //! comes first along the picture line. Each turn is a polynomial of degree at most 15 of the
 //! input, through the lifts: never a rounded point.
 
-use super::along::{Expanded, Filtered, Form, FormAt, Zero};
+use super::along::{Form, FormAt, Formula, Zero};
 use super::meet::{
     Meet, OnLine, det, difference, dot, eye_exponents, form_exponents, gradient, point_exponents,
 };
 use crate::geometry::Point3;
-use crate::geometry::kernel::{Estimate, Exponents, Polynomial, Ring};
+use crate::geometry::kernel::{Exponents, Polynomial, Ring};
 use crate::views::Eye;
 use std::cmp::Ordering;
 
@@ -193,8 +193,8 @@ impl Support {
     }
 
     /// An input-scale point off the support's plane of sight (the support must be pictured):
-    /// one of four affinely independent points, powers of two at the scale of the points
-    /// that define the support, of which at least one is off any plane.
+    /// one of the four [`corners`] at the scale of the points that define the support, of
+    /// which at least one is off any plane.
     pub(crate) fn off_point(&self, eye: &Eye) -> Point3 {
         let top = match self {
             Support::Edge([a, b]) => a.coords.amax().max(b.coords.amax()),
@@ -204,17 +204,7 @@ impl Support {
                 .flatten()
                 .fold(0.0f64, |m, p| m.max(p.coords.amax())),
         };
-        let scale = if top.is_normal() {
-            2f64.powi((top.log2().ceil() as i32).clamp(-1000, 1000))
-        } else {
-            1.0
-        };
-        let corners = [
-            Point3::origin(),
-            Point3::new(scale, 0.0, 0.0),
-            Point3::new(0.0, scale, 0.0),
-            Point3::new(0.0, 0.0, scale),
-        ];
+        let corners = corners(top);
         corners
             .into_iter()
             .find(|w| self.sight_sign(eye, &LinePoint::Vertex(*w)) != Ordering::Equal)
@@ -241,6 +231,23 @@ impl Support {
     }
 }
 
+/// Four affinely independent points at the scale `top` (the origin and a power of two not
+/// below `top` on each axis): at least one lies off any plane, and a plane spanned with one
+/// of them depends only on which, never on where the scene is.
+pub(crate) fn corners(top: f64) -> [Point3; 4] {
+    let scale = if top.is_normal() {
+        2f64.powi((top.log2().ceil() as i32).clamp(-1022, 1023))
+    } else {
+        1.0
+    };
+    [
+        Point3::origin(),
+        Point3::new(scale, 0.0, 0.0),
+        Point3::new(0.0, scale, 0.0),
+        Point3::new(0.0, 0.0, scale),
+    ]
+}
+
 /// The turn from `p` to `q` seen from `off` (see the module documentation): `Equal` exactly
 /// when the two points of one plane of sight have the same picture; otherwise the same sign
 /// for every pair in the same order along the picture line. `off` must lie off their plane
@@ -262,7 +269,7 @@ struct SightAt<'a> {
     point: &'a LinePoint,
 }
 
-impl SightAt<'_> {
+impl Formula for SightAt<'_> {
     fn value<R: Ring>(&self) -> R {
         let eye = self.eye;
         let o = self.support.anchor();
@@ -290,22 +297,8 @@ impl SightAt<'_> {
             }
         }
     }
-}
 
-impl Polynomial for SightAt<'_> {
-    fn estimate(&self) -> Estimate {
-        self.value::<Filtered>().0
-    }
-
-    fn expansion(&self) -> Vec<f64> {
-        self.value::<Expanded>().0
-    }
-
-    fn evaluate<R: Ring>(&self) -> R {
-        self.value()
-    }
-
-    fn degree(&self) -> u32 {
+    fn formula_degree(&self) -> u32 {
         let lift = self.point.degree(self.eye);
         match self.support {
             Support::Edge(_) => lift + 2,
@@ -313,7 +306,7 @@ impl Polynomial for SightAt<'_> {
         }
     }
 
-    fn exponents(&self) -> Exponents {
+    fn formula_exponents(&self) -> Exponents {
         self.support
             .exponents(self.eye)
             .union(self.point.exponents(self.eye))
@@ -330,7 +323,7 @@ struct Turn<'a> {
     q: &'a LinePoint,
 }
 
-impl Turn<'_> {
+impl Formula for Turn<'_> {
     fn value<R: Ring>(&self) -> R {
         let (origin, v) = match self.eye {
             Eye::Point(e) => (*e, difference::<R>(self.off, e)),
@@ -340,26 +333,12 @@ impl Turn<'_> {
         let (q, _) = self.q.lift::<R>(self.eye, &origin);
         det(&p, &q, &v)
     }
-}
 
-impl Polynomial for Turn<'_> {
-    fn estimate(&self) -> Estimate {
-        self.value::<Filtered>().0
-    }
-
-    fn expansion(&self) -> Vec<f64> {
-        self.value::<Expanded>().0
-    }
-
-    fn evaluate<R: Ring>(&self) -> R {
-        self.value()
-    }
-
-    fn degree(&self) -> u32 {
+    fn formula_degree(&self) -> u32 {
         self.p.degree(self.eye) + self.q.degree(self.eye) + 1
     }
 
-    fn exponents(&self) -> Exponents {
+    fn formula_exponents(&self) -> Exponents {
         self.p
             .exponents(self.eye)
             .union(self.q.exponents(self.eye))

@@ -60,9 +60,7 @@
 //! scene and eye together give the same bits, transformed.
 
 pub(crate) use super::along::balance;
-use super::along::{
-    Blend, Expanded, Filtered, Form, FormAt, cut_point, cut_point_of, exact_sign_rational,
-};
+use super::along::{Blend, Form, FormAt, Formula, cut_point, cut_point_of, exact_sign_rational};
 use super::ratio::rounded_ratio;
 use crate::geometry::kernel::{
     Difference, Estimate, Exponents, Polynomial, Product, Ring, expansion_sign, rounded,
@@ -558,7 +556,7 @@ pub(crate) struct Along<'a> {
     kind: Kind<'a>,
 }
 
-impl Along<'_> {
+impl Formula for Along<'_> {
     /// The polynomial in the ring `R`.
     fn value<R: Ring>(&self) -> R {
         let o = self.meet.planes[0][0];
@@ -584,22 +582,8 @@ impl Along<'_> {
             }
         }
     }
-}
 
-impl Polynomial for Along<'_> {
-    fn estimate(&self) -> Estimate {
-        self.value::<Filtered>().0
-    }
-
-    fn expansion(&self) -> Vec<f64> {
-        self.value::<Expanded>().0
-    }
-
-    fn evaluate<R: Ring>(&self) -> R {
-        self.value()
-    }
-
-    fn degree(&self) -> u32 {
+    fn formula_degree(&self) -> u32 {
         match self.kind {
             Kind::Slope(_) => 6,
             Kind::Offset(..) => 7,
@@ -607,7 +591,7 @@ impl Polynomial for Along<'_> {
         }
     }
 
-    fn exponents(&self) -> Exponents {
+    fn formula_exponents(&self) -> Exponents {
         let planes = self.meet.planes.iter().flatten();
         let mut e = planes.fold(eye_exponents(self.eye), |e, p| e.union(point_exponents(p)));
         let mut form = |f: &Form| e = e.union(form_exponents(f));
