@@ -33,8 +33,8 @@ use std::cmp::Ordering;
 mod common;
 use common::exact::{P2, RefEye, RefView, V, opposite, qdet, qlerp, qp, ulps2};
 use common::invariance::{
-    Setup, Solid, Transform, ViewSpec, box_solid, check, drawing, dyadic, outward, over_scenes,
-    random_view, segments, small_vector,
+    Setup, Solid, Transform, along_an_axis, box_solid, check, drawing, dyadic, outward,
+    over_scenes, random_view, segments,
 };
 use common::{Q, Rng, qcross, qdot, qsub};
 use num_traits::Zero;
@@ -224,15 +224,7 @@ fn translating_along_an_orthographic_view_changes_nothing() {
     // Views along an axis, with any up direction across it: their frames have exact zeros
     // along the axis, so a translation along it leaves every exact picture unchanged.
     over_scenes(&SETUP, "translate along", |tally, rng, scene, _| {
-        let axis = rng.below(3);
-        let mut direction = Vector3::zeros();
-        direction[axis] = if rng.below(2) == 0 { 1.0 } else { -2.0 };
-        let mut up = small_vector(rng);
-        up[axis] = 0.0;
-        if up == Vector3::zeros() {
-            up[(axis + 1) % 3] = 1.0;
-        }
-        let spec = ViewSpec::Orthographic { direction, up };
+        let (axis, spec) = along_an_axis(rng);
         for offset in [2f64.powi(40), -(2f64.powi(50)), -1e8 - 0.25, 123_456_789.5] {
             let mut t = [0.0; 3];
             t[axis] = offset;

@@ -180,8 +180,7 @@ fn touching_and_stacked_boxes_are_drawn_once() {
 
 use common::Rng;
 use common::invariance::{
-    Setup, Solid, Transform, ViewSpec, box_solid, check, dyadic, over_scenes, overlaps_removed,
-    small_vector,
+    Setup, Solid, Transform, along_an_axis, box_solid, check, dyadic, over_scenes, overlaps_removed,
 };
 use kepler::geometry::Point3;
 use kepler::hidden::EdgeSelection;
@@ -300,15 +299,7 @@ fn overlaps_removed_the_same_when_scaled_or_translated() {
                 }
             } else {
                 // Along an axis of view: the picture does not move.
-                let axis = rng.below(3);
-                let mut direction = Vector3::zeros();
-                direction[axis] = if rng.below(2) == 0 { 1.0 } else { -2.0 };
-                let mut up = small_vector(rng);
-                up[axis] = 0.0;
-                if up == Vector3::zeros() {
-                    up[(axis + 1) % 3] = 1.0;
-                }
-                let along = ViewSpec::Orthographic { direction, up };
+                let (axis, along) = along_an_axis(rng);
                 for o in offsets {
                     let mut t = [0.0; 3];
                     t[axis] = o;

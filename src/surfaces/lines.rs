@@ -27,9 +27,10 @@
 
 use crate::geometry::exact::{estimate, expansion_product, expansion_sum, negated};
 use crate::geometry::kernel::{Difference, Estimate, Exponents, Polynomial, Ring};
-use crate::geometry::predicates::{self, Orient3d, Orientation};
+use crate::geometry::predicates::{Orient3d, Orientation};
 use crate::geometry::{Point3, Vector3};
 use crate::mesh::TextureFrame;
+use crate::queries::along::Form;
 use crate::views::{Eye, Picture};
 use num_rational::BigRational;
 use num_traits::{ToPrimitive, Zero};
@@ -54,15 +55,7 @@ impl Kind {
         match self {
             Kind::Sight(a, b) => eye.determinant(a, b, x),
             Kind::Plane([p, q, r]) => Orientation::Point(Orient3d([*p, *q, *r, *x])),
-            Kind::Frustum(normal, offset) => Orientation::Side(predicates::Side {
-                origin: match eye {
-                    Eye::Point(e) => *e,
-                    Eye::Infinity(_) => Point3::origin(),
-                },
-                normal: *normal,
-                offset: *offset,
-                x: *x,
-            }),
+            Kind::Frustum(normal, offset) => Form::Frustum(*normal, *offset).at(eye, x),
         }
     }
 

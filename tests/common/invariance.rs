@@ -392,3 +392,18 @@ pub fn over_scenes(
     eprintln!("{name}: {tally:?}");
     tally
 }
+
+/// A random orthographic view along an axis (its index), with an up direction across it: its
+/// frame has exact zeros along the axis, so a translation along it leaves every exact picture
+/// unchanged.
+pub fn along_an_axis(rng: &mut Rng) -> (usize, ViewSpec) {
+    let axis = rng.below(3);
+    let mut direction = Vector3::zeros();
+    direction[axis] = if rng.below(2) == 0 { 1.0 } else { -2.0 };
+    let mut up = small_vector(rng);
+    up[axis] = 0.0;
+    if up == Vector3::zeros() {
+        up[(axis + 1) % 3] = 1.0;
+    }
+    (axis, ViewSpec::Orthographic { direction, up })
+}
