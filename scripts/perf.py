@@ -165,6 +165,15 @@ rings = %d
 
     sphere = uv_sphere("sphere", 1000, 501)                          # 998,000 triangles
     fan = uv_sphere("fan", 10000, 2)                                 # two cones of 10,000
+    cone = toml("cone.toml", """
+[[object]]
+name = "cone"
+solid = "sphere"
+radius = 1
+segments = 10000
+rings = 2
+""")                                                               # the same, seen down its axis
+    metropolis = os.path.join(ROOT, "scenes", "metropolis.toml")
     points = os.path.join(d, "points.txt")
     if not os.path.exists(points):
         rng = random.Random(3)
@@ -181,6 +190,11 @@ rings = %d
         ("flat 100k tris, oblique", ["render", flat, "--view-dir", "1,2,-3", "-o", out], 100352),
         ("flat 100k tris, edge-on", ["render", flat, "--view-dir", "1,2,0", "-o", out], 100352),
         ("include 100k points, 1M sphere", ["include", "--points", points, sphere], 998000),
+        ("cone of 10,000 edges head-on, all edges",
+         ["render", cone, "--edges", "all", "--view-dir", "0,0,-1", "--up", "0,1,0", "-o", out],
+         20000),
+        ("metropolis", ["render", metropolis, "-o", out], 0),  # 22,789 objects
+        ("metropolis, keep overlaps", ["render", metropolis, "--keep-overlaps", "-o", out], 0),
     ]
     for n in (1000, 3000, 10000, 30000, 100000):
         name = "cubes-%d.toml" % n
@@ -254,8 +268,9 @@ def main():
                 break
         if failed or not times[0]:
             continue
+        per = peaks[0] / tris if tris else float("nan")  # no one mesh: no bytes per triangle
         line = "%-34s %10.3f %10.0f %10.0f" % (name, statistics.median(times[0]),
-                                               peaks[0] / 1e6, peaks[0] / tris)
+                                               peaks[0] / 1e6, per)
         if a.baseline and times[1]:
             base = statistics.median(times[1])
             line += " %12.3f %10.0f %7.1fx" % (base, peaks[1] / 1e6,
