@@ -38,8 +38,8 @@
 //!             triboxes, culling tables, oriented boxes                    Crosnier–Rossignac
 //! ```
 //!
-//! - [`geometry`]: points, [`geometry::kernel`] (estimates, exact expansions, the `Kernel`
-//!   seam), exact predicates, polygons, rays.
+//! - [`geometry`]: points, [`geometry::kernel`] (polynomials, exact expansions, estimates; the
+//!   report's cheaper arithmetic on threads of its own), exact predicates, polygons, rays.
 //! - [`clip`]: boolean operations on polygons (intersection, difference, union), to an ulp.
 //! - [`mesh`]: validated polygon meshes (faces, planes, texture coordinate systems, topology).
 //! - [`io`]: mesh files (OBJ, STL, OFF, PLY) and point files.

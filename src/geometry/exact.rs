@@ -18,7 +18,7 @@
 //! assert_eq!(accurate_sum(&[1e20, 1.0, -1e20]), 1.0);
 //! ```
 
-use super::kernel::sum_error_bound;
+use super::estimate::sum_error_bound;
 use std::cmp::Ordering;
 
 /// Expansions of at most this many components are built on the stack.

@@ -19,7 +19,7 @@
 //!   (coordinates up to [`MAX_COORDINATE`](super::predicates::MAX_COORDINATE) in magnitude)
 //!   or underflows (nonzero coordinates at least about `1e-90`).
 //!
-//! A sign is then decided by the [`Exact`] kernel: the estimate's sign when `|value| > bound`
+//! A sign is then decided exactly: the estimate's sign when `|value| > bound`
 //! (almost always), else the sign of the expansion. A NaN or infinite estimate never decides.
 //!
 //! Expansion arithmetic is exact only while no partial product overflows or loses bits to
@@ -40,214 +40,39 @@
 //!
 //! # Swapping the arithmetic
 //!
-//! The [`Kernel`] trait is the seam where cheaper arithmetic can replace the exact one, for
-//! measuring what exactness costs and what the shortcuts lose: a kernel decides the sign of any
-//! [`Polynomial`]. [`Exact`] is the engine's; a plain-`f64` kernel would take the sign of
-//! `estimate().value` alone, a tolerance kernel would call values within `ε` zero.
+//! For measuring what exactness costs and what the shortcuts lose, the error report runs the
+//! same algorithms under cheaper arithmetic (plain `f64`, a tolerance, `f32`): the filter
+//! ([`Estimate::sign`]) and the constructions consult their thread's
+//! [`Arithmetic`](super::arithmetic::Arithmetic), which is exact everywhere but on the threads
+//! that [`with_arithmetic`](super::arithmetic::with_arithmetic) starts for the report (see
+//! [`super::arithmetic`]).
 //!
 //! ```
-//! use kepler::geometry::kernel::{Estimate, Exact, Kernel, Polynomial};
+//! use kepler::geometry::kernel::{Estimate, Polynomial};
 //! use kepler::geometry::{Point3, predicates::Orient3d};
 //! use std::cmp::Ordering;
 //! // Far from the origin the rounded determinant cannot tell; the expansion can.
 //! let (a, b, c) = (Point3::new(1e15, 0.0, 1e15), Point3::new(1e15 + 1.0, 0.0, 1e15), Point3::new(1e15, 1.0, 1e15));
 //! let d = Point3::new(3.0, 5.0, 1e15 - 0.125);
 //! let det = Orient3d([a, b, c, d]);
-//! assert_eq!(Exact.sign(&det), Ordering::Greater);
+//! assert_eq!(det.sign(), Ordering::Greater);
 //! assert_eq!(Estimate { value: 1.0, bound: 0.5 }.sign(), Some(Ordering::Greater));
 //! ```
 
+use super::arithmetic::builds_in_single;
 use super::exact::{estimate, expansion_product, expansion_sum, negated, scale_expansion};
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 use std::cmp::Ordering;
 use std::ops::{Add, Mul, Neg, Sub};
-use std::sync::Mutex;
-use std::sync::atomic::{AtomicU8, AtomicU64, Ordering::Relaxed};
 
-/// The unit roundoff of `f64`, `u = 2⁻⁵³`: half the gap between 1 and the next double, the
-/// largest relative error of one rounding to nearest.
-///
-/// ```
-/// assert_eq!(kepler::geometry::kernel::UNIT_ROUNDOFF, 2f64.powi(-53));
-/// ```
-pub const UNIT_ROUNDOFF: f64 = f64::EPSILON / 2.0;
-
-/// A bound on the error of a sum of `n` terms added one by one in `f64`, each term exact or
-/// rounded once (a product of two doubles, say), whose magnitudes sum to at most
-/// `magnitude`: `|computed − exact| ≤ (u + γ_(n−1))·magnitude` with `γ_k = k·u / (1 − k·u)`;
-/// `2n·u·magnitude` absorbs the denominator, a `magnitude` itself computed with a few
-/// roundings, and the roundings of the bound, and `MIN_POSITIVE` a sum that underflows.
-///
-/// ```
-/// use kepler::geometry::kernel::{UNIT_ROUNDOFF, sum_error_bound};
-/// let terms: [f64; 3] = [0.1, 0.2, -0.3];
-/// let magnitude: f64 = terms.iter().map(|t| t.abs()).sum();
-/// let computed: f64 = terms.iter().sum();
-/// // The exact sum of these doubles is 2^-55.
-/// assert!((computed - 2f64.powi(-55)).abs() <= sum_error_bound(3, magnitude));
-/// assert_eq!(sum_error_bound(3, 1.0), 6.0 * UNIT_ROUNDOFF + f64::MIN_POSITIVE);
-/// ```
-#[inline]
-pub fn sum_error_bound(n: usize, magnitude: f64) -> f64 {
-    (2 * n) as f64 * UNIT_ROUNDOFF * magnitude + f64::MIN_POSITIVE
-}
-
-/// A rounded value with a certified bound on its error: the exact number lies in
-/// `[value − bound, value + bound]` (see the [module documentation](self) for the model).
-///
-/// ```
-/// use kepler::geometry::kernel::Estimate;
-/// use std::cmp::Ordering;
-/// let x = Estimate { value: 3.0, bound: 1e-15 };
-/// let y = Estimate::exact(2.0);
-/// let p = x.product(&y);
-/// assert_eq!(p.value, 6.0);
-/// assert!(p.bound >= 2e-15);
-/// assert_eq!(x.difference(&y).sign(), Some(Ordering::Greater));
-/// ```
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Estimate {
-    /// The rounded value.
-    pub value: f64,
-    /// A bound on `|exact − value|`.
-    pub bound: f64,
-}
-
-impl Estimate {
-    /// A value known exactly.
-    ///
-    /// ```
-    /// assert_eq!(kepler::geometry::kernel::Estimate::exact(0.5).bound, 0.0);
-    /// ```
-    #[inline]
-    pub fn exact(value: f64) -> Estimate {
-        Estimate { value, bound: 0.0 }
-    }
-
-    /// The sign of the exact number when the estimate certifies it (`|value| > bound`), else
-    /// `None`; never for a NaN or infinite estimate.
-    ///
-    /// ```
-    /// use kepler::geometry::kernel::Estimate;
-    /// use std::cmp::Ordering;
-    /// assert_eq!(Estimate { value: -2.0, bound: 1.0 }.sign(), Some(Ordering::Less));
-    /// assert_eq!(Estimate { value: 0.5, bound: 1.0 }.sign(), None);
-    /// assert_eq!(Estimate::exact(0.0).sign(), None);
-    /// assert_eq!(Estimate { value: f64::NAN, bound: 0.0 }.sign(), None);
-    /// ```
-    ///
-    /// Under an [`Arithmetic`] other than [`Arithmetic::Exact`] (set by [`with_arithmetic`]
-    /// for the error report), the rounded value decides instead: see there.
-    #[inline]
-    pub fn sign(&self) -> Option<Ordering> {
-        if MODE.load(Relaxed) != EXACT {
-            return self.sign_in_mode();
-        }
-        self.certified_sign()
-    }
-
-    /// [`sign`](Self::sign) in the exact arithmetic: the certified sign or `None`.
-    #[inline]
-    fn certified_sign(&self) -> Option<Ordering> {
-        if self.value > self.bound && self.value.is_finite() {
-            Some(Ordering::Greater)
-        } else if self.value < -self.bound && self.value.is_finite() {
-            Some(Ordering::Less)
-        } else {
-            None
-        }
-    }
-
-    /// [`sign`](Self::sign) under the process's [`Arithmetic`] when it is not exact: counted,
-    /// or decided by the rounded value alone. A NaN or infinite value decides nothing (the
-    /// caller's exact path does).
-    #[cold]
-    #[inline(never)]
-    fn sign_in_mode(&self) -> Option<Ordering> {
-        let mode = MODE.load(Relaxed);
-        if mode == COUNTED {
-            let sign = self.certified_sign();
-            FILTER_CALLS.fetch_add(1, Relaxed);
-            if sign.is_none() {
-                FILTER_MISSES.fetch_add(1, Relaxed);
-            }
-            return sign;
-        }
-        if !self.value.is_finite() {
-            return None;
-        }
-        if mode == TOLERANCE {
-            // The bound is a few units of roundoff times the magnitude of the terms.
-            let magnitude = self.bound / UNIT_ROUNDOFF;
-            if self.value.abs() <= f64::from_bits(TOLERANCE_BITS.load(Relaxed)) * magnitude {
-                return Some(Ordering::Equal);
-            }
-        }
-        self.value.partial_cmp(&0.0)
-    }
-
-    /// The product: `|x̂ŷ − xy| ≤ |x̂|·e_y + |ŷ|·e_x + e_x·e_y`, plus the rounding of the product
-    /// (`u·|x̂ŷ|`); the five roundings of the bound's own sum are covered by the factor
-    /// `1 + 8u`.
-    ///
-    /// ```
-    /// use kepler::geometry::kernel::Estimate;
-    /// let p = Estimate { value: 2.0, bound: 0.25 }.product(&Estimate { value: -3.0, bound: 0.5 });
-    /// assert_eq!(p.value, -6.0);
-    /// assert!(p.bound >= 2.0 * 0.5 + 3.0 * 0.25 + 0.25 * 0.5);
-    /// ```
-    #[inline]
-    pub fn product(&self, other: &Estimate) -> Estimate {
-        let value = self.value * other.value;
-        let bound = (self.value.abs() * other.bound
-            + other.value.abs() * self.bound
-            + self.bound * other.bound
-            + UNIT_ROUNDOFF * value.abs())
-            * (1.0 + 8.0 * UNIT_ROUNDOFF)
-            + f64::MIN_POSITIVE;
-        Estimate { value, bound }
-    }
-
-    /// The difference: `e_x + e_y` plus the rounding of the difference (`u·|x̂ − ŷ|`), the
-    /// bound's own roundings covered by the factor `1 + 4u`.
-    ///
-    /// ```
-    /// use kepler::geometry::kernel::Estimate;
-    /// let d = Estimate { value: 1.0, bound: 0.5 }.difference(&Estimate { value: 0.25, bound: 0.25 });
-    /// assert_eq!(d.value, 0.75);
-    /// assert!(d.bound >= 0.75);
-    /// ```
-    #[inline]
-    pub fn difference(&self, other: &Estimate) -> Estimate {
-        let value = self.value - other.value;
-        let bound = (self.bound + other.bound + UNIT_ROUNDOFF * value.abs())
-            * (1.0 + 4.0 * UNIT_ROUNDOFF)
-            + f64::MIN_POSITIVE;
-        Estimate { value, bound }
-    }
-
-    /// The value `(1 − t)·x + t·y` at a parameter `0 < t < 1`, computed as `x̂ + t·(ŷ − x̂)`:
-    /// each estimate is off by at most its bound, and the three roundings of the combination
-    /// by at most `3u(|x̂| + |ŷ|)`, padded to `4u`.
-    ///
-    /// ```
-    /// use kepler::geometry::kernel::Estimate;
-    /// let m = Estimate::exact(-1.0).between(&Estimate::exact(3.0), 0.25);
-    /// assert_eq!(m.value, 0.0);
-    /// assert!(m.bound > 0.0 && m.bound < 1e-14);
-    /// ```
-    #[inline]
-    pub fn between(&self, other: &Estimate, t: f64) -> Estimate {
-        let value = self.value + t * (other.value - self.value);
-        let bound = self.bound
-            + other.bound
-            + 4.0 * UNIT_ROUNDOFF * (self.value.abs() + other.value.abs())
-            + f64::MIN_POSITIVE;
-        Estimate { value, bound }
-    }
-}
+// The filter and the arithmetic, in their own files, named here too: every predicate and
+// construction reads them beside the polynomial vocabulary below.
+pub use super::arithmetic::{
+    Arithmetic, FilterCounts, arithmetic, builds_exactly, count_filters, plain_dot, with_arithmetic,
+};
+pub use super::estimate::{Estimate, UNIT_ROUNDOFF, sum_error_bound};
 
 /// A real number that is a polynomial in the input coordinates, known as an [`Estimate`] and
 /// exactly, as an expansion.
@@ -787,214 +612,7 @@ pub fn ratio(numerator: &[f64], denominator: &[f64]) -> f64 {
     estimate(numerator) / estimate(denominator)
 }
 
-/// An arithmetic that decides signs of polynomials: the seam where cheaper arithmetic can
-/// replace the exact one (see the [module documentation](self)).
-///
-/// ```
-/// use kepler::geometry::kernel::{Exact, Kernel};
-/// use kepler::geometry::{Point3, predicates::Orient3d};
-/// use std::cmp::Ordering;
-/// let o = Point3::origin();
-/// let (x, y) = (Point3::new(1.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0));
-/// assert_eq!(Exact.sign(&Orient3d([o, x, y, Point3::new(0.3, 0.3, 0.0)])), Ordering::Equal);
-/// ```
-pub trait Kernel {
-    /// The sign of `p`, as this arithmetic decides it.
-    fn sign<P: Polynomial + ?Sized>(&self, p: &P) -> Ordering;
-}
-
-/// The engine's arithmetic: every sign exact (a certified floating-point filter, then exact
-/// expansions).
-///
-/// ```
-/// use kepler::geometry::kernel::{Exact, Kernel};
-/// use kepler::geometry::{Point3, predicates::Orient3d};
-/// use std::cmp::Ordering;
-/// let a = Point3::new(0.1, 0.2, 0.3);
-/// assert_eq!(Exact.sign(&Orient3d([a, a, a, a])), Ordering::Equal);
-/// ```
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct Exact;
-
-impl Kernel for Exact {
-    #[inline]
-    fn sign<P: Polynomial + ?Sized>(&self, p: &P) -> Ordering {
-        p.sign()
-    }
-}
-
-/// The arithmetic that decides the engine's signs and builds its points: exact, or one of the
-/// cheaper ones that the error report (`kepler report`, issue 15) measures against it. Every
-/// filter of the kernel ([`Estimate::sign`]) and every constructed point of a drawing
-/// (`queries/along.rs`) consults it, so the engine's algorithms run unchanged and only the
-/// arithmetic differs.
-///
-/// ```
-/// use kepler::geometry::kernel::{Arithmetic, Estimate, with_arithmetic};
-/// use std::cmp::Ordering;
-/// let tiny = Estimate { value: 1e-20, bound: 1e-18 };
-/// assert_eq!(tiny.sign(), None); // exact: the expansion must decide
-/// assert_eq!(with_arithmetic(Arithmetic::Float, || tiny.sign()), Some(Ordering::Greater));
-/// let tolerance = Arithmetic::Tolerance(1e-6);
-/// assert_eq!(with_arithmetic(tolerance, || tiny.sign()), Some(Ordering::Equal));
-/// ```
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Arithmetic {
-    /// The engine's: every sign certified or decided exactly, every point rounded once from
-    /// exact values.
-    Exact,
-    /// Plain `f64`: a sign is the sign of the rounded value (zero when it is zero), a point
-    /// is the same formula evaluated in `f64`, as an engine without exact predicates computes
-    /// them.
-    Float,
-    /// `f64` with a tolerance, as most CAD and plotting engines decide: a value within `ε`
-    /// times the magnitude of its terms is zero (the magnitude is read off the estimate's
-    /// bound, a few roundoffs of it); points as [`Float`](Self::Float).
-    Tolerance(f64),
-    /// Single precision for the points, as GPU and game engines build them: each constructed
-    /// coordinate evaluated in `f32`. Signs as [`Float`](Self::Float) (the report also rounds
-    /// the scene's coordinates to `f32`; the `f64` signs make this a lower bound on a pure
-    /// `f32` engine's error).
-    Single,
-}
-
-const EXACT: u8 = 0;
-const COUNTED: u8 = 1;
-const FLOAT: u8 = 2;
-const TOLERANCE: u8 = 3;
-const SINGLE: u8 = 4;
-
-/// The process's arithmetic (one of the constants above) and the tolerance's bits.
-static MODE: AtomicU8 = AtomicU8::new(EXACT);
-static TOLERANCE_BITS: AtomicU64 = AtomicU64::new(0);
-/// Filter calls and misses counted by [`count_filters`].
-static FILTER_CALLS: AtomicU64 = AtomicU64::new(0);
-static FILTER_MISSES: AtomicU64 = AtomicU64::new(0);
-/// Held while an arithmetic other than the plain exact one is in force.
-static SWITCH: Mutex<()> = Mutex::new(());
-
-/// The arithmetic in force (see [`with_arithmetic`]); [`Arithmetic::Exact`] while filters are
-/// being counted.
-///
-/// ```
-/// use kepler::geometry::kernel::{Arithmetic, arithmetic};
-/// assert_eq!(arithmetic(), Arithmetic::Exact);
-/// ```
-pub fn arithmetic() -> Arithmetic {
-    match MODE.load(Relaxed) {
-        FLOAT => Arithmetic::Float,
-        TOLERANCE => Arithmetic::Tolerance(f64::from_bits(TOLERANCE_BITS.load(Relaxed))),
-        SINGLE => Arithmetic::Single,
-        _ => Arithmetic::Exact,
-    }
-}
-
-/// Puts the mode back to exact when dropped, also when the work panics.
-struct Restore;
-
-impl Drop for Restore {
-    fn drop(&mut self) {
-        MODE.store(EXACT, Relaxed);
-    }
-}
-
-/// Runs `f` with `arithmetic` deciding every sign and building every point of the engine, in
-/// every thread, then restores the exact arithmetic (also if `f` panics). The setting is
-/// process-wide (the engine's worker threads must see it): calls are serialised, and the
-/// engine must not be used outside them meanwhile. This is the error report's tool; the
-/// engine never calls it.
-///
-/// ```
-/// use kepler::geometry::kernel::{Arithmetic, arithmetic, with_arithmetic};
-/// assert_eq!(with_arithmetic(Arithmetic::Single, arithmetic), Arithmetic::Single);
-/// assert_eq!(arithmetic(), Arithmetic::Exact);
-/// ```
-pub fn with_arithmetic<T>(arithmetic: Arithmetic, f: impl FnOnce() -> T) -> T {
-    let _lock = SWITCH
-        .lock()
-        .unwrap_or_else(|poisoned| poisoned.into_inner());
-    let _restore = Restore;
-    let mode = match arithmetic {
-        Arithmetic::Exact => EXACT,
-        Arithmetic::Float => FLOAT,
-        Arithmetic::Tolerance(e) => {
-            TOLERANCE_BITS.store(e.to_bits(), Relaxed);
-            TOLERANCE
-        }
-        Arithmetic::Single => SINGLE,
-    };
-    MODE.store(mode, Relaxed);
-    f()
-}
-
-/// How often the kernel's filters ran and how often they could not decide, so that the exact
-/// (slow) path ran: see [`count_filters`].
-///
-/// ```
-/// let c = kepler::geometry::kernel::FilterCounts { calls: 200, misses: 3 };
-/// assert_eq!(c.share(), 0.015);
-/// ```
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct FilterCounts {
-    /// Filter calls ([`Estimate::sign`]).
-    pub calls: u64,
-    /// Calls whose estimate could not certify a sign.
-    pub misses: u64,
-}
-
-impl FilterCounts {
-    /// The share of calls that needed the exact path (0 without calls).
-    pub fn share(&self) -> f64 {
-        if self.calls == 0 {
-            0.0
-        } else {
-            self.misses as f64 / self.calls as f64
-        }
-    }
-}
-
-/// Runs `f` in the exact arithmetic, counting the kernel's filter calls and misses in every
-/// thread (slower than plain exact runs: each call updates shared counters). Serialised with
-/// [`with_arithmetic`].
-///
-/// ```
-/// use kepler::geometry::kernel::count_filters;
-/// use kepler::geometry::{Point3, predicates::orient3d};
-/// let p = |x, y, z| Point3::new(x, y, z);
-/// let ((), counts) = count_filters(|| {
-///     orient3d(&p(0.0, 0.0, 0.0), &p(1.0, 0.0, 0.0), &p(0.0, 1.0, 0.0), &p(0.0, 0.0, 1.0));
-///     orient3d(&p(0.0, 0.0, 0.0), &p(1.0, 0.0, 0.0), &p(0.0, 1.0, 0.0), &p(0.3, 0.3, 0.0));
-/// });
-/// assert_eq!((counts.calls, counts.misses), (2, 1));
-/// ```
-pub fn count_filters<T>(f: impl FnOnce() -> T) -> (T, FilterCounts) {
-    let _lock = SWITCH
-        .lock()
-        .unwrap_or_else(|poisoned| poisoned.into_inner());
-    let _restore = Restore;
-    FILTER_CALLS.store(0, Relaxed);
-    FILTER_MISSES.store(0, Relaxed);
-    MODE.store(COUNTED, Relaxed);
-    let result = f();
-    let counts = FilterCounts {
-        calls: FILTER_CALLS.load(Relaxed),
-        misses: FILTER_MISSES.load(Relaxed),
-    };
-    (result, counts)
-}
-
-/// Whether the engine builds its points exactly (each coordinate the exact value rounded
-/// once): so unless a cheaper [`Arithmetic`] is in force.
-///
-/// ```
-/// assert!(kepler::geometry::kernel::builds_exactly());
-/// ```
-#[inline]
-pub fn builds_exactly() -> bool {
-    !matches!(MODE.load(Relaxed), FLOAT | TOLERANCE | SINGLE)
-}
-
-/// `n / d` as the cheaper [`Arithmetic`] in force builds it: both evaluated by the same formula
+/// `n / d` as this thread's cheaper [`Arithmetic`] builds it: both evaluated by the same formula
 /// in `f64` (in `f32` for [`Arithmetic::Single`]) and divided. The engine calls it only when
 /// [`builds_exactly`] is false.
 ///
@@ -1007,26 +625,9 @@ pub fn builds_exactly() -> bool {
 /// assert_eq!(with_arithmetic(Arithmetic::Single, || plain_ratio(&n, &d)), (0.1f32 / 0.3f32) as f64);
 /// ```
 pub fn plain_ratio<N: Polynomial + ?Sized, D: Polynomial + ?Sized>(n: &N, d: &D) -> f64 {
-    if MODE.load(Relaxed) == SINGLE {
+    if builds_in_single() {
         f64::from(n.evaluate::<f32>() / d.evaluate::<f32>())
     } else {
         n.evaluate::<f64>() / d.evaluate::<f64>()
-    }
-}
-
-/// `Σ row[i]·(p[i] − origin[i])` as the cheaper [`Arithmetic`] in force evaluates it (a
-/// coordinate of a picture): in `f64`, or `f32` for [`Arithmetic::Single`].
-///
-/// ```
-/// use kepler::geometry::kernel::plain_dot;
-/// assert_eq!(plain_dot(&[1.0, 2.0, 0.0], &[3.0, 4.0, 5.0], &[1.0, 1.0, 1.0]), 8.0);
-/// ```
-pub fn plain_dot(row: &[f64; 3], p: &[f64; 3], origin: &[f64; 3]) -> f64 {
-    if MODE.load(Relaxed) == SINGLE {
-        let term = |i: usize| row[i] as f32 * (p[i] as f32 - origin[i] as f32);
-        f64::from(term(0) + term(1) + term(2))
-    } else {
-        let term = |i: usize| row[i] * (p[i] - origin[i]);
-        term(0) + term(1) + term(2)
     }
 }

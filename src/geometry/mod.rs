@@ -5,11 +5,14 @@
 //!
 //! - [`kernel`]: the error model, written once. A number to decide is a
 //!   [`Polynomial`](kernel::Polynomial) of the input, known as an
-//!   [`Estimate`](kernel::Estimate) (a rounded value and a certified error bound) and exactly,
-//!   as an expansion; the [`Exact`](kernel::Exact) kernel takes the estimate's sign when it is
-//!   certified and the expansion's otherwise. The [`Kernel`](kernel::Kernel) trait is the seam
-//!   where cheaper arithmetic (plain `f64`, `f64` with a tolerance, `f32`) can be swapped in to
-//!   measure what exactness costs.
+//!   [`Estimate`](estimate::Estimate) (a rounded value and a certified error bound) and
+//!   exactly, as an expansion; its sign is the estimate's when it is certified and the
+//!   expansion's otherwise.
+//! - [`estimate`]: that rounded value with its certified bound, the filter in front of every
+//!   exact sign.
+//! - [`arithmetic`]: the cheaper arithmetic (plain `f64`, `f64` with a tolerance, `f32`) that
+//!   the error report swaps in to measure what exactness costs, on threads of its own: every
+//!   other thread stays exact.
 //! - [`predicates`]: `orient2d` and `orient3d` (`robust`'s adaptive predicates), the same
 //!   with a point at infinity (an orthographic eye), and the determinants behind them as
 //!   polynomials.
@@ -30,6 +33,8 @@
 //! ```
 
 pub mod aabb;
+pub mod arithmetic;
+pub mod estimate;
 pub mod exact;
 pub mod kernel;
 pub mod polygon;
