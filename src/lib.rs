@@ -66,14 +66,19 @@
 
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
+// Every dependency is used where it is declared (features included); the test build links
+// the dev-dependencies too, so the lint is off there.
+#![cfg_attr(not(test), warn(unused_crate_dependencies))]
 
 pub mod bounds;
+#[cfg(feature = "lab")]
 pub mod clip;
 pub mod error;
 pub mod geometry;
 pub mod grid;
 pub mod hidden;
 pub mod io;
+#[cfg(feature = "lab")]
 pub mod lab;
 pub mod mesh;
 pub mod output;
@@ -84,3 +89,7 @@ pub mod surfaces;
 pub mod views;
 
 pub use error::{Error, Result};
+
+// Dependencies of the command line (feature `cli`) that only the binary uses.
+#[cfg(feature = "cli")]
+use {anyhow as _, indicatif as _};
