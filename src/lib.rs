@@ -63,6 +63,22 @@
 //! assert_eq!(cube.faces().len(), 6);
 //! assert!((cube.volume() - 8.0).abs() < 1e-12);
 //! ```
+//!
+//! The root re-exports what a user reaches for first: a [`Scene`] (loaded with [`load`]), a
+//! [`View`], [`draw`] with its [`Options`] giving a [`Drawing`], and Franklin's queries
+//! [`include`], [`visp`], [`visobj`] and [`visfac`].
+//!
+//! ```
+//! use kepler::{Inclusion, Options, Point3, Scene, Vector3, View, draw, include};
+//! let mut scene = Scene::new();
+//! let cube = scene.add_mesh(None, "cube", kepler::solids::cube(2.0)?)?;
+//! let view = View::orthographic(Vector3::new(-1.0, -2.0, -3.0), Vector3::z())?;
+//! let drawing = draw(&scene, &view, &Options::default())?;
+//! assert!(!drawing.polylines.is_empty());
+//! let (inside, _) = include(&scene, cube, &Point3::new(0.5, 0.5, 0.5))?;
+//! assert_eq!(inside, Inclusion::In);
+//! # Ok::<(), kepler::Error>(())
+//! ```
 
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
@@ -89,6 +105,18 @@ pub mod surfaces;
 pub mod views;
 
 pub use error::{Error, Result};
+
+// The curated root (after rstar's): what a user of the library reaches for first, one `use`
+// away. Everything else stays in its module, documented there.
+pub use geometry::{Aabb, Point3, Vector3};
+pub use hidden::{Drawing, EdgeClass, EdgeSelection, Options, Overlaps, Polyline, draw};
+pub use mesh::Mesh;
+pub use queries::include::{IncludeIndex, Inclusion, include};
+pub use queries::visp::{Visibility, VisibilityIndex, visp};
+pub use scene::file::load;
+pub use scene::{Camera, ObjectId, Scene};
+pub use surfaces::{Status, VisibleFace, visfac, visible_surfaces, visobj};
+pub use views::{Eye, View};
 
 // Dependencies of the command line (feature `cli`) that only the binary uses.
 #[cfg(feature = "cli")]
