@@ -5,10 +5,8 @@
 //! through the plane of the eye hiding boxes in front), a box wholly behind the eye changes no
 //! bit of what a scene in front of it shows, and VISOBJ follows.
 
-mod common;
-
-use common::Rng;
-use common::exact::cuboid_at;
+use crate::common::Rng;
+use crate::common::exact::cuboid_at;
 use geo::{InteriorPoint, MultiPolygon};
 use kepler::geometry::{Point3, Vector3};
 use kepler::queries::visp::{Visibility, VisibilityIndex};

@@ -15,9 +15,7 @@
 //! edges along lines, zero-area slivers), and random ones at general angles; at scales `2^±300`
 //! (where the hatch must be the unscaled one scaled, bit for bit) and `1e8` from the origin.
 
-mod common;
-
-use common::{Q, Rng, q, qsign};
+use crate::common::{Q, Rng, q, qsign};
 use geo::{Coord, LineString, MultiPolygon, Polygon};
 use kepler::geometry::exact::ldexp;
 use kepler::surfaces::hatch::{Hatch, Hatching, direction, hatch_faces, hatch_polygons};

@@ -6,8 +6,17 @@
 use kepler::lab::report::{Report, Settings};
 use std::collections::BTreeMap;
 
+/// Run in a process of its own: the report switches the process's arithmetic.
 #[test]
+#[ignore = "slow: the whole quick report, about 35-40 s"]
 fn the_quick_report_measures_every_variant() {
+    crate::common::in_own_process(
+        "report::the_quick_report_measures_every_variant",
+        quick_report,
+    );
+}
+
+fn quick_report() {
     let settings = Settings::quick(concat!(env!("CARGO_MANIFEST_DIR"), "/scenes"));
     let report = Report::run(&settings, &|_, _, _| {}).unwrap();
     assert!(report.cases.len() >= 30, "{} cases", report.cases.len());

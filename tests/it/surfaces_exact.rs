@@ -59,9 +59,10 @@ use num_traits::{Signed, ToPrimitive, Zero};
 use std::cmp::Ordering;
 use std::collections::{BTreeMap, BTreeSet};
 
-mod common;
-use common::exact::{P2, RefEye, RefView, V, cuboid_at, f2, parallelepiped, qp, ulp_of, ulps2};
-use common::{Q, Rng, q, qcross, qdot, qsign, qsub};
+use crate::common::exact::{
+    P2, RefEye, RefView, V, cuboid_at, f2, parallelepiped, qp, ulp_of, ulps2,
+};
+use crate::common::{Q, Rng, q, qcross, qdot, qsign, qsub};
 
 /// The largest error allowed for a vertex of a visible polygon, per coordinate, in units in the
 /// last place of the scene's scale.

@@ -38,12 +38,11 @@ use num_traits::{One, Signed, ToPrimitive, Zero};
 use std::cmp::Ordering;
 use std::collections::BTreeMap;
 
-mod common;
-use common::exact::{
+use crate::common::exact::{
     P2, RefView, V, cuboid_at, f2, opposite, parallelepiped, qadd, qdet, qlerp, qp, qscale, ulps,
     ulps2,
 };
-use common::{Q, q, qcross, qdot, qsign, qsub, qv};
+use crate::common::{Q, q, qcross, qdot, qsign, qsub, qv};
 
 /// The largest error allowed for a drawn vertex, in units in the last place per coordinate.
 const MAX_ULPS: f64 = 4.0;

@@ -7,9 +7,7 @@
 //!
 //! Each family runs 12 seeds here; the ignored `many_seeds` runs 300 of each.
 
-mod common;
-
-use common::Rng;
+use crate::common::Rng;
 use kepler::geometry::{Point3, Vector3};
 use kepler::hidden::verify::{Check, Source, Traced, Verification, draw_traced, verify};
 use kepler::hidden::{EdgeClass, EdgeSelection, Options};
@@ -102,8 +100,8 @@ fn bundled_scenes_pass_in_orthographic_and_perspective_views() {
     }
 }
 
+/// The metropolis on its own (about 10 s in release): run by default, as everywhere else.
 #[test]
-#[ignore = "the metropolis takes seconds in each of three views"]
 fn the_metropolis_passes() {
     check_bundled("scenes/metropolis.toml");
 }
@@ -550,7 +548,7 @@ fn a_fan_of_edges_through_one_point() {
 }
 
 #[test]
-#[ignore = "300 seeds of every family: a few minutes"]
+#[ignore = "slow: 300 seeds of every family, about 45 s (the default suite runs fewer seeds)"]
 fn many_seeds() {
     check_family("boxes", 300, boxes);
     check_family("tetrahedra", 300, tetrahedra);

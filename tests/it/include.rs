@@ -20,8 +20,7 @@
 use std::collections::HashSet;
 use std::path::Path;
 
-mod common;
-use common::Rng;
+use crate::common::Rng;
 
 use kepler::geometry::{Point3, Vector3};
 use kepler::mesh::Mesh;

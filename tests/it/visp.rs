@@ -16,8 +16,7 @@ use nalgebra::{Matrix4, Rotation3, Unit};
 use num_traits::{Signed, Zero};
 use std::cmp::Ordering;
 
-mod common;
-use common::{Q, Rng, q, qcross, qdot, qsign, qsub, qv};
+use crate::common::{Q, Rng, q, qcross, qdot, qsign, qsub, qv};
 
 use Visibility::{Hidden, Visible};
 

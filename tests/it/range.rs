@@ -6,9 +6,7 @@
 //! faces, independently of the library's own normalisation, which brings every scene into the
 //! range where its arithmetic is exact before drawing it.
 
-mod common;
-
-use common::Rng;
+use crate::common::Rng;
 use kepler::geometry::exact::ldexp;
 use kepler::geometry::{Point3, Vector3};
 use kepler::hidden::{Drawing, EdgeSelection, Options, draw};
@@ -21,7 +19,7 @@ use kepler::views::View;
 fn scaled_scene(scene: &Scene, k: i32) -> Scene {
     let mut out = Scene::new();
     for (id, mesh) in scene.mesh_objects(scene.roots()) {
-        let scaled = common::scaled_mesh(mesh, k)
+        let scaled = crate::common::scaled_mesh(mesh, k)
             .unwrap_or_else(|e| panic!("{} scaled by 2^{k}: {e}", scene.path(id)));
         out.add_mesh(None, scene.path(id), scaled)
             .unwrap_or_else(|e| panic!("{e}"));
@@ -102,6 +100,7 @@ fn check_scaling(name: &str, scene: &Scene, view: &View, options: &Options) {
 }
 
 #[test]
+#[ignore = "slow: three bundled scenes at every power of two, about 35 s (random_scenes_scale_bit_for_bit and visible_surfaces_scale_bit_for_bit check scaling by default)"]
 fn bundled_scenes_scale_bit_for_bit() {
     let options = Options {
         edges: EdgeSelection::All,

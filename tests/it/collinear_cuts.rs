@@ -21,10 +21,8 @@
 //! ends within 4 units in the last place of the exact pictures), and the drawing must pass
 //! `verify`.
 
-mod common;
-
-use common::exact::{P2, RefView, V, parallelepiped, qdet, qlerp, qp, ulps2};
-use common::{Q, q, qcross, qdot, qsign, qsub, qv};
+use crate::common::exact::{P2, RefView, V, parallelepiped, qdet, qlerp, qp, ulps2};
+use crate::common::{Q, q, qcross, qdot, qsign, qsub, qv};
 use kepler::geometry::{Point3, Vector3};
 use kepler::hidden::verify::{draw_traced, verify};
 use kepler::hidden::{EdgeClass, Options};
@@ -265,8 +263,8 @@ fn check(rail: Rail, contour: Contour, crowd: bool) -> (Vec<bool>, String) {
         .map(|(v, e)| {
             format!(
                 "{v} {:?}..{:?}",
-                common::exact::f2(&e[0]),
-                common::exact::f2(&e[1])
+                crate::common::exact::f2(&e[0]),
+                crate::common::exact::f2(&e[1])
             )
         })
         .collect();

@@ -30,13 +30,12 @@ use kepler::geometry::{Point3, Vector3};
 use kepler::hidden::{Drawing, EdgeClass, EdgeSelection, Options};
 use std::cmp::Ordering;
 
-mod common;
-use common::exact::{P2, RefEye, RefView, V, opposite, qdet, qlerp, qp, ulps2};
-use common::invariance::{
+use crate::common::exact::{P2, RefEye, RefView, V, opposite, qdet, qlerp, qp, ulps2};
+use crate::common::invariance::{
     Setup, Solid, Transform, along_an_axis, box_solid, check, drawing, dyadic, outward,
     over_scenes, random_view, segments,
 };
-use common::{Q, Rng, qcross, qdot, qsub};
+use crate::common::{Q, Rng, qcross, qdot, qsub};
 use num_traits::Zero;
 
 fn random_solid(rng: &mut Rng) -> Solid {

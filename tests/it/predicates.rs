@@ -10,8 +10,7 @@ use num_traits::Signed;
 use proptest::prelude::*;
 use std::cmp::Ordering;
 
-mod common;
-use common::{Q, q, qsign, qsub, qv};
+use crate::common::{Q, q, qsign, qsub, qv};
 
 /// det[r; s; t] with the three vectors as rows.
 fn det3(r: &[Q; 3], s: &[Q; 3], t: &[Q; 3]) -> Q {

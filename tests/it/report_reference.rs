@@ -24,8 +24,7 @@ use kepler::views::View;
 use nalgebra::{Matrix4, Rotation3, Unit};
 use std::time::Instant;
 
-mod common;
-use common::Rng;
+use crate::common::Rng;
 
 /// The relative tolerance of the comparison.
 const TOLERANCE: f64 = 1e-9;
@@ -403,7 +402,7 @@ fn random_scene(rng: &mut Rng, n: usize) -> Scene {
 /// The reference's timing on scenes of about 50 and 200 triangles (icosahedra and boxes),
 /// beside the engine's.
 #[test]
-#[ignore]
+#[ignore = "slow: timings of the reference against the engine, about 30 s; a measurement, no check"]
 fn timings() {
     let mut rng = Rng(7);
     for (icosahedra, boxes) in [(2, 1), (8, 3)] {

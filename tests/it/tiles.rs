@@ -3,10 +3,8 @@
 //! stacked boxes whose edges and vertices lie on the windows' borders, on random boxes in
 //! random views and grids, and at extreme scales and offsets.
 
-mod common;
-
-use common::Rng;
-use common::exact::cuboid_at;
+use crate::common::Rng;
+use crate::common::exact::cuboid_at;
 use kepler::geometry::{Point3, Vector3};
 use kepler::hidden::tiles::{TileDrawing, draw_tile, stitch, tile_windows};
 use kepler::hidden::{DrawError, Drawing, EdgeSelection, Options, Overlaps, draw};

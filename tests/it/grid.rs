@@ -16,8 +16,7 @@ use num_traits::Zero;
 use proptest::prelude::*;
 use std::cmp::Ordering;
 
-mod common;
-use common::{Q, Rng, q, qsign};
+use crate::common::{Q, Rng, q, qsign};
 
 // ---------------------------------------------------------------------------------------------
 // Exact references.

@@ -12,8 +12,7 @@ use kepler::solids;
 use kepler::views::{Picture, View};
 use nalgebra::Matrix4;
 
-mod common;
-use common::{Rng, unit_octahedron as octahedron};
+use crate::common::{Rng, unit_octahedron as octahedron};
 
 fn moved(mesh: &Mesh, t: [f64; 3]) -> Mesh {
     mesh.transformed(&Matrix4::new_translation(&Vector3::new(t[0], t[1], t[2])))

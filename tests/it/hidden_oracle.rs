@@ -52,8 +52,7 @@ use nalgebra::{Matrix4, Rotation3, Unit};
 use std::collections::{BTreeMap, HashSet};
 use std::time::Instant;
 
-mod common;
-use common::Rng;
+use crate::common::Rng;
 
 /// Pixels per side of the z-buffer.
 const SIZE: usize = 512;

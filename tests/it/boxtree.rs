@@ -5,9 +5,7 @@
 //! triangles, and the exact triangle test with a rational separating-axis test; the sphere
 //! experiment runs on the paper's smallest pair.
 
-mod common;
-
-use common::{Q, Rng, q, qcross, qdot, qsign, qsub, qv, unit_octahedron as octahedron};
+use crate::common::{Q, Rng, q, qcross, qdot, qsign, qsub, qv, unit_octahedron as octahedron};
 use kepler::bounds::tribox::TriboxBounds;
 use kepler::geometry::predicates::{collinear, orient3d};
 use kepler::geometry::ray::Ray;
@@ -548,7 +546,6 @@ fn sphere_experiment_on_the_papers_smallest_pair() {
 }
 
 #[test]
-#[ignore = "the paper's larger pairs (1,996 and 9,996 facets): a few seconds in release"]
 fn sphere_experiment_on_the_papers_larger_pairs() {
     for merge in [Merge::Volume, Merge::Area] {
         let rows = sphere_experiment(&[1996, 9996], 0.01, 1, merge).unwrap();

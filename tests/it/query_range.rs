@@ -2,9 +2,7 @@
 //! scaled by `2^k`, give the answers of the unscaled scene, for `k` from the bottom of the
 //! normal range to the top (the answers are signs, exact for every finite input).
 
-mod common;
-
-use common::Rng;
+use crate::common::Rng;
 use kepler::geometry::exact::ldexp;
 use kepler::geometry::{Point3, Vector3};
 use kepler::queries::include::IncludeIndex;

@@ -14,8 +14,7 @@ use num_traits::{Signed, ToPrimitive, Zero};
 use std::cmp::Ordering;
 use std::time::Instant;
 
-mod common;
-use common::{Q, Rng, q};
+use crate::common::{Q, Rng, q};
 
 // ---------------------------------------------------------------------------------------------
 // Building polygons.

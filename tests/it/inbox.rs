@@ -1,7 +1,5 @@
 //! INBOX: it must never poke out of its object, and should be as large as is practical.
 
-mod common;
-
 use kepler::bounds::{InboxMethod, cbox, inbox};
 use kepler::geometry::exact::ldexp;
 use kepler::geometry::predicates::triangle_meets_open_box;
@@ -217,7 +215,7 @@ fn the_inbox_exists_at_every_power_of_two() {
         for k in [
             -1010, -1000, -700, -256, -151, -150, 150, 151, 250, 256, 257, 500, 1000, 1017,
         ] {
-            let scaled = common::scaled_mesh(mesh, k).unwrap();
+            let scaled = crate::common::scaled_mesh(mesh, k).unwrap();
             let what = format!("{name} scaled by 2^{k}");
             let b = inbox(&scaled).unwrap_or_else(|| panic!("{what}: no inbox"));
             assert_inside(&scaled, &b.aabb, &what);
@@ -255,7 +253,7 @@ fn the_bounds_report_holds_at_every_scale() {
         -1074, -1070, -900, -359, -150, 0, 150, 341, 342, 600, 1000, 1022,
     ];
     for &k in &ks {
-        let cube = common::scaled_mesh(&unit, k).unwrap();
+        let cube = crate::common::scaled_mesh(&unit, k).unwrap();
         scene
             .add_mesh(None, format!("cube{k}"), cube.clone())
             .unwrap();

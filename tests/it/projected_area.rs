@@ -2,9 +2,7 @@
 //! references built here: the corners numbered from the paper's figure, a monotone-chain
 //! convex hull of the projected corners, and the textbook shoelace formula.
 
-mod common;
-
-use common::Rng;
+use crate::common::Rng;
 use kepler::bounds::tribox::TriboxBounds;
 use kepler::geometry::{Aabb, Point3, Vector3};
 use kepler::lab::oriented::OrientedBox;

@@ -38,8 +38,7 @@ fn orient3d_at_infinity_estimate(a: &Point3, b: &Point3, c: &Point3, u: &Vector3
     (e.value, e.bound)
 }
 
-mod common;
-use common::{Q, Rng, q, qcross, qdot, qsign, qsub, qv};
+use crate::common::{Q, Rng, q, qcross, qdot, qsign, qsub, qv};
 
 /// The exact value of `x · 2^(1074 degree)`, an integer for `degree >= 1`.
 fn z(x: f64, degree: u32) -> BigInt {

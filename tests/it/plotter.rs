@@ -6,10 +6,8 @@
 //! class and visibility or of one drawn over it. Oblique and perspective views (whose points
 //! are rounded) are checked for what rounding cannot blur: nothing is drawn longer.
 
-mod common;
-
-use common::exact::cuboid_at;
-use common::{Q, q};
+use crate::common::exact::cuboid_at;
+use crate::common::{Q, q};
 use kepler::geometry::Vector3;
 use kepler::hidden::{Drawing, EdgeClass, Options, Overlaps, draw};
 use kepler::scene::Scene;
@@ -178,8 +176,8 @@ fn touching_and_stacked_boxes_are_drawn_once() {
 // ---------------------------------------------------------------------------------------------
 // Invariance: the same stretches removed wherever the scene is placed (issue 27).
 
-use common::Rng;
-use common::invariance::{
+use crate::common::Rng;
+use crate::common::invariance::{
     Setup, Solid, Transform, along_an_axis, box_solid, check, dyadic, over_scenes, overlaps_removed,
 };
 use kepler::geometry::Point3;
@@ -209,7 +207,7 @@ fn touching_scene(rng: &mut Rng) -> Vec<Solid> {
             != std::cmp::Ordering::Equal
         {
             let faces = vec![vec![0, 1, 2], vec![0, 3, 1], vec![1, 3, 2], vec![0, 2, 3]];
-            solids.push(common::invariance::outward(p, faces));
+            solids.push(crate::common::invariance::outward(p, faces));
         }
     }
     solids

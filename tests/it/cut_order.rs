@@ -20,10 +20,8 @@
 //! in the last place of the exact pictures (the cuts are units apart in the picture, so a
 //! swapped pair of cuts or a lost piece shows).
 
-mod common;
-
-use common::exact::{P2, RefView, V, qlerp, qp, ulp_of, ulps2};
-use common::{Q, q, qsign};
+use crate::common::exact::{P2, RefView, V, qlerp, qp, ulp_of, ulps2};
+use crate::common::{Q, q, qsign};
 use kepler::geometry::{Point3, Vector3};
 use kepler::hidden::Options;
 use kepler::hidden::verify::{draw_traced, verify};
@@ -307,8 +305,8 @@ fn check(name: &str, eye: Eye, half: f64) -> usize {
         .map(|(v, e)| {
             format!(
                 "{v} {:?}..{:?}",
-                common::exact::f2(&e[0]),
-                common::exact::f2(&e[1])
+                crate::common::exact::f2(&e[0]),
+                crate::common::exact::f2(&e[1])
             )
         })
         .collect();

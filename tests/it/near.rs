@@ -6,10 +6,8 @@
 //! permutes and translates bit for bit (the visible surfaces translate up to the rounding of
 //! the points their frustum planes pass through).
 
-mod common;
-
-use common::Rng;
-use common::invariance::segments;
+use crate::common::Rng;
+use crate::common::invariance::segments;
 use kepler::geometry::{Point3, Vector3};
 use kepler::hidden::verify::{draw_traced, verify};
 use kepler::hidden::{Drawing, EdgeClass, EdgeSelection, Options, draw};

@@ -289,9 +289,8 @@ fn containment_is_exact_on_grid_aligned_degeneracies() {
 // Exact at every scale: the same input scaled by any power of two that keeps its coordinates
 // normal is the same mesh, and zero area, planarity and self-crossing are decided exactly.
 
-mod common;
-use common::exact::{qdet, qp};
-use common::{Q, Rng, q, qcross, qsign, qsub};
+use crate::common::exact::{qdet, qp};
+use crate::common::{Q, Rng, q, qcross, qsign, qsub};
 use num_traits::Zero;
 use std::cmp::Ordering;
 
@@ -802,7 +801,7 @@ fn closed_meshes_are_oriented_exactly() {
         .unwrap();
         for (k, m) in [mesh, reversed].iter().enumerate() {
             for scale in [0, -500, 500] {
-                let m = common::scaled_mesh(m, scale).unwrap();
+                let m = crate::common::scaled_mesh(m, scale).unwrap();
                 let want = exact_orientation(&m);
                 assert_eq!(m.orientation(), want, "needle case {case}/{k} at 2^{scale}");
                 let rounded = m.volume().partial_cmp(&0.0).unwrap_or(Ordering::Equal);
