@@ -17,14 +17,17 @@
 
 mod common;
 
+#[cfg(feature = "lab")]
 mod boxtree;
 // The command line: needs the `kepler` binary, built only with the `cli` feature (a
 // default feature, so plain `cargo test --release` runs these).
 #[cfg(feature = "cli")]
 mod cli;
+#[cfg(feature = "lab")]
 mod clip;
 mod collinear_cuts;
 mod crowds;
+#[cfg(feature = "lab")]
 mod culling;
 mod cut_order;
 mod dxf;
@@ -44,22 +47,28 @@ mod near;
 mod output;
 mod plotter;
 mod predicates;
+#[cfg(feature = "lab")]
 mod projected_area;
 mod query_range;
 mod range;
+#[cfg(feature = "lab")]
 mod report;
+#[cfg(feature = "lab")]
 mod report_reference;
 mod scan;
 mod scene;
 mod scene_file;
 mod solids;
+#[cfg(feature = "lab")]
 mod stiff;
 mod surfaces;
 mod surfaces_exact;
 mod surfaces_near;
 mod tiles;
 mod tribox;
+#[cfg(feature = "lab")]
 mod triboxes;
+#[cfg(feature = "lab")]
 mod triboxes_exact;
 mod verify;
 mod visp;

@@ -413,7 +413,8 @@ fn random_boxes(seed: u64) -> Scene {
 
 /// Area conservation: the visible polygons of all faces sum to the area of the union of all
 /// faces' pictures (computed independently, by uniting the pictures), and no two visible
-/// polygons overlap.
+/// polygons overlap. (The union by `kepler::clip`, which comes with the `lab` feature.)
+#[cfg(feature = "lab")]
 #[test]
 fn visible_areas_sum_to_the_area_of_the_picture() {
     use kepler::surfaces::visible_surfaces;

@@ -125,32 +125,3 @@ pub fn scaled_mesh(
     let faces = mesh.faces().iter().map(|f| f.vertices().to_vec()).collect();
     kepler::mesh::Mesh::from_polygons(vertices, faces)
 }
-
-/// Runs `body` in a process of its own: the test binary run again with only the test named
-/// `name` (its full path, as `cargo test` lists it). For tests that switch the process-wide
-/// arithmetic (`kepler::geometry::kernel::with_arithmetic`, as the lab's error report does):
-/// in one test binary with every other test, the switch would change what the tests running
-/// beside them compute. The child's output is shown if it fails.
-pub fn in_own_process(name: &str, body: impl FnOnce()) {
-    const ALONE: &str = "KEPLER_IT_ALONE";
-    if std::env::var(ALONE).is_ok_and(|n| n == name) {
-        body();
-        return;
-    }
-    let exe = std::env::current_exe().expect("the test binary");
-    let out = std::process::Command::new(exe)
-        .args([name, "--exact", "--include-ignored", "--test-threads=1"])
-        .env(ALONE, name)
-        .output()
-        .expect("the test binary runs");
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "{name} failed in its own process:\n{stdout}\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    assert!(
-        stdout.contains("1 passed"),
-        "{name}: the child ran no test:\n{stdout}"
-    );
-}
