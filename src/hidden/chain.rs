@@ -1,10 +1,12 @@
 //! Chaining pieces into maximal polylines.
 
-use super::marks::Mark;
-use super::{EdgeClass, Polyline};
+use super::marks::{self, Mark};
+use super::pass::Pass;
+use super::{Drawing, EdgeClass, Options, OverlapReport, Overlaps, Polyline, overlaps};
 use foldhash::fast::FixedState;
 use rayon::prelude::*;
 use std::collections::HashMap;
+use std::time::Instant;
 
 /// A segment's two ends.
 type Segment = [[f64; 2]; 2];
@@ -131,4 +133,56 @@ pub(super) fn chain_group(segments: &[Segment]) -> Vec<Vec<[f64; 2]>> {
         }
     }
     out
+}
+
+/// Stage 5 of the pass: the drawing chained from the pieces, each stretch of line once when
+/// the options ask for it. The pass keeps the stages' reports.
+pub(super) fn chained(pass: &mut Pass, pieces: Vec<Piece>, options: &Options) -> Drawing {
+    let clock = Instant::now();
+    let (pieces, report) = finished(&*pass, pieces, options);
+    match report {
+        Some(r) => {
+            let done = format!(
+                "{} groups of {} segments on one line drawn once ({:.6} of line no longer drawn \
+                 twice)",
+                r.groups, r.segments, r.removed_length
+            );
+            pass.stage("overlaps", clock, done, None);
+        }
+        None => {
+            let skipped = "each stretch drawn once (asked to keep overlapping pieces)";
+            pass.stage("overlaps", clock, String::new(), Some(skipped.to_string()));
+        }
+    }
+    let clock = Instant::now();
+    let polylines = chain(&pieces);
+    pass.stage(
+        "chains",
+        clock,
+        format!("{} polylines from {} runs", polylines.len(), pieces.len()),
+        (!options.hidden).then(|| "hidden pieces (not asked for)".to_string()),
+    );
+    Drawing {
+        polylines,
+        stages: pass.stages.clone(),
+    }
+}
+
+/// The pieces a drawing chains: hidden ones dropped unless the options ask for them, each
+/// stretch of a picture line once when they ask for that (with what was removed).
+pub(super) fn finished<P: marks::Provenance>(
+    provenance: &P,
+    mut pieces: Vec<Piece>,
+    options: &Options,
+) -> (Vec<Piece>, Option<OverlapReport>) {
+    if !options.hidden {
+        pieces.retain(|p| p.visible);
+    }
+    match options.overlaps {
+        Overlaps::Once => {
+            let (pieces, report) = overlaps::drawn_once(provenance, pieces);
+            (pieces, Some(report))
+        }
+        Overlaps::Keep => (pieces, None),
+    }
 }

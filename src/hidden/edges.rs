@@ -16,15 +16,22 @@
 //! same way on the other) draw as one edge, so the mesh draws as it would without the
 //! junction.
 
-use super::{EdgeClass, EdgeSelection};
+use super::cuts::frustum_cuts;
+use super::line::Line;
+use super::pass::{Leaf, Pass};
+use super::tiles::LineId;
+use super::{EdgeClass, EdgeSelection, Options};
 use crate::geometry::exact::ldexp;
 use crate::geometry::kernel::Exponents;
 use crate::geometry::predicates::{orient2d, orient3d, project};
 use crate::geometry::{Point3, Vector3};
 use crate::mesh::Mesh;
-use crate::views::Eye;
+use crate::queries::frustum::{Clip, TilePlanes};
+use crate::queries::own_solid::turned_away;
+use crate::views::{Eye, Picture};
 use rayon::prelude::*;
 use std::cmp::Ordering;
+use std::time::Instant;
 
 /// One edge of a mesh: its vertices (indices into the mesh) and class.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -394,4 +401,215 @@ fn class_of(
     } else {
         EdgeClass::Smooth
     })
+}
+
+/// A mesh's edges classified in the view (with what [`classify`] counted), and its vertices'
+/// pictures, whether each vertex is in front of the eye when the view clips, and whether each
+/// is inside the frustum and the tile (both empty when there is neither).
+struct LeafEdges {
+    edges: Vec<MeshEdge>,
+    counts: EdgeCounts,
+    pictures: Vec<[f64; 2]>,
+    front: Vec<bool>,
+    inside: Vec<bool>,
+}
+
+/// The edges of `leaf` classified from `eye` (see [`LeafEdges`]), its vertices pictured by
+/// `picture`, placed against the frustum `clip` and the `tile`.
+fn leaf_edges(
+    leaf: &Leaf,
+    (eye, picture): (&Eye, &Picture),
+    clip: Option<Clip>,
+    tile: Option<&TilePlanes>,
+    crease_cos: f64,
+    selection: EdgeSelection,
+) -> LeafEdges {
+    let vertices = leaf.mesh.vertices();
+    let front: Vec<bool> = match &clip {
+        Some(n) => vertices.par_iter().map(|p| n.in_front(p)).collect(),
+        None => Vec::new(),
+    };
+    let inside: Vec<bool> = match (&clip, tile) {
+        (None, None) => Vec::new(),
+        _ => vertices
+            .par_iter()
+            .map(|p| {
+                clip.is_none_or(|n| n.contains(eye, p)) && tile.is_none_or(|t| t.contains(eye, p))
+            })
+            .collect(),
+    };
+    let pictures: Vec<[f64; 2]> = vertices
+        .par_iter()
+        .enumerate()
+        .map(|(i, p)| match front.get(i) {
+            Some(false) => [0.0, 0.0],
+            _ => picture.point(p),
+        })
+        .collect();
+    let (edges, counts) = classify(leaf.mesh, eye, crease_cos, selection);
+    LeafEdges {
+        edges,
+        counts,
+        pictures,
+        front,
+        inside,
+    }
+}
+
+impl Pass<'_> {
+    /// Stage 1: every mesh's edges, classified, and its vertices' pictures; the lines to draw.
+    pub(super) fn edges(&mut self, options: &Options) {
+        let clock = Instant::now();
+        let (eye, picture, clip) = (&self.eye, &self.picture, self.clip);
+        let tile = self.tile.as_ref();
+        let crease_cos = -options.crease_angle.to_radians().cos();
+        let classified: Vec<LeafEdges> = self
+            .leaves
+            .par_iter()
+            .map(|leaf| leaf_edges(leaf, (eye, picture), clip, tile, crease_cos, options.edges))
+            .collect();
+        let mut total = EdgeCounts::default();
+        let (mut behind, mut outside_tile) = (0, 0);
+        for (n, found) in classified.into_iter().enumerate() {
+            let counts = found.counts;
+            total.flat += counts.flat;
+            total.end_on += counts.end_on;
+            total.left_out += counts.left_out;
+            for (total, n) in total.by_class.iter_mut().zip(counts.by_class) {
+                *total += n;
+            }
+            let (b, o) = self.leaf_lines(n, found);
+            behind += b;
+            outside_tile += o;
+        }
+        let (done, skipped) = self.edges_report(&total, options.edges, behind, outside_tile);
+        self.stage("edges", clock, done, Some(skipped));
+    }
+
+    /// The lines of the edges of leaf `n` (see [`Line`]), and the cuts where those the view
+    /// clips leave its frustum or the tile; the leaf keeps its vertices' pictures and the
+    /// range of its lines. How many edges were left out as wholly behind the eye, and as
+    /// wholly outside the tile.
+    fn leaf_lines(&mut self, n: usize, found: LeafEdges) -> (usize, usize) {
+        let (eye, clip, tile) = (&self.eye, self.clip, self.tile.as_ref());
+        let LeafEdges {
+            edges,
+            pictures,
+            front,
+            inside,
+            ..
+        } = found;
+        let (id, mesh, global) = {
+            let leaf = &self.leaves[n];
+            (leaf.id, leaf.mesh, leaf.global)
+        };
+        let (mut behind, mut outside_tile) = (0, 0);
+        let away = turned_away(self.scene, id, mesh, eye);
+        let first = self.lines.len();
+        for (k, e) in edges.into_iter().enumerate() {
+            let (a, b) = (e.a as usize, e.b as usize);
+            let in_front = |v: usize| front.get(v).is_none_or(|&f| f);
+            if !in_front(a) && !in_front(b) {
+                // Wholly behind the eye: nothing of it is drawn or bounds what is seen.
+                behind += 1;
+                continue;
+            }
+            let ends = [mesh.vertices()[a], mesh.vertices()[b]];
+            if tile.is_some_and(|t| t.surely_outside(&ends)) {
+                // Wholly outside the tile: nothing of it is drawn there, and where it
+                // crosses a contour or pierces a face is outside too.
+                outside_tile += 1;
+                continue;
+            }
+            let clipped = !(inside.is_empty() || inside[a] && inside[b]);
+            let back = e.class != EdgeClass::Boundary
+                && away.is_some_and(|away| {
+                    e.triangles.iter().all(|&t| {
+                        let [p, q, r] = mesh.triangle(t as usize);
+                        eye.orient3d(&p, &q, &r) == away
+                    })
+                });
+            self.lines.push(Line {
+                a: mesh.vertices()[a],
+                b: mesh.vertices()[b],
+                ends: [pictures[a], pictures[b]],
+                class: e.class,
+                meet: None,
+                back,
+                triangles: Some(e.triangles),
+                wide: !(in_front(a) && in_front(b)),
+                clipped,
+                leaf: n as u32,
+                vertices: [e.a, e.b],
+                id: LineId::Edge(global, k as u32),
+            });
+            if clipped {
+                let i = self.lines.len() - 1;
+                self.cuts
+                    .extend(frustum_cuts(clip, tile, eye, (i, &self.lines[i], None)));
+            }
+        }
+        let leaf = &mut self.leaves[n];
+        leaf.pictures = pictures;
+        leaf.front = front;
+        leaf.lines = first..self.lines.len();
+        (behind, outside_tile)
+    }
+
+    /// What stage 1 did and what it left out, for `--stats`: the edges by class, and the
+    /// edges and objects skipped (`behind` the eye, `outside_tile`).
+    fn edges_report(
+        &self,
+        total: &EdgeCounts,
+        selection: EdgeSelection,
+        behind: usize,
+        outside_tile: usize,
+    ) -> (String, String) {
+        let count = |c: EdgeClass| total.by_class[c as usize];
+        let done = format!(
+            "{} objects: {} silhouette, {} boundary, {} crease, {} smooth edges",
+            self.leaves.len(),
+            count(EdgeClass::Silhouette),
+            count(EdgeClass::Boundary),
+            count(EdgeClass::Crease),
+            count(EdgeClass::Smooth)
+        );
+        let smooth = match (total.left_out, selection) {
+            (0, _) => String::new(),
+            (n, EdgeSelection::Feature) => {
+                format!(", {n} smooth edges not asked for (--edges all draws them)")
+            }
+            (n, EdgeSelection::All) => {
+                format!(", {n} smooth diagonals of split polygons (not polygon edges)")
+            }
+            (n, EdgeSelection::Mesh) => {
+                format!(", {n} diagonals of split polygons (not polygon edges)")
+            }
+        };
+        let clipping = if self.clip.is_some() {
+            format!(
+                ", {behind} behind the eye (the view clips to its frustum: part of the scene \
+                 is not in front of the eye)"
+            )
+        } else {
+            String::new()
+        };
+        let copies = match self.copies {
+            0 => String::new(),
+            n => format!(", {n} objects that are exact copies of another (drawn once)"),
+        };
+        let tiled = match &self.tile {
+            Some(_) => format!(
+                ", {} objects and {outside_tile} edges outside the tile",
+                self.outside_tile
+            ),
+            None => String::new(),
+        };
+        let (flat, end_on) = (total.flat, total.end_on);
+        let skipped = format!(
+            "{flat} edges between coplanar faces (no edge), {end_on} seen end-on (a point)\
+             {smooth}{clipping}{copies}{tiled}"
+        );
+        (done, skipped)
+    }
 }
