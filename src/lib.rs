@@ -13,8 +13,8 @@
 //!
 //! ```text
 //!  geometry   the exact kernel: points, boxes, predicates, expansions,   Shewchuk 1997
-//!  clip       rays; the one place that knows about rounding; polygon
-//!             booleans to an ulp
+//!             rays; the one place that knows about rounding
+//!  clip       polygon booleans to an ulp (with the lab)
 //!     │
 //!  mesh, io,  validated polygon meshes, mesh files, built-in solids      Franklin: faces
 //!  solids                                                                and textures
@@ -24,8 +24,13 @@
 //!  scene,     the scene graph, instancing, scene files; views, the       Franklin: objects;
 //!  views      picture map, projected box areas                           Schmalstieg–Tobler
 //!     │
-//!  grid,      the uniform grid of segments; INCLUDE, VISP, ray shooting  Franklin: grid,
-//!  queries                                                               algorithms A, B
+//!  grid       the uniform grid of segments                               Franklin: grid
+//!     │
+//!  sight      lines of sight: exact forms along edges, meet lines,
+//!             intersection lines, the frustum (internal)
+//!     │
+//!  queries    INCLUDE, VISP, ray shooting                                Franklin:
+//!                                                                        algorithms A, B
 //!     │
 //!  hidden,    hidden lines (and ideographs); visible surfaces, VISFAC    Franklin: HALO,
 //!  surfaces   and VISOBJ                                                 algorithms C–E
@@ -100,6 +105,7 @@ pub mod mesh;
 pub mod output;
 pub mod queries;
 pub mod scene;
+pub(crate) mod sight;
 pub mod solids;
 pub mod surfaces;
 pub mod views;

@@ -19,11 +19,11 @@ use crate::geometry::polygon::{bounding_box, surely_farther};
 use crate::geometry::{Aabb, Point3};
 use crate::grid::{CellLists, Cells};
 use crate::mesh::Mesh;
-use crate::queries::frustum::ray_direction;
-use crate::queries::sight::Sight;
 use crate::queries::visp::{Visibility, any_hides, descend};
 use crate::queries::{Counters, Stage};
 use crate::scene::{ObjectId, Scene};
+use crate::sight::frustum::ray_direction;
+use crate::sight::line::Sight;
 use crate::views::{Eye, Picture};
 use rayon::prelude::*;
 use rstar::primitives::{GeomWithData, Rectangle};
@@ -60,7 +60,7 @@ impl<'a> PictureGrid<'a> {
     /// and a triangle is listed by the part of its picture's box in the window: a triangle with
     /// no vertex in front hides nothing in front of the eye and is left out; the picture of
     /// the front part of one that crosses the plane of the eye is unbounded along the pictures
-    /// of its edges towards the eye's plane (see [`Clip::framed`](crate::queries::frustum)).
+    /// of its edges towards the eye's plane (see [`Clip::framed`](crate::sight::frustum)).
     pub(crate) fn new(
         mesh: &'a Mesh,
         pictures: &'a [[f64; 2]],
@@ -200,7 +200,7 @@ impl<'a> PictureGrid<'a> {
 /// vertex towards the eye's plane (its direction from [`Clip::framed`]'s formula, each
 /// component's sign exact), then cut to the window.
 ///
-/// [`Clip::framed`]: crate::queries::frustum
+/// [`Clip::framed`]: crate::sight::frustum
 fn framed_box(
     mesh: &Mesh,
     tri: &[u32; 3],

@@ -5,10 +5,10 @@
 use super::line::{Cut, Line, MeetLine, rough_parameter};
 use crate::geometry::Point3;
 use crate::geometry::predicates::{collinear, orient3d};
-use crate::queries::along::Form;
-use crate::queries::collinear::corners;
-use crate::queries::frustum::{Clip, contour_in_front};
-use crate::queries::meet::{OnLine, reversed};
+use crate::sight::along::Form;
+use crate::sight::collinear::corners;
+use crate::sight::frustum::{Clip, contour_in_front};
+use crate::sight::meet::{OnLine, reversed};
 use crate::views::Eye;
 use std::cmp::Ordering;
 
@@ -139,7 +139,7 @@ pub(super) fn off_plane<'p>(
 /// the contour `c` in front of it, decided exactly as [`crossing`] decides for an edge: the
 /// sides of `c`'s ends against the plane through the line and the eye, the sides of the line's
 /// ends against `c`'s sight plane, and which passes in front where they cross
-/// ([`Meet::twist`](crate::queries::meet::Meet::twist)). For collinear pictures, at the lines
+/// ([`Meet::twist`](crate::sight::meet::Meet::twist)). For collinear pictures, at the lines
 /// of sight through `c`'s ends.
 pub(super) fn crossing_line(eye: &Eye, m: &MeetLine, l: &Line, c: &Line) -> Option<Vec<Cut>> {
     let (meet, [x, y]) = (&m.meet, &m.ends);

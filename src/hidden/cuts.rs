@@ -7,7 +7,7 @@ use super::line::{Cut, Line, MeetLine, rough_parameter};
 use super::pass::Pass;
 use crate::geometry::Point3;
 use crate::grid::SegmentGrid;
-use crate::queries::frustum::{Clip, Framed, FramedLine, TilePlanes};
+use crate::sight::frustum::{Clip, Framed, FramedLine, TilePlanes};
 use crate::views::Eye;
 use geo::{Line as GeoLine, coord};
 use rayon::prelude::*;

@@ -7,9 +7,9 @@ use super::marks::MarkKey;
 use super::tiles::LineId;
 use crate::geometry::Point3;
 use crate::geometry::kernel::Polynomial;
-use crate::queries::along::{Form, Zero};
-use crate::queries::meet::{Meet, OnLine};
 use crate::scene::{ObjectId, Scene};
+use crate::sight::along::{Form, Zero};
+use crate::sight::meet::{Meet, OnLine};
 use crate::views::Eye;
 
 /// A line of the drawing before visibility: an edge or an intersection segment.

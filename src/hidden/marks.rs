@@ -10,9 +10,9 @@
 
 use super::{Line, MeetLine, Pass};
 use crate::mesh::Mesh;
-use crate::queries::along::Zero;
-use crate::queries::collinear::{LinePoint, Support};
-use crate::queries::meet::OnLine;
+use crate::sight::along::Zero;
+use crate::sight::collinear::{LinePoint, Support};
+use crate::sight::meet::OnLine;
 use crate::views::Eye;
 
 /// Where a piece of a line begins or ends: an end of the line (its first or last, in the

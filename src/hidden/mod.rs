@@ -8,7 +8,7 @@
 //! 2. **Intersection lines.** Where faces pierce each other, between objects whose CBOXes
 //!    overlap and within each object: each a segment of the line where two faces' planes meet,
 //!    from face boundary to face boundary, its ends input vertices or crossings of input edges
-//!    with input planes, ordered along the line exactly (see `queries::meet`).
+//!    with input planes, ordered along the line exactly (see `sight::meet`).
 //! 3. **Cuts.** Visibility along an edge can change only where its picture crosses the picture
 //!    of a contour edge (silhouette or boundary, including the edges of faces seen edge-on) or
 //!    where the edge pierces a face. Franklin's uniform grid ([`crate::grid`]) finds the
@@ -90,8 +90,8 @@ pub use overlaps::OverlapReport;
 
 use crate::geometry::Point3;
 use crate::geometry::exact::ldexp;
-use crate::queries::range::in_working_range;
 use crate::scene::{Scene, SceneError};
+use crate::sight::range::in_working_range;
 use crate::views::{View, ViewError};
 // The pass's parts, named here for the files that read them through `super` (tiles, verify,
 // marks, overlaps).

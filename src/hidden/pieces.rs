@@ -10,11 +10,11 @@ use super::marks::Mark;
 use super::runs::Runs;
 use crate::geometry::Point3;
 use crate::queries::Counters;
-use crate::queries::along::{Form, Sample, cut_point, hides_at};
-use crate::queries::frustum::{Clip, TilePlanes};
-use crate::queries::meet::{OnLine, balance};
 use crate::queries::visp::Visibility;
 use crate::scene::{ObjectId, Scene};
+use crate::sight::along::{Form, Sample, cut_point, hides_at};
+use crate::sight::frustum::{Clip, TilePlanes};
+use crate::sight::meet::{OnLine, balance};
 use crate::views::{Eye, Picture};
 use std::cmp::Ordering;
 
@@ -136,7 +136,7 @@ fn ordered(eye: &Eye, l: &Line, cuts: &[(u32, &Cut)]) -> Vec<((u32, Cut), bool)>
 /// (strictly inside it), and the stages that decided its pieces. The cuts are ordered along
 /// the line exactly, those at one point taken once (the smallest key); each piece between two
 /// consecutive points is decided at a point strictly inside it defined from the input
-/// ([`Meet::sign_between`](crate::queries::meet::Meet::sign_between)).
+/// ([`Meet::sign_between`](crate::sight::meet::Meet::sign_between)).
 pub(super) fn line_pieces(
     occluders: &Occluders,
     scene: &Scene,

@@ -8,14 +8,9 @@
 //! subobjects in turn. Every answer says which [`Stage`] decided it, and [`Counters`] add them
 //! up over a batch.
 //!
-//! Below the two drawing layers (`hidden` and `surfaces`), this layer also holds what both of
-//! them ask of a segment or a pair of meshes: the exact sign of a plane's form at a point of an
-//! edge and the picture of the point where the edge crosses the plane, built once from the
-//! input (`along`); the lines where two meshes' faces pierce each other (`intersections`);
-//! the faces a solid seen from outside hides by itself (`own_solid`); whether two lines' pictures lie on one line and the order of points along
-//! it (`collinear`); the frustum both clip
-//! to when a perspective eye is inside the scene (`frustum`); and the power of two that brings
-//! a scene of extreme coordinates into the range where the kernel is exact (`range`).
+//! The geometry of lines of sight that these queries and the two drawing layers share (exact
+//! forms along an edge, meet lines, intersection lines, the frustum) is the layer before this
+//! one, `sight` (internal to the crate).
 //!
 //! ```
 //! use kepler::{geometry::Point3, scene::Scene, queries::{Stage, include::{Inclusion, include}}};
@@ -25,17 +20,8 @@
 //! assert_eq!(include(&scene, cube, &Point3::new(1.0, 0.5, 0.5)).unwrap(), (Inclusion::On, Stage::Faces));
 //! ```
 
-pub(crate) mod along;
-pub(crate) mod collinear;
-pub(crate) mod frustum;
 pub mod include;
-pub(crate) mod intersections;
-pub(crate) mod meet;
-pub(crate) mod own_solid;
 pub mod projection_grid;
-pub(crate) mod range;
-pub(crate) mod ratio;
-pub(crate) mod sight;
 pub mod visp;
 
 use crate::geometry::Point3;

@@ -27,13 +27,13 @@
 //! assert_eq!(index.visp(&Point3::new(0.5, 0.5, 1.0)).0, Visibility::Visible);
 //! ```
 
-use super::sight::Sight;
 use super::{Counters, Stage, in_parallel};
 use crate::geometry::predicates::orient3d;
 use crate::geometry::ray::{Ray, compare_hits, hit_point, pierces};
 use crate::geometry::{Point3, Vector3};
 use crate::mesh::{Mesh, TriangleTree};
 use crate::scene::{Content, ObjectId, Scene};
+use crate::sight::Sight;
 use crate::views::{Eye, View};
 use rayon::prelude::*;
 use slotmap::SecondaryMap;

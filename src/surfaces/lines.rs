@@ -30,7 +30,7 @@ use crate::geometry::kernel::{Difference, Estimate, Exponents, Polynomial, Ring}
 use crate::geometry::predicates::{Orient3d, Orientation};
 use crate::geometry::{Point3, Vector3};
 use crate::mesh::TextureFrame;
-use crate::queries::along::Form;
+use crate::sight::along::Form;
 use crate::views::{Eye, Picture};
 use num_rational::BigRational;
 use num_traits::{ToPrimitive, Zero};

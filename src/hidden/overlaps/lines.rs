@@ -18,7 +18,7 @@
 use super::{Span, rounding};
 use crate::hidden::chain::Piece;
 use crate::hidden::marks::Provenance;
-use crate::queries::collinear::Support;
+use crate::sight::collinear::Support;
 use rayon::prelude::*;
 use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::{AABB, RTree};

@@ -18,7 +18,7 @@
 //!
 //! A piece lies on a support (an input edge's line, or the meet line of two input planes)
 //! and its ends are points defined from the input (see [`super::marks`] and
-//! [`crate::queries::collinear`]); the rounded pictures are never asked whether two pieces
+//! [`crate::sight::collinear`]); the rounded pictures are never asked whether two pieces
 //! are collinear or which end comes first. So the same pieces are removed wherever the scene
 //! is placed, at every power-of-two scale, mirrored, permuted or with its faces reversed.
 //!

@@ -1,7 +1,7 @@
 //! Step 2 of overlap removal: the sweep along one group's picture line.
 //!
 //! The group's points are ordered by the turn of their lines of sight
-//! ([`collinear::turn`](crate::queries::collinear::turn)) against the turn of the first
+//! ([`collinear::turn`](crate::sight::collinear::turn)) against the turn of the first
 //! line's own two points, which gives the direction of the sweep. A certified filter decides
 //! first: with `g` the first line's rounded picture direction, two points whose rounded
 //! pictures differ along `g` by more than their rounding bounds are in that order.
@@ -10,7 +10,7 @@ use super::{Span, rank, rounding, unranked};
 use crate::hidden::EdgeClass;
 use crate::hidden::chain::Piece;
 use crate::hidden::marks::{Mark, MarkKey, Provenance};
-use crate::queries::collinear::turn;
+use crate::sight::collinear::turn;
 use std::cmp::Ordering;
 
 /// A piece's end in the sweep: the piece, its line and mark, the point's name and rounded

@@ -14,9 +14,9 @@ use super::LineId;
 use crate::geometry::{Point3, Vector3};
 use crate::hidden::marks::MarkKey;
 use crate::hidden::{Cut, DrawError, EdgeClass, Result};
-use crate::queries::along::{Form, Zero};
-use crate::queries::collinear::Support;
-use crate::queries::meet::{Meet, OnLine};
+use crate::sight::along::{Form, Zero};
+use crate::sight::collinear::Support;
+use crate::sight::meet::{Meet, OnLine};
 use crate::views::Eye;
 
 /// A line drawn in a tile: its name, class, support and the names of its ends.

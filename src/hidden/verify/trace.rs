@@ -7,9 +7,9 @@ use super::super::{
 };
 use crate::geometry::Point3;
 use crate::geometry::exact::ldexp;
-use crate::queries::meet::Meet;
-use crate::queries::range::in_working_range;
 use crate::scene::{ObjectId, Scene};
+use crate::sight::meet::Meet;
+use crate::sight::range::in_working_range;
 use crate::views::View;
 
 /// The 3-D line a piece of a drawing lies on.

@@ -5,7 +5,7 @@
 //! oriented box of three, a tribox of nine), so the ray meets it exactly when the intervals of
 //! its slabs overlap at some `t ≥ 0`, and enclosing each interval makes the test conservative:
 //! it may report a bound met that the exact ray misses, never the reverse. (The hierarchy's
-//! own filter `queries::sight` does this for axis-aligned boxes only, with a relative margin;
+//! own filter `sight::line` does this for axis-aligned boxes only, with a relative margin;
 //! the slabs of oriented boxes have rounded directions, so here the projections `a · o` and
 //! `a · u` carry explicit error bounds and each quotient is rounded outward.)
 //!

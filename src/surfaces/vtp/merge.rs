@@ -9,7 +9,7 @@ use super::union_find::UnionFind;
 use super::{At, Vertex, Vtp};
 use crate::geometry::kernel::Polynomial;
 use crate::mesh::TextureFrame;
-use crate::queries::along::{cut_point, cut_point_on_plane};
+use crate::sight::along::{cut_point, cut_point_on_plane};
 use crate::surfaces::lines::{self, Kind, Turn};
 use geo::{Coord, LineString, MultiPolygon, Polygon};
 use std::cmp::Ordering;

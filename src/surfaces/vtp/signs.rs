@@ -7,7 +7,7 @@ use super::{At, Cell, Trace, Vertex, Vtp};
 use crate::geometry::Point3;
 use crate::geometry::kernel::{Difference, Polynomial, Product};
 use crate::geometry::predicates::orient3d;
-use crate::queries::along::Form;
+use crate::sight::along::Form;
 use crate::surfaces::lines::{self, Alignment, Crossing, Kind, Line, Side, Turn};
 use crate::views::Eye;
 use std::cmp::Ordering;

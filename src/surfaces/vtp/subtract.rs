@@ -6,8 +6,8 @@ use super::signs::times;
 use super::{Cell, Trace, Vtp};
 use crate::geometry::Point3;
 use crate::geometry::predicates::orient3d;
-use crate::queries::along::Form;
-use crate::queries::frustum::Clip;
+use crate::sight::along::Form;
+use crate::sight::frustum::Clip;
 use crate::surfaces::lines::Kind;
 use std::cmp::Ordering;
 

@@ -31,7 +31,7 @@ use crate::geometry::kernel::{
 };
 use crate::geometry::predicates::{Orient3d, Orientation, Side};
 use crate::geometry::{Point3, Vector3};
-use crate::queries::ratio::{nearest_ratio, rounded_ratio};
+use crate::sight::ratio::{nearest_ratio, rounded_ratio};
 use crate::views::{Eye, Picture};
 use num_rational::BigRational;
 use num_traits::{Signed, ToPrimitive, Zero as _};

@@ -28,7 +28,7 @@
 //! eye, so that moving scene and eye together leaves every plane as it is and the clipped
 //! drawing moves bit for bit. Each clipped end is the intersection of an input edge (or an
 //! intersection line, or a face's trace) with such a plane, constructed once like every other
-//! cut ([`cut_point`](crate::queries::along::cut_point)). The normals' rounding turns the
+//! cut ([`cut_point`](crate::sight::along::cut_point)). The normals' rounding turns the
 //! planes by about 2⁻⁵³ radians from the exact frustum: immaterial for drawing, and every
 //! decision is made against the same planes.
 
@@ -36,8 +36,8 @@ use crate::geometry::kernel::{Difference, Polynomial, Product, rounded};
 use crate::geometry::predicates::Side;
 use crate::geometry::{Point3, Vector3};
 use crate::mesh::Mesh;
-use crate::queries::along::{Form, PictureAt};
 use crate::scene::{ObjectId, Scene};
+use crate::sight::along::{Form, PictureAt};
 use crate::views::{Eye, Picture, View, ViewError, Window};
 use std::cmp::Ordering;
 
