@@ -1,35 +1,13 @@
 //! Chaining pieces into maximal polylines.
 
-use super::marks::{self, Mark};
-use super::pass::Pass;
-use super::{Drawing, EdgeClass, Options, OverlapReport, Overlaps, Polyline, overlaps};
+use super::piece::Piece;
+use super::{EdgeClass, Polyline};
 use foldhash::fast::FixedState;
 use rayon::prelude::*;
 use std::collections::HashMap;
-use std::time::Instant;
 
 /// A segment's two ends.
 type Segment = [[f64; 2]; 2];
-
-/// A visible or hidden piece of an edge, in picture coordinates.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Piece {
-    /// The class of its edge.
-    pub class: EdgeClass,
-    /// Whether it is visible.
-    pub visible: bool,
-    /// Its ends.
-    pub ends: [[f64; 2]; 2],
-    /// The index of its line in the pass, and its range of the line's parameter `t` (where
-    /// `X(t) = a + t·(b - a)`): what [`super::verify`] checks it by.
-    pub line: usize,
-    /// See `line`.
-    pub t: [f64; 2],
-    /// Whether a tile's plane passes through each end (see [`super::tiles`]).
-    pub border: [bool; 2],
-    /// What its ends are, exactly (see [`super::marks`]).
-    pub marks: [Mark; 2],
-}
 
 /// Chains the pieces of each class and visibility into polylines, joining pieces at ends
 /// shared by exactly two of them (ends are equal only when built from the same input, since
@@ -133,56 +111,4 @@ pub(super) fn chain_group(segments: &[Segment]) -> Vec<Vec<[f64; 2]>> {
         }
     }
     out
-}
-
-/// Stage 5 of the pass: the drawing chained from the pieces, each stretch of line once when
-/// the options ask for it. The pass keeps the stages' reports.
-pub(super) fn chained(pass: &mut Pass, pieces: Vec<Piece>, options: &Options) -> Drawing {
-    let clock = Instant::now();
-    let (pieces, report) = finished(&*pass, pieces, options);
-    match report {
-        Some(r) => {
-            let done = format!(
-                "{} groups of {} segments on one line drawn once ({:.6} of line no longer drawn \
-                 twice)",
-                r.groups, r.segments, r.removed_length
-            );
-            pass.stage("overlaps", clock, done, None);
-        }
-        None => {
-            let skipped = "each stretch drawn once (asked to keep overlapping pieces)";
-            pass.stage("overlaps", clock, String::new(), Some(skipped.to_string()));
-        }
-    }
-    let clock = Instant::now();
-    let polylines = chain(&pieces);
-    pass.stage(
-        "chains",
-        clock,
-        format!("{} polylines from {} runs", polylines.len(), pieces.len()),
-        (!options.hidden).then(|| "hidden pieces (not asked for)".to_string()),
-    );
-    Drawing {
-        polylines,
-        stages: pass.stages.clone(),
-    }
-}
-
-/// The pieces a drawing chains: hidden ones dropped unless the options ask for them, each
-/// stretch of a picture line once when they ask for that (with what was removed).
-pub(super) fn finished<P: marks::Provenance>(
-    provenance: &P,
-    mut pieces: Vec<Piece>,
-    options: &Options,
-) -> (Vec<Piece>, Option<OverlapReport>) {
-    if !options.hidden {
-        pieces.retain(|p| p.visible);
-    }
-    match options.overlaps {
-        Overlaps::Once => {
-            let (pieces, report) = overlaps::drawn_once(provenance, pieces);
-            (pieces, Some(report))
-        }
-        Overlaps::Keep => (pieces, None),
-    }
 }

@@ -18,8 +18,8 @@
 
 use super::cuts::frustum_cuts;
 use super::line::Line;
+use super::line::LineId;
 use super::pass::{Leaf, Pass};
-use super::tiles::LineId;
 use super::{EdgeClass, EdgeSelection, Options};
 use crate::geometry::exact::ldexp;
 use crate::geometry::kernel::Exponents;

@@ -3,9 +3,9 @@
 //! an intersection line passes through a third face (a triple point).
 
 use super::cuts::frustum_cuts;
+use super::line::LineId;
 use super::line::{Cut, Line, MeetLine, on_faces, rough_parameter};
 use super::pass::Pass;
-use super::tiles::LineId;
 use super::{EdgeClass, marks};
 use crate::geometry::{Aabb, Point3};
 use crate::scene::{ObjectId, Scene};

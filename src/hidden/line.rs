@@ -4,13 +4,24 @@
 
 use super::EdgeClass;
 use super::marks::MarkKey;
-use super::tiles::LineId;
 use crate::geometry::Point3;
 use crate::geometry::kernel::Polynomial;
 use crate::scene::{ObjectId, Scene};
 use crate::sight::along::{Form, Zero};
 use crate::sight::meet::{Meet, OnLine};
 use crate::views::Eye;
+
+/// A line's name, the same in every tile: an edge by its mesh object (its index among the
+/// scene's mesh objects) and its index among the object's classified edges; an intersection
+/// segment by its two objects and its index among their segments. Ordered as the whole pass
+/// orders its lines.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub(crate) enum LineId {
+    /// An edge: object, index.
+    Edge(u32, u32),
+    /// An intersection segment: objects, index.
+    Meet(u32, u32, u32),
+}
 
 /// A line of the drawing before visibility: an edge or an intersection segment.
 #[derive(Debug, Clone, Copy)]

@@ -73,12 +73,14 @@ mod crossing;
 mod cuts;
 mod drawing;
 mod edges;
+mod finish;
 pub mod ideographs;
 mod intersections;
 mod line;
 mod marks;
 mod overlaps;
 mod pass;
+mod piece;
 mod pieces;
 mod runs;
 pub mod tiles;
@@ -95,9 +97,10 @@ use crate::sight::range::in_working_range;
 use crate::views::{View, ViewError};
 // The pass's parts, named here for the files that read them through `super` (tiles, verify,
 // marks, overlaps).
-use chain::{Piece, chained, finished};
+use finish::{chained, finished};
 use line::{Cut, Line, MeetLine};
 use pass::{Pass, decided};
+use piece::Piece;
 
 /// Why a drawing could not be made: the hidden-line layer's error.
 ///

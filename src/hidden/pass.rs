@@ -3,8 +3,8 @@
 //! file: `edges.rs`, `intersections.rs`, `cuts.rs`, `visibility.rs`; `chain.rs` chains the
 //! pieces (stage 5).
 
-use super::chain::Piece;
 use super::line::{Cut, Line, MeetLine};
+use super::piece::Piece;
 use super::{Options, Result, StageReport};
 use crate::mesh::Mesh;
 use crate::scene::{ObjectId, Scene};

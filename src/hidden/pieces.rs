@@ -2,11 +2,11 @@
 //! inside it: [`pieces`] for an edge, [`line_pieces`] for an intersection line (stage 4, see
 //! `visibility.rs`).
 
-use super::chain::Piece;
 use super::cover::Occluders;
 use super::cuts::TILE_CUT;
 use super::line::{Cut, Line, MeetLine, on_faces};
 use super::marks::Mark;
+use super::piece::Piece;
 use super::runs::Runs;
 use crate::geometry::Point3;
 use crate::queries::Counters;

@@ -2,9 +2,9 @@
 //! (see `pieces.rs`).
 
 use super::EdgeClass;
-use super::chain::Piece;
 use super::line::Line;
 use super::marks::Mark;
+use super::piece::Piece;
 
 /// The visible and hidden runs of a line, piece by piece; the pieces a view that clips leaves
 /// out are not runs.

@@ -1,10 +1,10 @@
 //! Stage 4 of the pass: the occluder index over the meshes' pictures, then every line's
 //! visible and hidden runs, decided piece by piece (see `pieces.rs`) in parallel.
 
-use super::chain::Piece;
 use super::cover::{Occluders, PicturedMesh};
 use super::line::Cut;
 use super::pass::{Pass, timed};
+use super::piece::Piece;
 use super::pieces::{line_pieces, pieces};
 use crate::queries::Counters;
 use rayon::prelude::*;

@@ -17,6 +17,7 @@
 
 mod common;
 
+mod arithmetic;
 #[cfg(feature = "lab")]
 mod boxtree;
 // The command line: needs the `kepler` binary, built only with the `cli` feature (a

@@ -16,8 +16,8 @@
 //! the pieces' boxes, built only when there is such a line).
 
 use super::{Span, rounding};
-use crate::hidden::chain::Piece;
 use crate::hidden::marks::Provenance;
+use crate::hidden::piece::Piece;
 use crate::sight::collinear::Support;
 use rayon::prelude::*;
 use rstar::primitives::{GeomWithData, Rectangle};

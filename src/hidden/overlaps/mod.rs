@@ -71,8 +71,8 @@ mod sweep;
 mod tests;
 
 use super::EdgeClass;
-use super::chain::Piece;
 use super::marks::Provenance;
+use super::piece::Piece;
 use rayon::prelude::*;
 use std::ops::Range;
 

@@ -8,8 +8,8 @@
 
 use super::{Span, rank, rounding, unranked};
 use crate::hidden::EdgeClass;
-use crate::hidden::chain::Piece;
 use crate::hidden::marks::{Mark, MarkKey, Provenance};
+use crate::hidden::piece::Piece;
 use crate::sight::collinear::turn;
 use std::cmp::Ordering;
 

@@ -8,8 +8,8 @@
 
 use super::{drawn_once, rank, unranked};
 use crate::geometry::{Point3, Vector3};
-use crate::hidden::chain::Piece;
 use crate::hidden::marks::Provenance;
+use crate::hidden::piece::Piece;
 use crate::hidden::{EdgeClass, EdgeSelection, Options, Pass, decided};
 use crate::mesh::Mesh;
 use crate::scene::Scene;

@@ -61,8 +61,9 @@ mod bytes;
 
 pub use bytes::TileDrawing;
 
-use super::chain::{Piece, chain};
+use super::chain::chain;
 use super::marks::{Mark, MarkKey, Provenance, cut_key, point_of};
+use super::piece::Piece;
 use super::{Cut, DrawError, Drawing, Options, Result, decided, finished, scaled_back};
 use crate::scene::Scene;
 use crate::sight::collinear::{LinePoint, Support};
@@ -73,17 +74,7 @@ use bytes::{TileLine, TileMark, TilePiece};
 use std::cmp::Ordering;
 use std::collections::HashMap;
 
-/// A line's name, the same in every tile: an edge by its mesh object (its index among the
-/// scene's mesh objects) and its index among the object's classified edges; an intersection
-/// segment by its two objects and its index among their segments. Ordered as the whole pass
-/// orders its lines.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub(crate) enum LineId {
-    /// An edge: object, index.
-    Edge(u32, u32),
-    /// An intersection segment: objects, index.
-    Meet(u32, u32, u32),
-}
+pub(crate) use super::line::LineId;
 
 /// Draws the part of the drawing of `scene` from `view` inside `window` (in the view's
 /// picture coordinates), from the objects whose CBOX may reach it: see the module

@@ -3,7 +3,7 @@
 
 use super::super::EdgeClass;
 use super::report::{Check, Disagreement, Verification};
-use super::sign_test::{Contours, contour_edges};
+use super::sign_test::{Contours, EdgeKey, contour_edges, point_key};
 use super::trace::{Source, Traced, TracedPiece};
 use crate::geometry::kernel::{Between, Polynomial};
 use crate::geometry::predicates::Side;
@@ -15,14 +15,6 @@ use crate::views::View;
 use rayon::prelude::*;
 use std::cmp::Ordering;
 use std::collections::HashMap;
-
-/// The bits of an unordered pair of points, to match an edge with the pieces on it.
-pub(super) type EdgeKey = [[u64; 3]; 2];
-
-/// The bits of a point's coordinates (`-0.0` and `0.0` made equal).
-pub(super) fn point_key(p: &Point3) -> [u64; 3] {
-    [p.x, p.y, p.z].map(|v| (v + 0.0).to_bits())
-}
 
 fn edge_key(a: &Point3, b: &Point3) -> EdgeKey {
     let (x, y) = (point_key(a), point_key(b));

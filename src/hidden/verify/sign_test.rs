@@ -3,12 +3,19 @@
 //! the sides cut at T-junctions as the pass cuts them.
 
 use super::super::EdgeClass;
-use super::contours::{EdgeKey, point_key};
 use crate::geometry::Point3;
 use crate::mesh::Mesh;
 use crate::views::Eye;
 use std::cmp::Ordering;
 use std::collections::HashMap;
+
+/// The bits of an unordered pair of points, to match an edge with the pieces on it.
+pub(super) type EdgeKey = [[u64; 3]; 2];
+
+/// The bits of a point's coordinates (`-0.0` and `0.0` made equal).
+pub(super) fn point_key(p: &Point3) -> [u64; 3] {
+    [p.x, p.y, p.z].map(|v| (v + 0.0).to_bits())
+}
 
 /// A silhouette or boundary edge found by the sign test: a side of a triangle, or a piece of
 /// one between consecutive vertices lying on it (at T-junctions).
