@@ -18,10 +18,10 @@ use kepler::bounds::tribox::TriboxBounds;
 use kepler::geometry::ray::Ray;
 use kepler::geometry::{Aabb, Point3};
 use kepler::lab::boxtree::pca::{PcaAll, PcaMax, PcaMin};
-use kepler::lab::boxtree::spheres::SplitMix64 as Rng;
 use kepler::lab::boxtree::spheres::{DEFAULT_GAP, PAPER_FACETS, paper_pie_slice_tests};
 use kepler::lab::boxtree::{BoxTree, Merge, NodeShape, Shape, sphere_experiment, sphere_pair};
 use kepler::mesh::Mesh;
+use kepler::random::SplitMix64;
 
 /// Rays per ray-shooting batch.
 const RAYS: usize = 10_000;
@@ -36,7 +36,7 @@ fn torus() -> Mesh {
 /// Rays from random points on the sphere of radius 6 towards random points of the torus's
 /// box (most hit it, some pass through the hole or beside it).
 fn rays() -> Vec<Ray> {
-    let mut rng = Rng(7);
+    let mut rng = SplitMix64(7);
     (0..RAYS)
         .map(|_| {
             let z = rng.range(-1.0, 1.0);

@@ -11,9 +11,9 @@ use std::hint::black_box;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use kepler::geometry::{Aabb, Point3, Vector3};
-use kepler::lab::boxtree::spheres::SplitMix64 as Rng;
 use kepler::lab::oriented::OrientedBox;
 use kepler::lab::projected_area::{bounding_rect_area, projected_area};
+use kepler::random::SplitMix64;
 use kepler::views::projected_area::{HULL, classify, projected_area_aabb};
 use kepler::views::{Picture, View};
 use nalgebra::{Rotation3, Unit};
@@ -21,7 +21,7 @@ use nalgebra::{Rotation3, Unit};
 const BOXES: usize = 10_000;
 
 /// A vector with coordinates uniform in `[-1, 1)`.
-fn vector(rng: &mut Rng) -> Vector3 {
+fn vector(rng: &mut SplitMix64) -> Vector3 {
     Vector3::new(
         rng.range(-1.0, 1.0),
         rng.range(-1.0, 1.0),
@@ -30,7 +30,7 @@ fn vector(rng: &mut Rng) -> Vector3 {
 }
 
 /// A random box: centre in `[-50, 50]³`, extents in `[0.5, 5]`, turned at random.
-fn random_box(rng: &mut Rng) -> OrientedBox {
+fn random_box(rng: &mut SplitMix64) -> OrientedBox {
     let axis = Unit::new_normalize(vector(rng) + Vector3::new(1e-3, 0.0, 0.0));
     let rotation = Rotation3::from_axis_angle(&axis, rng.range(0.0, std::f64::consts::TAU));
     let axes = [0, 1, 2].map(|k| rotation * Vector3::ith(k, 1.0));
@@ -46,7 +46,7 @@ fn random_box(rng: &mut Rng) -> OrientedBox {
 
 /// A perspective view of `corners` from 5 to 50 units away from their centre, looking at it,
 /// with every corner in front of the eye.
-fn perspective_view(rng: &mut Rng, corners: &[Point3; 8]) -> View {
+fn perspective_view(rng: &mut SplitMix64, corners: &[Point3; 8]) -> View {
     let centre = Point3::from(corners.iter().map(|p| p.coords).sum::<Vector3>() / 8.0);
     loop {
         let eye = centre + vector(rng).normalize() * rng.range(5.0, 50.0);
@@ -59,7 +59,7 @@ fn perspective_view(rng: &mut Rng, corners: &[Point3; 8]) -> View {
     }
 }
 
-fn orthographic_view(rng: &mut Rng) -> View {
+fn orthographic_view(rng: &mut SplitMix64) -> View {
     loop {
         if let Ok(view) = View::orthographic(vector(rng), vector(rng)) {
             return view;
@@ -68,7 +68,7 @@ fn orthographic_view(rng: &mut Rng) -> View {
 }
 
 fn bench(c: &mut Criterion) {
-    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let mut rng = SplitMix64(0x9e37_79b9_7f4a_7c15);
     let boxes: Vec<OrientedBox> = (0..BOXES).map(|_| random_box(&mut rng)).collect();
     let perspective: Vec<View> = boxes
         .iter()

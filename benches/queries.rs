@@ -11,11 +11,11 @@ use std::time::{Duration, Instant};
 
 use criterion::{BatchSize, Criterion, SamplingMode, Throughput, criterion_group, criterion_main};
 use kepler::geometry::{Point3, Vector3};
-use kepler::lab::boxtree::spheres::SplitMix64 as Rng;
 use kepler::mesh::Mesh;
 use kepler::queries::include::{IncludeIndex, Inclusion};
 use kepler::queries::projection_grid::ProjectionGrid;
 use kepler::queries::visp::{Visibility, VisibilityIndex, visp};
+use kepler::random::SplitMix64;
 use kepler::scene::{ObjectId, Scene};
 use kepler::views::View;
 use parry3d::query::PointQuery;
@@ -45,7 +45,7 @@ fn scene_of(mesh: Mesh) -> (Scene, ObjectId) {
 /// `n` uniformly random points in the CBOX of `id`, from a fixed seed.
 fn points_in_cbox(scene: &Scene, id: ObjectId, n: usize) -> Vec<Point3> {
     let b = scene.cbox(id);
-    let mut rng = Rng(0x6b65_706c_6572);
+    let mut rng = SplitMix64(0x6b65_706c_6572);
     (0..n)
         .map(|_| {
             Point3::from(std::array::from_fn(|k| {

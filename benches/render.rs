@@ -23,6 +23,7 @@ use criterion::{Criterion, SamplingMode, Throughput, criterion_group, criterion_
 use kepler::geometry::{Point3, Vector3};
 use kepler::hidden::{EdgeSelection, Options, draw, tiles};
 use kepler::mesh::Mesh;
+use kepler::random::SplitMix64;
 use kepler::scene::Scene;
 use kepler::views::View;
 
@@ -30,15 +31,12 @@ use kepler::views::View;
 /// radius 1, displaced radially by waves of ±15% and seeded noise of ±0.1%.
 fn scanlike(segments: u32, sides: u32) -> Mesh {
     let torus = kepler::solids::torus(3.0, 1.0, segments, sides).expect("valid torus");
-    let mut state = 0x9e37_79b9_7f4a_7c15u64;
+    let mut rng = SplitMix64(0x9e37_79b9_7f4a_7c15);
     let vertices: Vec<Point3> = torus
         .vertices()
         .iter()
         .map(|p| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            let noise = (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
+            let noise = rng.unit() - 0.5;
             let around = p.y.atan2(p.x);
             let ring = (p.x * p.x + p.y * p.y).sqrt() - 3.0;
             let across = p.z.atan2(ring);

@@ -6,25 +6,14 @@ use std::hint::black_box;
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use kepler::bounds::tribox::TriboxBounds;
 use kepler::geometry::Point3;
+use kepler::random::SplitMix64;
 
-/// A xorshift generator (no dependency needed for benchmark data).
-struct Rng(u64);
-
-impl Rng {
-    fn unit(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// A point in the ball of radius 1 around `c` (rejection sampling).
-    fn in_ball(&mut self, c: [f64; 3]) -> Point3 {
-        loop {
-            let v = [0; 3].map(|_| 2.0 * self.unit() - 1.0);
-            if v.iter().map(|x| x * x).sum::<f64>() <= 1.0 {
-                return Point3::new(c[0] + v[0], c[1] + v[1], c[2] + v[2]);
-            }
+/// A point in the ball of radius 1 around `c` (rejection sampling).
+fn in_ball(rng: &mut SplitMix64, c: [f64; 3]) -> Point3 {
+    loop {
+        let v = [0; 3].map(|_| 2.0 * rng.unit() - 1.0);
+        if v.iter().map(|x| x * x).sum::<f64>() <= 1.0 {
+            return Point3::new(c[0] + v[0], c[1] + v[1], c[2] + v[2]);
         }
     }
 }
@@ -139,12 +128,12 @@ mod paper_f64 {
 fn boundary(c: &mut Criterion) {
     // 64 generic clouds: 200 points in a randomly placed ball (every corner in case 1), or 6
     // points in a unit cube (all four cases occur).
-    let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+    let mut rng = SplitMix64(0x2545_f491_4f6c_dd1d);
     let bounds: Vec<TriboxBounds> = (0..64)
         .map(|k| {
             let pts: Vec<Point3> = if k % 2 == 0 {
                 let centre = [0; 3].map(|_| 10.0 * rng.unit() - 5.0);
-                (0..200).map(|_| rng.in_ball(centre)).collect()
+                (0..200).map(|_| in_ball(&mut rng, centre)).collect()
             } else {
                 (0..6)
                     .map(|_| Point3::new(rng.unit(), rng.unit(), rng.unit()))
@@ -192,8 +181,10 @@ fn boundary(c: &mut Criterion) {
 
 fn bounds_1m(c: &mut Criterion) {
     const N: usize = 1_000_000;
-    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
-    let pts: Vec<Point3> = (0..N).map(|_| rng.in_ball([0.3, -0.2, 0.1])).collect();
+    let mut rng = SplitMix64(0x9e37_79b9_7f4a_7c15);
+    let pts: Vec<Point3> = (0..N)
+        .map(|_| in_ball(&mut rng, [0.3, -0.2, 0.1]))
+        .collect();
     let mut g = c.benchmark_group("tribox_bounds_1m");
     g.throughput(Throughput::Elements(N as u64));
     g.sample_size(20);

@@ -59,6 +59,7 @@ def cases(quick):
             yield f"render {s} view{i} omit order", base + ["--hidden", "omit", "--order"], False
             yield f"render {s} view{i} dxf", ["render", scene(s), "-o", "out.dxf"] + v, False
             yield f"render {s} view{i} hatch", base + ["--hatch"], False
+            yield f"render {s} view{i} hatch order", base + ["--hatch", "--order", "--stats"], True
             yield f"render {s} view{i} verify", base + ["--verify"], True
             yield f"render {s} view{i} stats", base + ["--stats"], True
             yield f"surfaces {s} view{i}", ["surfaces", scene(s), "-o", "out.svg",

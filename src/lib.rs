@@ -12,6 +12,9 @@
 //! it in this picture (`tests/layering.rs` keeps it so), and none imports the lab.
 //!
 //! ```text
+//!  random,    the one seeded generator (SplitMix64); disjoint sets
+//!  union_find (internal)
+//!     │
 //!  geometry   the exact kernel: points, boxes, predicates, expansions,   Shewchuk 1997
 //!             rays; the one place that knows about rounding
 //!  clip       polygon booleans to an ulp (with the lab)
@@ -43,6 +46,7 @@
 //!             triboxes, culling tables, oriented boxes                    Crosnier–Rossignac
 //! ```
 //!
+//! - [`random`]: the seeded generator of every random scene, test and benchmark.
 //! - [`geometry`]: points, [`geometry::kernel`] (polynomials, exact expansions, estimates; the
 //!   report's cheaper arithmetic on threads of its own), exact predicates, polygons, rays.
 //! - [`clip`]: boolean operations on polygons (intersection, difference, union), to an ulp.
@@ -104,10 +108,12 @@ pub mod lab;
 pub mod mesh;
 pub mod output;
 pub mod queries;
+pub mod random;
 pub mod scene;
 pub(crate) mod sight;
 pub mod solids;
 pub mod surfaces;
+pub(crate) mod union_find;
 pub mod views;
 
 pub use error::{Error, Result};

@@ -9,7 +9,7 @@ use kepler::geometry::{Point3, Vector3};
 use kepler::hidden::tiles::{TileDrawing, draw_tile, tile_windows};
 use kepler::hidden::{self, Drawing, EdgeClass, EdgeSelection, Overlaps};
 use kepler::mesh::{Mesh, Validation};
-use kepler::output::{SvgOptions, ordered};
+use kepler::output::{Finishing, SvgOptions, finish};
 use kepler::queries::include::{IncludeIndex, Inclusion};
 use kepler::queries::visp::{Visibility, VisibilityIndex};
 use kepler::scene::{ObjectId, Scene as Graph, file};
@@ -256,8 +256,8 @@ fn overlaps_of(overlaps: &str) -> PyResult<Overlaps> {
 /// A drawing finished as the command line's `render` finishes it (the pass has drawn each
 /// stretch of line once when asked): paths in pen order when `order`; as Python polylines.
 fn finished(drawing: Drawing, order: bool) -> Vec<Polyline> {
-    let drawing = if order { ordered(&drawing) } else { drawing };
-    drawing
+    finish(drawing, &Finishing { order })
+        .drawing
         .polylines
         .into_iter()
         .map(|p| Polyline {

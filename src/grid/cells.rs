@@ -252,6 +252,7 @@ impl CellLists {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::random::SplitMix64;
 
     #[test]
     fn cell_lists_hold_each_cells_items_in_increasing_order() {
@@ -277,13 +278,8 @@ mod tests {
 
     #[test]
     fn covering_triangle_lists_every_cell_a_point_of_the_triangle_falls_in() {
-        let mut seed = 11u64;
-        let mut next = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = SplitMix64(11u64);
+        let mut next = || rng.unit();
         for shape in [[1, 1], [7, 3], [40, 40]] {
             let cells = Cells::new([-1.0, -2.0], [6.0, 5.0], shape);
             for k in 0..500 {

@@ -38,6 +38,7 @@ use crate::geometry::exact::{accurate_sum, product_terms, two_sum};
 use crate::geometry::kernel::Polynomial;
 use crate::geometry::polygon::segments_meet;
 use crate::geometry::predicates::{Orient2d, orient2d};
+use crate::random::SplitMix64;
 use geo::{Coord, Line};
 use rayon::prelude::*;
 use std::cmp::Ordering;
@@ -514,7 +515,7 @@ pub fn intersections(segments: &[Line<f64>]) -> Vec<(usize, usize, Meeting)> {
 
 /// Franklin's experiment: `n` segments of length `len` (at most 1) in the unit square, each
 /// with a uniformly random midpoint in `[len/2, 1 - len/2]²` and a uniformly random direction,
-/// from a fixed seed (SplitMix64), so runs reproduce.
+/// from a fixed seed ([`SplitMix64`]), so runs reproduce.
 ///
 /// ```
 /// let s = kepler::grid::random_segments(1000, 0.01, 7);
@@ -523,14 +524,8 @@ pub fn intersections(segments: &[Line<f64>]) -> Vec<(usize, usize, Meeting)> {
 /// assert!(s.iter().flat_map(|l| [l.start, l.end]).all(|p| (0.0..=1.0).contains(&p.x) && (0.0..=1.0).contains(&p.y)));
 /// ```
 pub fn random_segments(n: usize, len: f64, seed: u64) -> Vec<Line<f64>> {
-    let mut state = seed;
-    let mut unit = move || {
-        state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = SplitMix64(seed);
+    let mut unit = move || rng.unit();
     let half = len.clamp(0.0, 1.0) / 2.0;
     (0..n)
         .map(|_| {

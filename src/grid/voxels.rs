@@ -346,6 +346,7 @@ fn clip(piece: &Piece, k: usize, bound: f64, keep_above: bool) -> Piece {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::random::SplitMix64;
 
     /// Whether the closed triangle meets the closed box, by brute force: a fine sampling of the
     /// triangle (barycentric lattice), for the test only.
@@ -365,13 +366,8 @@ mod tests {
 
     #[test]
     fn a_bounded_grid_lists_the_cells_of_the_part_inside() {
-        let mut seed = 3u64;
-        let mut next = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = SplitMix64(3u64);
+        let mut next = || rng.unit();
         let region = Aabb::new(Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 1.0, 1.0));
         for side in [0.25, 0.3, 1.0] {
             let (within, whole) = (Voxels::within(region, side), Voxels::new(region, side));
@@ -403,13 +399,8 @@ mod tests {
 
     #[test]
     fn every_cell_a_sample_lands_in_is_listed() {
-        let mut seed = 7u64;
-        let mut next = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = SplitMix64(7u64);
+        let mut next = || rng.unit();
         let region = Aabb::new(Point3::new(-1.0, -2.0, -3.0), Point3::new(5.0, 4.0, 3.0));
         for side in [0.3, 0.7, 2.0] {
             let g = Voxels::new(region, side);

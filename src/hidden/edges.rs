@@ -28,6 +28,7 @@ use crate::geometry::{Point3, Vector3};
 use crate::mesh::Mesh;
 use crate::sight::frustum::{Clip, TilePlanes};
 use crate::sight::own_solid::turned_away;
+use crate::union_find::UnionFind;
 use crate::views::{Eye, Picture};
 use rayon::prelude::*;
 use std::cmp::Ordering;
@@ -217,15 +218,8 @@ fn join_pieces(mesh: &Mesh, eye: &Eye, groups: &[&[Side]], decided: &mut [Result
     let group_of = |p: u32, q: u32| groups.binary_search_by_key(&key(p, q), |g| g[0].key).ok();
     let vertices = mesh.vertices();
     let point = |v: u32| &vertices[v as usize];
-    // Union-find over the groups: each joined run points at its first piece.
-    let mut parent: Vec<usize> = (0..groups.len()).collect();
-    fn root(parent: &mut [usize], mut g: usize) -> usize {
-        while parent[g] != g {
-            parent[g] = parent[parent[g]];
-            g = parent[g];
-        }
-        g
-    }
+    // Disjoint sets of groups: each joined run is named by its first piece.
+    let mut joined = UnionFind::new(groups.len());
     for (f, face) in mesh.faces().iter().enumerate() {
         let v = face.vertices();
         for i in 0..v.len() {
@@ -268,8 +262,7 @@ fn join_pieces(mesh: &Mesh, eye: &Eye, groups: &[&[Side]], decided: &mut [Result
                     eye.orient3d(&x, &y, &z)
                 };
                 if same_half_plane(a, b, c1, c2) && turned(o1.triangle) == turned(o2.triangle) {
-                    let (r1, r2) = (root(&mut parent, g1), root(&mut parent, g2));
-                    parent[r2] = r1;
+                    joined.union(g1, g2);
                 }
             }
         }
@@ -278,7 +271,7 @@ fn join_pieces(mesh: &Mesh, eye: &Eye, groups: &[&[Side]], decided: &mut [Result
     // coordinate in which the run's (collinear) ends differ.
     let mut runs: Vec<(usize, usize)> = (0..groups.len())
         .filter(|&g| decided[g].is_ok())
-        .map(|g| (root(&mut parent, g), g))
+        .map(|g| (joined.find(g), g))
         .filter(|&(r, g)| r != g)
         .collect();
     runs.sort_unstable();

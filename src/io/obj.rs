@@ -394,25 +394,13 @@ fn index(token: &str, kind: &str, kinds: &str, defined: usize) -> Result<usize, 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// A small generator (no dependency needed for test data).
-    struct Lcg(u64);
-
-    impl Lcg {
-        fn below(&mut self, n: u64) -> u64 {
-            self.0 = self
-                .0
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (self.0 >> 33) % n
-        }
-    }
+    use crate::random::SplitMix64;
 
     /// A random OBJ text over a grid of points: faces with absolute and relative indices,
     /// texture coordinate and normal references, comments, blank lines, CRLF endings, lines
     /// continued with `\` (also after a line ending in two of them), and now and then an
     /// error (an index out of range, a malformed number, an unknown keyword).
-    fn random_obj(rng: &mut Lcg, errors: bool) -> String {
+    fn random_obj(rng: &mut SplitMix64, errors: bool) -> String {
         let mut text = String::new();
         let (mut v, mut vt, mut vn) = (0i64, 0i64, 0i64);
         for _ in 0..(20 + rng.below(200)) {
@@ -434,13 +422,13 @@ mod tests {
                 6..=8 if v >= 3 => {
                     text += "f";
                     for _ in 0..3 + rng.below(2) {
-                        let i = 1 + rng.below(v as u64) as i64;
+                        let i = 1 + rng.below(v as usize) as i64;
                         let i = if rng.below(2) == 0 { i } else { i - v - 1 };
                         text += &format!(" {i}");
                         if vt > 0 && rng.below(3) == 0 {
-                            text += &format!("/{}", 1 + rng.below(vt as u64));
+                            text += &format!("/{}", 1 + rng.below(vt as usize));
                         } else if vn > 0 && rng.below(3) == 0 {
-                            text += &format!("//-{}", 1 + rng.below(vn as u64));
+                            text += &format!("//-{}", 1 + rng.below(vn as usize));
                         }
                         if rng.below(10) == 0 {
                             text += " \\\n ";
@@ -457,8 +445,7 @@ mod tests {
                 _ => text += end,
             }
             if errors && rng.below(150) == 0 {
-                text +=
-                    ["f 1 2 99999\n", "v 1 x 0\n", "q\n", "f 1 2 -99999\n"][rng.below(4) as usize];
+                text += ["f 1 2 99999\n", "v 1 x 0\n", "q\n", "f 1 2 -99999\n"][rng.below(4)];
             }
         }
         text
@@ -466,7 +453,7 @@ mod tests {
 
     #[test]
     fn pieces_read_as_the_whole_text() {
-        let mut rng = Lcg(7);
+        let mut rng = SplitMix64(7);
         for case in 0..300 {
             let text = random_obj(&mut rng, case % 3 == 0);
             let whole = parse_in_pieces(&text, "t.obj", Validation::Repair, usize::MAX);

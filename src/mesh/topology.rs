@@ -258,18 +258,14 @@ fn junctions_and_uses(vertices: &[Point3], faces: &[Face]) -> (Vec<Junction>, Ve
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::random::SplitMix64;
 
     /// The counting sort gives the stable comparison sort's order: on uses of few and of many
     /// vertices, with repeated keys (an edge used by several faces) in any input order.
     #[test]
     fn sorting_uses_by_lower_vertex_first_is_a_stable_sort() {
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut below = |n: u64| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state % n
-        };
+        let mut rng = SplitMix64(0x2545_f491_4f6c_dd1d);
+        let mut below = |n: u64| rng.next_u64() % n;
         for (len, vertices) in [
             (0, 1),
             (10, 3),

@@ -67,14 +67,16 @@
 //! ```
 
 mod dxf;
+mod finish;
 mod json;
 mod order;
 mod surfaces;
 mod svg;
 
 pub use self::dxf::{DxfFormat, layer_name, write_dxf};
+pub use finish::{Finished, Finishing, finish};
 pub use json::write_json;
-pub use order::{ordered, pen_order, pen_travel};
+pub use order::{ordered, ordered_paths, pen_order, pen_travel};
 pub use surfaces::{Shading, write_surfaces_json, write_surfaces_svg};
 pub use svg::{
     HatchLayer, PageTransform, StrokeWidths, SvgOptions, page_transform, write_svg,

@@ -80,7 +80,7 @@ fn order_layer(layer: &[&Polyline]) -> Vec<Polyline> {
 
 /// The order in which a plotter should draw `paths` (each at least one point) to shorten its
 /// travel between them, greedily from the first as given: each path's index and whether to
-/// draw it reversed. The hatch layer of `kepler render --hatch --order` is ordered with it.
+/// draw it reversed.
 ///
 /// ```
 /// let paths: [&[[f64; 2]]; 3] = [&[[0.0, 0.0], [1.0, 0.0]], &[[9.0, 0.0], [8.0, 0.0]], &[[3.0, 0.0], [2.0, 0.0]]];
@@ -133,6 +133,26 @@ pub fn pen_order(paths: &[&[[f64; 2]]]) -> Vec<(usize, bool)> {
     out
 }
 
+/// `paths` (each at least one point) in the order, and the direction, [`pen_order`] draws
+/// them. The hatch layer of `kepler render --hatch --order` is ordered with it.
+pub fn ordered_paths(paths: Vec<Vec<[f64; 2]>>) -> Vec<Vec<[f64; 2]>> {
+    let order = {
+        let slices: Vec<&[[f64; 2]]> = paths.iter().map(Vec::as_slice).collect();
+        pen_order(&slices)
+    };
+    let mut paths: Vec<Option<Vec<[f64; 2]>>> = paths.into_iter().map(Some).collect();
+    order
+        .into_iter()
+        .filter_map(|(i, reversed)| {
+            let mut path = paths[i].take()?;
+            if reversed {
+                path.reverse();
+            }
+            Some(path)
+        })
+        .collect()
+}
+
 /// The pen's travel between paths, layer by layer, in the drawing's order (view units).
 pub fn pen_travel(drawing: &Drawing) -> f64 {
     layers()
@@ -153,19 +173,15 @@ pub fn pen_travel(drawing: &Drawing) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::random::SplitMix64;
 
     /// Random layers: the reordered drawing has the same segments (as unordered pairs, bit
     /// for bit) in each layer, never more travel than a path-by-path greedy written out
     /// plainly, and less than the given order on scattered paths.
     #[test]
     fn ordering_keeps_every_segment_and_shortens_travel() {
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut unit = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = SplitMix64(0x9e37_79b9_7f4a_7c15);
+        let mut unit = || rng.unit();
         for round in 0..20 {
             let polylines: Vec<Polyline> = (0..200)
                 .map(|k| {

@@ -407,6 +407,7 @@ mod tests {
 
     use super::*;
     use crate::mesh::classify_point_brute_force;
+    use crate::random::SplitMix64;
     use proptest::prelude::*;
 
     /// The test meshes: a cube (vertical faces), a torus, a coarse sphere, an octahedron, and
@@ -440,31 +441,14 @@ mod tests {
         }
     }
 
-    /// A small deterministic generator (splitmix64).
-    struct Rng(u64);
-
-    impl Rng {
-        fn unit(&mut self) -> f64 {
-            self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-            (z ^ (z >> 31)) as f64 / u64::MAX as f64
-        }
-
-        fn below(&mut self, n: usize) -> usize {
-            ((self.unit() * n as f64) as usize).min(n - 1)
-        }
-    }
-
     /// Hard points for `grid`'s mesh.
-    fn points(grid: &ProjectionGrid, rng: &mut Rng) -> Vec<Point3> {
+    fn points(grid: &ProjectionGrid, rng: &mut SplitMix64) -> Vec<Point3> {
         let mesh = grid.mesh;
         let v = mesh.vertices();
         let lo = |k: usize| v.iter().map(|p| p[k]).fold(f64::INFINITY, f64::min);
         let hi = |k: usize| v.iter().map(|p| p[k]).fold(f64::NEG_INFINITY, f64::max);
         let within = |k: usize, t: f64| lo(k) + (hi(k) - lo(k)) * t;
-        let z = |rng: &mut Rng| match rng.below(3) {
+        let z = |rng: &mut SplitMix64| match rng.below(3) {
             0 => v[rng.below(v.len())].z,
             _ => within(2, rng.unit() * 1.4 - 0.2),
         };
@@ -482,7 +466,7 @@ mod tests {
         let [nx, ny] = grid.cells.shape();
         for _ in 0..400 {
             // A cell border or centre along one or both axes, at a vertex's or a random z.
-            let line = |k: usize, n: usize, rng: &mut Rng| {
+            let line = |k: usize, n: usize, rng: &mut SplitMix64| {
                 let t = rng.below(2 * n + 1) as f64 / 2.0;
                 match rng.below(3) {
                     0 => grid.cells.coordinate(k, t),
@@ -508,7 +492,7 @@ mod tests {
                                             seed in any::<u64>()) {
             let m = placed(mesh(which), placement);
             let grid = ProjectionGrid::new(&m);
-            let mut rng = Rng(seed);
+            let mut rng = SplitMix64(seed);
             for p in points(&grid, &mut rng) {
                 prop_assert_eq!(grid.classify(&p), classify_point_brute_force(&m, &p),
                                 "mesh {} placement {} point {:?}", which, placement, p);

@@ -2,6 +2,7 @@
 
 use super::{MAX_POLYGON_VERTICES, SolidError, positive};
 use crate::geometry::Point3;
+use crate::geometry::polygon::segments_meet;
 use crate::geometry::predicates::{MAX_COORDINATE, orient2d};
 use crate::mesh::Mesh;
 use std::cmp::Ordering;
@@ -165,25 +166,4 @@ fn folds_back(shared: [f64; 2], p: [f64; 2], q: [f64; 2]) -> bool {
     // Collinear: same direction iff every coordinate moves the same way (signs of
     // differences of doubles are exact).
     (0..2).all(|k| (p[k] - shared[k]).total_cmp(&0.0) == (q[k] - shared[k]).total_cmp(&0.0))
-}
-
-/// Whether the closed segments `ab` and `cd` have a point in common, decided exactly.
-fn segments_meet(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
-    let o1 = orient2d(a, b, c);
-    let o2 = orient2d(a, b, d);
-    let o3 = orient2d(c, d, a);
-    let o4 = orient2d(c, d, b);
-    // A proper crossing, or an endpoint of one segment on the other.
-    if o1 != o2 && o3 != o4 {
-        return true;
-    }
-    (o1 == Ordering::Equal && within(a, b, c))
-        || (o2 == Ordering::Equal && within(a, b, d))
-        || (o3 == Ordering::Equal && within(c, d, a))
-        || (o4 == Ordering::Equal && within(c, d, b))
-}
-
-/// Whether `p`, known to be collinear with `a` and `b`, lies on the closed segment `ab`.
-fn within(a: [f64; 2], b: [f64; 2], p: [f64; 2]) -> bool {
-    (0..2).all(|k| a[k].min(b[k]) <= p[k] && p[k] <= a[k].max(b[k]))
 }

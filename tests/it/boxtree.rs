@@ -5,7 +5,9 @@
 //! triangles, and the exact triangle test with a rational separating-axis test; the sphere
 //! experiment runs on the paper's smallest pair.
 
-use crate::common::{Q, Rng, q, qcross, qdot, qsign, qsub, qv, unit_octahedron as octahedron};
+use crate::common::{
+    Q, SplitMix64, q, qcross, qdot, qsign, qsub, qv, unit_octahedron as octahedron,
+};
 use kepler::bounds::tribox::TriboxBounds;
 use kepler::geometry::predicates::{collinear, orient3d};
 use kepler::geometry::ray::Ray;
@@ -28,7 +30,7 @@ use std::cmp::Ordering;
 /// A mesh of `n` separate random triangles (degenerate ones dropped): coordinates on a small
 /// integer grid (so triangles touch, share planes and vertices) or random doubles in a box of
 /// half-size `scale` about `offset`.
-fn soup(rng: &mut Rng, n: usize, grid: bool, scale: f64, offset: f64) -> Option<Mesh> {
+fn soup(rng: &mut SplitMix64, n: usize, grid: bool, scale: f64, offset: f64) -> Option<Mesh> {
     let mut vertices = Vec::new();
     let mut faces = Vec::new();
     while faces.len() < n {
@@ -170,7 +172,7 @@ proptest! {
         n in 2usize..20,
         kind in 0usize..4,
     ) {
-        let mut rng = Rng(seed);
+        let mut rng = SplitMix64(seed);
         let (grid, scale, offset) = match kind {
             0 => (true, 0.0, 0.0),
             1 => (false, 1.0, 0.0),
@@ -210,7 +212,7 @@ fn bounds_of_solids_contain_children_and_vertices() {
 
 /// Rays at a mesh: random ones, and (when `exact_targets`) rays from integer points aimed
 /// exactly at its vertices and at its edges' midpoints.
-fn rays(rng: &mut Rng, mesh: &Mesh, random: usize, exact_targets: bool) -> Vec<Ray> {
+fn rays(rng: &mut SplitMix64, mesh: &Mesh, random: usize, exact_targets: bool) -> Vec<Ray> {
     let mut out: Vec<Ray> = (0..random)
         .map(|_| Ray {
             origin: Point3::from(rng.vector(3.0)),
@@ -265,14 +267,17 @@ fn check_rays<S: NodeShape>(mesh: &Mesh, rays: &[Ray], index: &VisibilityIndex) 
 
 #[test]
 fn ray_shooting_matches_brute_force() {
-    let mut rng = Rng(11);
+    let mut rng = SplitMix64(11);
     let meshes = [
         (octahedron(), true),
         (kepler::solids::cube(2.0).unwrap(), true),
         (kepler::solids::uv_sphere(1.5, 12, 6).unwrap(), false),
         (kepler::solids::torus(2.0, 0.6, 16, 8).unwrap(), false),
-        (soup(&mut Rng(3), 40, true, 0.0, 0.0).unwrap(), true),
-        (soup(&mut Rng(4), 60, false, 2.0, 0.0).unwrap(), false),
+        (soup(&mut SplitMix64(3), 40, true, 0.0, 0.0).unwrap(), true),
+        (
+            soup(&mut SplitMix64(4), 60, false, 2.0, 0.0).unwrap(),
+            false,
+        ),
     ];
     for (mesh, exact_targets) in &meshes {
         let rays = rays(&mut rng, mesh, 150, *exact_targets);
@@ -299,7 +304,7 @@ proptest! {
         nearly_parallel in any::<bool>(),
         fixed in 0usize..12,
     ) {
-        let mut rng = Rng(seed);
+        let mut rng = SplitMix64(seed);
         let big = 10f64.powi(scale);
         let a = if fixed < 9 {
             Vector3::from(TriboxBounds::DIRECTIONS[fixed])
@@ -340,7 +345,7 @@ proptest! {
 fn stabbing_counts_every_bound_the_ray_meets() {
     let mesh = kepler::solids::torus(2.0, 0.6, 16, 8).unwrap();
     let tree: BoxTree<Aabb> = BoxTree::build(&mesh, Merge::Area);
-    let mut rng = Rng(5);
+    let mut rng = SplitMix64(5);
     for ray in rays(&mut rng, &mesh, 100, false) {
         // Boxes met, one by one: a node is met only if its parent is, so the descent finds all.
         let probe = kepler::lab::boxtree::RayProbe::new(&ray).unwrap();
@@ -396,7 +401,7 @@ fn meet_by_separating_axes(a: &[Point3; 3], b: &[Point3; 3]) -> bool {
 
 #[test]
 fn triangle_test_matches_separating_axes() {
-    let mut rng = Rng(21);
+    let mut rng = SplitMix64(21);
     let mut counts = [0usize; 2];
     for i in 0..6_000 {
         let span = if i % 2 == 0 { 2 } else { 4 };
@@ -480,7 +485,7 @@ fn check_collisions<S: NodeShape>(a: &Mesh, b: &Mesh) {
 
 #[test]
 fn collisions_match_brute_force() {
-    let mut rng = Rng(31);
+    let mut rng = SplitMix64(31);
     for round in 0..24 {
         let grid = round % 3 != 2;
         let a = soup(&mut rng, 12 + round % 7, grid, 1.5, 0.0).unwrap();

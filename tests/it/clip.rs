@@ -14,7 +14,7 @@ use num_traits::{Signed, ToPrimitive, Zero};
 use std::cmp::Ordering;
 use std::time::Instant;
 
-use crate::common::{Q, Rng, q};
+use crate::common::{Q, SplitMix64, q};
 
 // ---------------------------------------------------------------------------------------------
 // Building polygons.
@@ -42,7 +42,7 @@ fn empty() -> MultiPolygon<f64> {
 /// A polygon star-shaped about a random centre: `n ≥ 4` vertices at increasing angles (no
 /// gap of π or more, for `n ≥ 5`) and random radii in `[r_min, r]`. Simple; convex when
 /// `r_min == r`.
-fn star(rng: &mut Rng, n: usize, r_min: f64, r: f64) -> Vec<[f64; 2]> {
+fn star(rng: &mut SplitMix64, n: usize, r_min: f64, r: f64) -> Vec<[f64; 2]> {
     let (cx, cy) = (rng.range(-1.0, 1.0), rng.range(-1.0, 1.0));
     let gaps: Vec<f64> = (0..n).map(|_| rng.range(1.0, 2.0)).collect();
     let unit = std::f64::consts::TAU / gaps.iter().sum::<f64>();
@@ -59,7 +59,7 @@ fn star(rng: &mut Rng, n: usize, r_min: f64, r: f64) -> Vec<[f64; 2]> {
 
 /// A random triangle, convex quadrilateral or simple polygon of 5 to 12 vertices, at a random
 /// place and size, counter-clockwise or clockwise.
-fn random_polygon(rng: &mut Rng) -> Vec<[f64; 2]> {
+fn random_polygon(rng: &mut SplitMix64) -> Vec<[f64; 2]> {
     let r = rng.range(0.3, 1.5);
     let mut points = match rng.below(3) {
         0 => (0..3)
@@ -320,7 +320,7 @@ const PAIRS: usize = 300;
 
 #[test]
 fn vertices_are_input_vertices_or_exact_crossings_to_half_an_ulp() {
-    let mut rng = Rng(0x5eed_c11b);
+    let mut rng = SplitMix64(0x5eed_c11b);
     let (mut worst, mut worst_input, mut identical, mut inputs, mut total) = (0.0, 0.0, 0, 0, 0);
     for trial in 0..PAIRS {
         let (pa, pb) = (random_polygon(&mut rng), random_polygon(&mut rng));
@@ -355,7 +355,7 @@ fn vertices_are_input_vertices_or_exact_crossings_to_half_an_ulp() {
 
 #[test]
 fn areas_add_up() {
-    let mut rng = Rng(0xa4ea);
+    let mut rng = SplitMix64(0xa4ea);
     for trial in 0..PAIRS {
         let (a, b) = (
             poly(&random_polygon(&mut rng)),
@@ -380,7 +380,7 @@ fn areas_add_up() {
 
 #[test]
 fn geo_boolean_ops_agrees_on_areas_and_moves_vertices_more() {
-    let mut rng = Rng(0x6e0);
+    let mut rng = SplitMix64(0x6e0);
     let (mut ours, mut theirs, mut area_dev) = (0.0_f64, 0.0_f64, 0.0_f64);
     for trial in 0..PAIRS / 2 {
         let (a, b) = (
@@ -416,7 +416,7 @@ fn geo_boolean_ops_agrees_on_areas_and_moves_vertices_more() {
 
 #[test]
 fn a_typical_clip_of_two_100_vertex_polygons_is_fast() {
-    let mut rng = Rng(0x100);
+    let mut rng = SplitMix64(0x100);
     let pairs: Vec<_> = (0..50)
         .map(|_| {
             (
@@ -452,7 +452,7 @@ fn a_typical_clip_of_two_100_vertex_polygons_is_fast() {
 /// A random polygon with its coordinates rounded to multiples of `step`, some then nudged by
 /// an ulp or two: shared vertices, collinear overlapping edges, vertices on edges, and
 /// crossings next to vertices.
-fn near_degenerate_polygon(rng: &mut Rng, step: f64) -> Vec<[f64; 2]> {
+fn near_degenerate_polygon(rng: &mut SplitMix64, step: f64) -> Vec<[f64; 2]> {
     loop {
         let mut points: Vec<[f64; 2]> = random_polygon(rng)
             .iter()
@@ -477,7 +477,7 @@ fn near_degenerate_polygon(rng: &mut Rng, step: f64) -> Vec<[f64; 2]> {
 
 #[test]
 fn near_degenerate_inputs_stay_exact() {
-    let mut rng = Rng(0xde9e);
+    let mut rng = SplitMix64(0xde9e);
     let mut worst = 0.0_f64;
     for trial in 0..PAIRS {
         let step = rng.pick(&[0.25, 0.5]);
@@ -570,7 +570,7 @@ fn polygons_touching_at_a_vertex() {
 
 #[test]
 fn identical_polygons() {
-    let mut rng = Rng(7);
+    let mut rng = SplitMix64(7);
     for _ in 0..20 {
         let a = poly(&random_polygon(&mut rng));
         let [both, only_a, either] = ops(&a, &a);
@@ -670,7 +670,7 @@ fn far_from_the_origin() {
         check_conventions(r);
     }
     // Crossing edges: within half an ulp of 1e6 + 0.01 of the exact crossings.
-    let mut rng = Rng(0xfa4);
+    let mut rng = SplitMix64(0xfa4);
     for _ in 0..50 {
         let shift = |p: Vec<[f64; 2]>| -> Vec<[f64; 2]> {
             p.iter()

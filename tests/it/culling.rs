@@ -12,7 +12,7 @@ use kepler::solids;
 use kepler::views::{Picture, View};
 use nalgebra::Matrix4;
 
-use crate::common::{Rng, unit_octahedron as octahedron};
+use crate::common::{SplitMix64, unit_octahedron as octahedron};
 
 fn moved(mesh: &Mesh, t: [f64; 3]) -> Mesh {
     mesh.transformed(&Matrix4::new_translation(&Vector3::new(t[0], t[1], t[2])))
@@ -85,7 +85,7 @@ fn hull(points: &[Point3], picture: &Picture) -> geo::Polygon<f64> {
 
 #[test]
 fn random_scenes_agree_with_independent_references() {
-    let mut rng = Rng(0xc011);
+    let mut rng = SplitMix64(0xc011);
     let mut decided_by_inbox = 0;
     for case in 0..40 {
         let n = 2 + rng.below(7);

@@ -38,7 +38,7 @@ fn orient3d_at_infinity_estimate(a: &Point3, b: &Point3, c: &Point3, u: &Vector3
     (e.value, e.bound)
 }
 
-use crate::common::{Q, Rng, q, qcross, qdot, qsign, qsub, qv};
+use crate::common::{Q, SplitMix64, q, qcross, qdot, qsign, qsub, qv};
 
 /// The exact value of `x · 2^(1074 degree)`, an integer for `degree >= 1`.
 fn z(x: f64, degree: u32) -> BigInt {
@@ -110,7 +110,7 @@ fn assert_rounded(x: f64, exact: &BigInt, degree: u32) {
 
 /// A random double with a random sign, magnitude `2^exp` times [1, 2) for a random `exp` in
 /// `lo..=hi`; sometimes a power of two or a small integer times `2^exp`.
-fn wild(rng: &mut Rng, lo: i32, hi: i32) -> f64 {
+fn wild(rng: &mut SplitMix64, lo: i32, hi: i32) -> f64 {
     let exp = lo + rng.below((hi - lo + 1) as usize) as i32;
     let mantissa = match rng.below(4) {
         0 => 1.0,
@@ -122,7 +122,7 @@ fn wild(rng: &mut Rng, lo: i32, hi: i32) -> f64 {
 }
 
 /// A random expansion from up to 8 wild doubles, with exact cancellations among them.
-fn random_expansion(rng: &mut Rng, lo: i32, hi: i32) -> Vec<f64> {
+fn random_expansion(rng: &mut SplitMix64, lo: i32, hi: i32) -> Vec<f64> {
     let mut terms = Vec::new();
     for _ in 0..rng.below(9) {
         if !terms.is_empty() && rng.below(4) == 0 {
@@ -140,7 +140,7 @@ fn random_expansion(rng: &mut Rng, lo: i32, hi: i32) -> Vec<f64> {
 
 /// A second expansion related to `e`: its negation, a near-negation (exact cancellation of
 /// the top components), or an unrelated one.
-fn partner(rng: &mut Rng, e: &[f64], lo: i32, hi: i32) -> Vec<f64> {
+fn partner(rng: &mut SplitMix64, e: &[f64], lo: i32, hi: i32) -> Vec<f64> {
     match rng.below(4) {
         0 => negated(e),
         1 => {
@@ -154,7 +154,7 @@ fn partner(rng: &mut Rng, e: &[f64], lo: i32, hi: i32) -> Vec<f64> {
 
 #[test]
 fn expansion_sums_are_exact_expansions() {
-    let mut rng = Rng(1);
+    let mut rng = SplitMix64(1);
     for _ in 0..3000 {
         let e = random_expansion(&mut rng, -600, 600);
         let f = partner(&mut rng, &e, -600, 600);
@@ -172,7 +172,7 @@ fn expansion_sums_are_exact_expansions() {
 
 #[test]
 fn scaled_and_multiplied_expansions_are_exact_expansions() {
-    let mut rng = Rng(2);
+    let mut rng = SplitMix64(2);
     for _ in 0..1500 {
         let e = random_expansion(&mut rng, -150, 150);
         let b = if rng.below(10) == 0 {
@@ -204,7 +204,7 @@ fn scaled_and_multiplied_expansions_are_exact_expansions() {
 
 #[test]
 fn estimate_rounds_to_nearest_with_ties_to_even() {
-    let mut rng = Rng(3);
+    let mut rng = SplitMix64(3);
     for _ in 0..3000 {
         let e = random_expansion(&mut rng, -900, 900);
         assert_rounded(estimate(&e), &value(&e, 1), 1);
@@ -332,7 +332,7 @@ fn nudge(x: f64, k: i32) -> f64 {
 
 /// A point on (or, after rounding, next to) the plane through `a`, `b`, `c`, moved by a few
 /// ulps in one coordinate.
-fn near_plane(rng: &mut Rng, a: &Point3, b: &Point3, c: &Point3) -> Point3 {
+fn near_plane(rng: &mut SplitMix64, a: &Point3, b: &Point3, c: &Point3) -> Point3 {
     let (s, t) = (rng.range(-2.0, 2.0), rng.range(-2.0, 2.0));
     let mut p = a + (b - a) * s + (c - a) * t;
     let k = rng.below(3);
@@ -341,8 +341,8 @@ fn near_plane(rng: &mut Rng, a: &Point3, b: &Point3, c: &Point3) -> Point3 {
 }
 
 /// Four points (or three and a direction) in one of several regimes, by `kind`.
-fn points(rng: &mut Rng, kind: usize) -> [Point3; 4] {
-    let lattice = |rng: &mut Rng, base: f64, r: i32| {
+fn points(rng: &mut SplitMix64, kind: usize) -> [Point3; 4] {
+    let lattice = |rng: &mut SplitMix64, base: f64, r: i32| {
         Point3::new(
             base + rng.int(-r, r),
             base + rng.int(-r, r),
@@ -365,7 +365,7 @@ fn points(rng: &mut Rng, kind: usize) -> [Point3; 4] {
         // Far from the origin, nearly coplanar.
         3 => {
             let base = rng.pick(&[1e15, 2f64.powi(52), 1e17, -3e16]);
-            let offset = |rng: &mut Rng| {
+            let offset = |rng: &mut SplitMix64| {
                 Point3::new(
                     base + rng.range(-50.0, 50.0),
                     base + rng.range(-50.0, 50.0),
@@ -412,7 +412,7 @@ const KINDS: usize = 6;
 
 #[test]
 fn orient3d_value_is_the_exact_determinant() {
-    let mut rng = Rng(4);
+    let mut rng = SplitMix64(4);
     let mut tally = Tally::default();
     for i in 0..3000 {
         let [a, b, c, d] = points(&mut rng, i % KINDS);
@@ -435,7 +435,7 @@ fn orient3d_value_is_the_exact_determinant() {
 
 #[test]
 fn orient3d_at_infinity_value_is_the_exact_determinant() {
-    let mut rng = Rng(5);
+    let mut rng = SplitMix64(5);
     let mut tally = Tally::default();
     for i in 0..3000 {
         let [a, b, c, d] = points(&mut rng, i % KINDS);
@@ -484,7 +484,7 @@ fn orient3d_at_infinity_value_is_the_exact_determinant() {
 /// the estimates' bounds still hold.
 #[test]
 fn estimate_bounds_hold_under_underflow() {
-    let mut rng = Rng(6);
+    let mut rng = SplitMix64(6);
     let mut tally = Tally::default();
     for _ in 0..500 {
         let scale = rng.pick(&[1e-110, 1e-150, 1e-200, 1e-305]);
@@ -503,7 +503,7 @@ fn estimate_bounds_hold_under_underflow() {
 /// doubles themselves (the helpers of `common`).
 #[test]
 fn references_agree_with_rationals() {
-    let mut rng = Rng(7);
+    let mut rng = SplitMix64(7);
     let scale = Q::from_integer(BigInt::from(1) << 3222usize);
     let rational_value = |e: &[f64]| e.iter().fold(Q::zero(), |acc, &c| acc + q(c));
     for i in 0..120 {

@@ -16,7 +16,7 @@ use num_traits::Zero;
 use proptest::prelude::*;
 use std::cmp::Ordering;
 
-use crate::common::{Q, Rng, q, qsign};
+use crate::common::{Q, SplitMix64, q, qsign};
 
 // ---------------------------------------------------------------------------------------------
 // Exact references.
@@ -337,7 +337,7 @@ fn check_intersections(segments: &[Line<f64>]) {
 
 /// Random segments in the unit square of mixed kinds: points, short and medium segments,
 /// horizontal and vertical ones, and a few long ones spanning the whole square.
-fn mixed(rng: &mut Rng, n: usize) -> Vec<Line<f64>> {
+fn mixed(rng: &mut SplitMix64, n: usize) -> Vec<Line<f64>> {
     (0..n)
         .map(|_| match rng.below(12) {
             0 => {
@@ -382,7 +382,7 @@ fn mixed(rng: &mut Rng, n: usize) -> Vec<Line<f64>> {
 
 /// Segments with endpoints on the lattice `step * [0, k]²`: points, lattice edges
 /// (horizontal, vertical, diagonal), longer axis-parallel segments, and general ones.
-fn lattice(rng: &mut Rng, n: usize, k: i32, step: f64) -> Vec<Line<f64>> {
+fn lattice(rng: &mut SplitMix64, n: usize, k: i32, step: f64) -> Vec<Line<f64>> {
     (0..n)
         .map(|_| {
             let (x, y) = (rng.int(0, k), rng.int(0, k));
@@ -545,7 +545,7 @@ fn meeting_in_each_case() {
 fn crossings_are_within_four_ulps_of_the_exact_point() {
     // Random crossings, nearly parallel long segments (the hardest for the construction),
     // nearly perpendicular diagonals, and crossings far from the origin.
-    let mut rng = Rng(81);
+    let mut rng = SplitMix64(81);
     let mut crossings = 0;
     for i in 0..4000 {
         let mut p = |lo: f64, hi: f64| [rng.range(lo, hi), rng.range(lo, hi)];
@@ -590,7 +590,7 @@ fn crossings_are_within_four_ulps_of_the_exact_point() {
 #[test]
 fn random_segments_of_mixed_lengths_equal_brute_force_and_geo() {
     for seed in 0..6 {
-        let mut rng = Rng(seed);
+        let mut rng = SplitMix64(seed);
         let segments = mixed(&mut rng, 400);
         let expected = check(&segments, &format!("mixed, seed {seed}"));
         assert_eq!(geo_pairs(&segments), expected, "geo, seed {seed}");
@@ -601,7 +601,7 @@ fn random_segments_of_mixed_lengths_equal_brute_force_and_geo() {
 #[test]
 fn a_few_long_segments_among_many_short_ones() {
     // Long segments cross most of the grid's cells.
-    let mut rng = Rng(11);
+    let mut rng = SplitMix64(11);
     let mut segments = random_segments(1500, 0.005, 5);
     for _ in 0..20 {
         let (x, y) = (rng.unit(), rng.unit());
@@ -702,7 +702,7 @@ fn random_segments_have_their_length_stay_in_the_square_and_reproduce() {
 fn lattice_inputs_equal_brute_force() {
     // Shared endpoints, T-junctions, collinear overlaps, horizontal and vertical segments.
     for seed in 0..8 {
-        let mut rng = Rng(100 + seed);
+        let mut rng = SplitMix64(100 + seed);
         let (k, step) = if seed % 2 == 0 { (6, 1.0) } else { (12, 0.5) };
         let segments = lattice(&mut rng, 250, k, step);
         let what = format!("lattice, seed {seed}");
@@ -716,13 +716,13 @@ fn lattice_inputs_equal_brute_force() {
         assert_eq!(geo_pairs(&segments), expected, "geo: {what}");
         check_intersections(&segments);
     }
-    let mut rng = Rng(7);
+    let mut rng = SplitMix64(7);
     check_meetings(&lattice(&mut rng, 80, 4, 1.0));
 }
 
 #[test]
 fn horizontal_and_vertical_segments() {
-    let mut rng = Rng(21);
+    let mut rng = SplitMix64(21);
     // Random positions, axis-parallel only.
     let segments: Vec<Line<f64>> = (0..600)
         .map(|_| {
@@ -759,7 +759,7 @@ fn horizontal_and_vertical_segments() {
 
 #[test]
 fn many_segments_through_one_point() {
-    let mut rng = Rng(31);
+    let mut rng = SplitMix64(31);
     // Sharing an endpoint (not a lattice point), among other segments.
     let centre = (0.3, 0.7);
     let mut segments = random_segments(300, 0.03, 8);
@@ -845,7 +845,7 @@ fn segments_along_grid_lines() {
     // Random unit edges (duplicates included) and random half-unit edges: still cell side
     // one (the extent is pinned by the frame's corners).
     for (seed, step) in [(1, 1.0), (2, 0.5), (3, 1.0), (4, 0.5)] {
-        let mut rng = Rng(seed);
+        let mut rng = SplitMix64(seed);
         let k = (10.0 / step) as i32;
         let mut segments = vec![seg(0.0, 0.0, step, 0.0), seg(10.0 - step, 10.0, 10.0, 10.0)];
         for _ in 0..400 {
@@ -877,7 +877,7 @@ fn segments_along_grid_lines() {
 
 #[test]
 fn coordinates_far_from_the_origin_and_tiny_ones() {
-    let mut rng = Rng(41);
+    let mut rng = SplitMix64(41);
     let base = mixed(&mut rng, 300);
     let lattice_base = lattice(&mut rng, 200, 8, 1.0);
     for (what, segments) in [
@@ -903,7 +903,7 @@ fn coordinates_far_from_the_origin_and_tiny_ones() {
 
 #[test]
 fn duplicated_segments() {
-    let mut rng = Rng(51);
+    let mut rng = SplitMix64(51);
     let base = mixed(&mut rng, 200);
     let mut segments = Vec::new();
     for s in &base {
@@ -938,7 +938,7 @@ fn duplicated_segments() {
 #[test]
 fn nearly_vertical_and_nearly_horizontal_segments() {
     // Steep segments one ulp or so from vertical (and flat ones), crossed by many others.
-    let mut rng = Rng(71);
+    let mut rng = SplitMix64(71);
     let mut segments = Vec::new();
     for i in 0..40 {
         let x = rng.unit();
@@ -1066,12 +1066,12 @@ proptest! {
 fn the_floating_point_speed_up_of_the_reference_is_right() {
     // orient_float, where it answers, agrees with rationals: random, lattice, tiny, far and
     // nearly collinear triples.
-    let mut rng = Rng(61);
+    let mut rng = SplitMix64(61);
     let mut answered = 0;
     for i in 0..20_000 {
         let scale = rng.pick(&[1.0, 1e-6, 1e6, 1e-150, 1e90]);
         let offset = rng.pick(&[0.0, 1e6, -3.5]);
-        let p = |rng: &mut Rng| match i % 3 {
+        let p = |rng: &mut SplitMix64| match i % 3 {
             0 => [rng.unit(), rng.unit()],
             1 => [rng.int(-3, 3), rng.int(-3, 3)],
             _ => [rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)],

@@ -15,7 +15,7 @@
 //! edges along lines, zero-area slivers), and random ones at general angles; at scales `2^±300`
 //! (where the hatch must be the unscaled one scaled, bit for bit) and `1e8` from the origin.
 
-use crate::common::{Q, Rng, q, qsign};
+use crate::common::{Q, SplitMix64, q, qsign};
 use geo::{Coord, LineString, MultiPolygon, Polygon};
 use kepler::geometry::exact::ldexp;
 use kepler::surfaces::hatch::{Hatch, Hatching, direction, hatch_faces, hatch_polygons};
@@ -272,16 +272,20 @@ fn polygon(rings: Vec<Vec<[f64; 2]>>) -> MultiPolygon<f64> {
 }
 
 /// A random ring of `n` points from `point`.
-fn ring(rng: &mut Rng, n: usize, point: &mut impl FnMut(&mut Rng) -> [f64; 2]) -> Vec<[f64; 2]> {
+fn ring(
+    rng: &mut SplitMix64,
+    n: usize,
+    point: &mut impl FnMut(&mut SplitMix64) -> [f64; 2],
+) -> Vec<[f64; 2]> {
     (0..n).map(|_| point(rng)).collect()
 }
 
 /// Random sets of rings on the lattice of quarter units (spacing 1/2 or 1: many vertices on
 /// lines and edges along them), with a zero-area sliver now and then.
-fn lattice_sets(rng: &mut Rng, count: usize) -> Vec<MultiPolygon<f64>> {
+fn lattice_sets(rng: &mut SplitMix64, count: usize) -> Vec<MultiPolygon<f64>> {
     (0..count)
         .map(|_| {
-            let mut point = |r: &mut Rng| [r.int(-12, 12) / 4.0, r.int(-12, 12) / 4.0];
+            let mut point = |r: &mut SplitMix64| [r.int(-12, 12) / 4.0, r.int(-12, 12) / 4.0];
             let rings = rng.below(3) + 1;
             let mut set: Vec<Vec<[f64; 2]>> = (0..rings)
                 .map(|_| {
@@ -321,7 +325,7 @@ fn scaled_hatch(h: &Hatch, k: i32) -> Hatch {
 /// line through the origin holds the diagonal's vertices), against the reference.
 #[test]
 fn lattice_rings_are_clipped_exactly() {
-    let mut rng = Rng(17);
+    let mut rng = SplitMix64(17);
     let mut segments = 0;
     for set in &lattice_sets(&mut rng, 30) {
         for (angle, spacing) in [(0.0, 0.5), (90.0, 0.25), (180.0, 1.0), (45.0, 0.75)] {
@@ -334,10 +338,10 @@ fn lattice_rings_are_clipped_exactly() {
 /// Random rings of random doubles at general angles.
 #[test]
 fn random_rings_at_general_angles_are_clipped_exactly() {
-    let mut rng = Rng(5);
+    let mut rng = SplitMix64(5);
     let mut segments = 0;
     for _ in 0..8 {
-        let mut point = |r: &mut Rng| [r.range(-3.0, 3.0), r.range(-3.0, 3.0)];
+        let mut point = |r: &mut SplitMix64| [r.range(-3.0, 3.0), r.range(-3.0, 3.0)];
         let rings: Vec<Vec<[f64; 2]>> = (0..1 + rng.below(3))
             .map(|_| {
                 let n = 3 + rng.below(8);
@@ -356,7 +360,7 @@ fn random_rings_at_general_angles_are_clipped_exactly() {
 /// the origin, lattice degeneracies stay exact.
 #[test]
 fn extreme_scales_and_far_offsets() {
-    let mut rng = Rng(99);
+    let mut rng = SplitMix64(99);
     for set in lattice_sets(&mut rng, 6) {
         for (angle, spacing) in [(0.0, 0.5), (45.0, 0.75), (30.0, 0.4)] {
             let plain = hatch_polygons(&set, angle, spacing).expect("hatch");

@@ -52,7 +52,7 @@ use nalgebra::{Matrix4, Rotation3, Unit};
 use std::collections::{BTreeMap, HashSet};
 use std::time::Instant;
 
-use crate::common::Rng;
+use crate::common::SplitMix64;
 
 /// Pixels per side of the z-buffer.
 const SIZE: usize = 512;
@@ -886,7 +886,7 @@ fn check(oracle: &Oracle, drawing: &Drawing, options: &Options, name: &str) -> R
 // ---------------------------------------------------------------------------------------------
 // Random scenes and views.
 
-fn random_unit(rng: &mut Rng) -> Vector3 {
+fn random_unit(rng: &mut SplitMix64) -> Vector3 {
     loop {
         let v = rng.vector(1.0);
         let n = v.norm();
@@ -898,7 +898,7 @@ fn random_unit(rng: &mut Rng) -> Vector3 {
 
 /// 3 to 6 solids, mostly boxes, rotated and placed at random in a region about their size, so
 /// that they often overlap, pierce and hide each other; some under a group.
-fn random_scene(rng: &mut Rng) -> Scene {
+fn random_scene(rng: &mut SplitMix64) -> Scene {
     let mut scene = Scene::new();
     let group = (rng.below(2) == 0).then(|| scene.add_group(None, "group").unwrap());
     let n = 3 + rng.below(4);
@@ -934,8 +934,8 @@ fn vertices(scene: &Scene) -> Vec<Point3> {
 
 /// A random orthographic view, or a perspective one from outside the scene's bounding sphere
 /// (every vertex well in front of the eye).
-fn random_view(rng: &mut Rng, scene: &Scene, perspective: bool) -> View {
-    let up = |rng: &mut Rng, d: &Vector3| loop {
+fn random_view(rng: &mut SplitMix64, scene: &Scene, perspective: bool) -> View {
+    let up = |rng: &mut SplitMix64, d: &Vector3| loop {
         let u = random_unit(rng);
         if u.cross(d).norm() > 0.2 {
             return u;
@@ -985,7 +985,7 @@ fn describe(view: &View) -> String {
 
 /// The scene and view of case `k`: seeded by `k`, perspective for every third case.
 fn case(k: u64) -> (Scene, View) {
-    let mut rng = Rng(0xac1e_0000 + k);
+    let mut rng = SplitMix64(0xac1e_0000 + k);
     let scene = random_scene(&mut rng);
     let view = random_view(&mut rng, &scene, k % 3 == 2);
     (scene, view)
@@ -1134,7 +1134,7 @@ fn the_z_buffer_agrees_with_visp() {
         let hi = points
             .iter()
             .fold(Point3::from([f64::NEG_INFINITY; 3]), |a, p| a.sup(p));
-        let mut rng = Rng(0x5a4d_0000 + k);
+        let mut rng = SplitMix64(0x5a4d_0000 + k);
         for _ in 0..3000 {
             let p = Point3::new(
                 rng.range(lo.x - 1.0, hi.x + 1.0),
@@ -1342,7 +1342,7 @@ fn lattice_scenes_agree_with_a_z_buffer() {
     ];
     let mut total = Report::default();
     for k in 0..cases() {
-        let mut rng = Rng(0x1a77_1ce0 + k);
+        let mut rng = SplitMix64(0x1a77_1ce0 + k);
         let mut scene = Scene::new();
         for i in 0..3 + rng.below(4) {
             let size = [0, 1, 2].map(|_| (1 + rng.below(3)) as f64);

@@ -20,7 +20,7 @@
 use std::collections::HashSet;
 use std::path::Path;
 
-use crate::common::Rng;
+use crate::common::SplitMix64;
 
 use kepler::geometry::{Point3, Vector3};
 use kepler::mesh::Mesh;
@@ -620,7 +620,7 @@ fn voxel_mesh(cells: &[[i32; 3]], inside_out: bool) -> Mesh {
 /// a non-manifold edge that INCLUDE accepts since every edge still has an even number of
 /// faces): for such a pair one of the two cells beside both is filled, until none is left.
 /// Cubes meeting at a vertex only remain.
-fn random_voxels(rng: &mut Rng, n: i32, fill: f64, manifold: bool) -> Vec<[i32; 3]> {
+fn random_voxels(rng: &mut SplitMix64, n: i32, fill: f64, manifold: bool) -> Vec<[i32; 3]> {
     let mut filled: HashSet<[i32; 3]> = HashSet::new();
     for x in 0..n {
         for y in 0..n {
@@ -698,14 +698,14 @@ fn budget(count: usize) -> usize {
 }
 
 /// `count` random points of `points` (see [`budget`]).
-fn sample(rng: &mut Rng, points: &[Point3], count: usize) -> Vec<Point3> {
+fn sample(rng: &mut SplitMix64, points: &[Point3], count: usize) -> Vec<Point3> {
     (0..budget(count))
         .map(|_| points[rng.below(points.len())])
         .collect()
 }
 
 /// Uniform random points in the box (see [`budget`]).
-fn random_points(rng: &mut Rng, lo: [f64; 3], hi: [f64; 3], count: usize) -> Vec<Point3> {
+fn random_points(rng: &mut SplitMix64, lo: [f64; 3], hi: [f64; 3], count: usize) -> Vec<Point3> {
     (0..budget(count))
         .map(|_| {
             Point3::new(
@@ -774,7 +774,7 @@ fn grid_box(points: &[Point3], margin: f64, step: f64) -> ([f64; 3], [f64; 3]) {
 /// Lattice points (all, or a sample), the special points, some of them axis-shifted, and
 /// random points, for one mesh.
 fn points_for(
-    rng: &mut Rng,
+    rng: &mut SplitMix64,
     mesh: &Mesh,
     step: f64,
     lattice_cap: usize,
@@ -826,7 +826,7 @@ fn outline(points: &[(f64, f64)]) -> geo::Polygon<f64> {
 
 #[test]
 fn random_voxel_shapes_agree_with_the_reference() {
-    let mut rng = Rng(0x5eed_0001);
+    let mut rng = SplitMix64(0x5eed_0001);
     let mut all = Vec::new();
     for shape in 0..8 {
         let cells = random_voxels(&mut rng, 4, 0.35 + 0.05 * shape as f64, shape % 2 == 0);
@@ -849,7 +849,7 @@ fn random_voxel_shapes_agree_with_the_reference() {
 /// one lie on the faces and edges of another.
 #[test]
 fn random_stacks_of_cubes_agree_with_the_reference() {
-    let mut rng = Rng(0x5eed_0002);
+    let mut rng = SplitMix64(0x5eed_0002);
     for stack in 0..6 {
         let mut scene = Scene::new();
         let g = scene.add_group(None, "stack").unwrap();
@@ -907,7 +907,7 @@ fn a_fixed_stack_of_cubes_agrees_with_the_reference() {
 /// octahedron's triangles with each vertex moved radially by a random factor and rounded.
 #[test]
 fn random_lattice_polyhedra_agree_with_the_reference() {
-    let mut rng = Rng(0x5eed_0003);
+    let mut rng = SplitMix64(0x5eed_0003);
     let templates = [
         solids::icosahedron(2.0).unwrap(),
         solids::octahedron(2.0).unwrap(),
@@ -948,7 +948,7 @@ fn random_lattice_polyhedra_agree_with_the_reference() {
 /// vertices, midpoints and axis-shifted points still meet the surface exactly or nearly.
 #[test]
 fn randomly_rotated_solids_agree_with_the_reference() {
-    let mut rng = Rng(0x5eed_0004);
+    let mut rng = SplitMix64(0x5eed_0004);
     let solids: Vec<(&str, Mesh)> = vec![
         ("tetrahedron", solids::tetrahedron(2.0).unwrap()),
         ("octahedron", solids::octahedron(2.0).unwrap()),
@@ -983,7 +983,7 @@ fn randomly_rotated_solids_agree_with_the_reference() {
 /// their symmetric vertices put many points exactly over vertices and edges.
 #[test]
 fn platonic_solids_in_exact_orientations_agree_with_the_reference() {
-    let mut rng = Rng(0x5eed_0005);
+    let mut rng = SplitMix64(0x5eed_0005);
     let quarter = Matrix4::new(
         0.0, -1.0, 0.0, 0.0, //
         0.0, 0.0, 1.0, 0.0, //
@@ -1017,7 +1017,7 @@ fn platonic_solids_in_exact_orientations_agree_with_the_reference() {
 
 #[test]
 fn torus_agrees_with_the_reference() {
-    let mut rng = Rng(0x5eed_0006);
+    let mut rng = SplitMix64(0x5eed_0006);
     let mesh = solids::torus(2.0, 0.5, 24, 12).unwrap();
     let mut points = points_for(&mut rng, &mesh, 0.25, 3000, 2000);
     // The central axis, the plane z = 0 and the tube's core circle.
@@ -1038,7 +1038,7 @@ fn torus_agrees_with_the_reference() {
 
 #[test]
 fn non_convex_prisms_agree_with_the_reference() {
-    let mut rng = Rng(0x5eed_0007);
+    let mut rng = SplitMix64(0x5eed_0007);
     let shapes: [(&str, Vec<(f64, f64)>); 4] = [
         (
             "L",
@@ -1122,7 +1122,7 @@ fn non_convex_prisms_agree_with_the_reference() {
 
 #[test]
 fn nested_objects_follow_the_union_rule() {
-    let mut rng = Rng(0x5eed_0008);
+    let mut rng = SplitMix64(0x5eed_0008);
     let mut scene = Scene::new();
     // A big cube holding a small one, which touches its floor from inside, and a third cube
     // outside touching the big one's wall.
@@ -1195,7 +1195,7 @@ fn nested_objects_follow_the_union_rule() {
 
 #[test]
 fn inside_out_meshes_agree_with_the_reference() {
-    let mut rng = Rng(0x5eed_0009);
+    let mut rng = SplitMix64(0x5eed_0009);
     let dir = Path::new(env!("CARGO_MANIFEST_DIR"));
     let off = kepler::io::read_mesh(&dir.join("scenes/meshes/inside_out.off")).unwrap();
     let cells = random_voxels(&mut rng, 3, 0.5, true);
@@ -1353,7 +1353,7 @@ fn stages_are_the_expected_ones() {
 /// single queries one by one.
 #[test]
 fn counters_add_up_to_the_points() {
-    let mut rng = Rng(0x5eed_000a);
+    let mut rng = SplitMix64(0x5eed_000a);
     let mut scene = Scene::new();
     let g = scene.add_group(None, "g").unwrap();
     scene

@@ -35,10 +35,10 @@ use crate::common::invariance::{
     Setup, Solid, Transform, along_an_axis, box_solid, check, drawing, dyadic, outward,
     over_scenes, random_view, segments,
 };
-use crate::common::{Q, Rng, qcross, qdot, qsub};
+use crate::common::{Q, SplitMix64, qcross, qdot, qsub};
 use num_traits::Zero;
 
-fn random_solid(rng: &mut Rng) -> Solid {
+fn random_solid(rng: &mut SplitMix64) -> Solid {
     match rng.below(3) {
         0 => {
             let c = [0; 3].map(|_| dyadic(rng, -2, 2));
@@ -80,7 +80,7 @@ fn random_solid(rng: &mut Rng) -> Solid {
 }
 
 /// Two or three solids around the origin, most of them piercing each other.
-fn random_scene(rng: &mut Rng) -> Vec<Solid> {
+fn random_scene(rng: &mut SplitMix64) -> Vec<Solid> {
     (0..2 + rng.below(2)).map(|_| random_solid(rng)).collect()
 }
 
@@ -359,7 +359,7 @@ fn intersection_line_vertices_are_within_two_ulps_of_exact_points() {
     let mut checked = 0usize;
     let mut worst = 0.0f64;
     for seed in 0..12 {
-        let mut rng = Rng(0xe4ac_7000 + seed);
+        let mut rng = SplitMix64(0xe4ac_7000 + seed);
         let scene = random_scene(&mut rng);
         for perspective in [false, true] {
             let spec = random_view(&mut rng, perspective);
@@ -400,7 +400,7 @@ fn intersection_line_vertices_are_within_two_ulps_of_exact_points() {
 #[test]
 fn the_checks_see_a_changed_drawing() {
     // A drawing compared with itself after a one-ulp change of one intersection vertex.
-    let mut rng = Rng(0x1e14_0000);
+    let mut rng = SplitMix64(0x1e14_0000);
     let scene = random_scene(&mut rng);
     let spec = random_view(&mut rng, false);
     let d = drawing(&scene, &spec.view().unwrap(), &options());

@@ -17,9 +17,25 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// The top-level modules of the library, each allowed to import only those before it.
-const ORDER: [&str; 16] = [
-    "geometry", "clip", "mesh", "io", "solids", "bounds", "scene", "views", "grid", "sight",
-    "queries", "hidden", "surfaces", "output", "error", "lab",
+const ORDER: [&str; 18] = [
+    "random",
+    "union_find",
+    "geometry",
+    "clip",
+    "mesh",
+    "io",
+    "solids",
+    "bounds",
+    "scene",
+    "views",
+    "grid",
+    "sight",
+    "queries",
+    "hidden",
+    "surfaces",
+    "output",
+    "error",
+    "lab",
 ];
 
 /// Every `.rs` file below `dir`.

@@ -290,7 +290,7 @@ fn containment_is_exact_on_grid_aligned_degeneracies() {
 // normal is the same mesh, and zero area, planarity and self-crossing are decided exactly.
 
 use crate::common::exact::{qdet, qp};
-use crate::common::{Q, Rng, q, qcross, qsign, qsub};
+use crate::common::{Q, SplitMix64, q, qcross, qsign, qsub};
 use num_traits::Zero;
 use std::cmp::Ordering;
 
@@ -391,14 +391,14 @@ fn collinear_exactly(a: &Point3, b: &Point3, c: &Point3) -> bool {
 }
 
 /// A random coordinate: a random mantissa at a random exponent in [-8, 8], either sign.
-fn coordinate(rng: &mut Rng) -> f64 {
+fn coordinate(rng: &mut SplitMix64) -> f64 {
     let sign = if rng.below(2) == 0 { 1.0 } else { -1.0 };
     sign * rng.range(1.0, 2.0) * 2f64.powi(rng.below(17) as i32 - 8)
 }
 
 #[test]
 fn boxes_and_tetrahedra_are_the_same_mesh_at_every_power_of_two() {
-    let mut rng = Rng(14);
+    let mut rng = SplitMix64(14);
     let mut split = 0;
     for seed in 0..40 {
         // A tetrahedron turned outward.
@@ -491,7 +491,7 @@ fn boxes_and_tetrahedra_are_the_same_mesh_at_every_power_of_two() {
 
 /// A point of a small integer grid, sometimes moved by one unit in the last place of one
 /// coordinate: many exact degeneracies and near misses.
-fn grid_point(rng: &mut Rng, offset: f64) -> [f64; 3] {
+fn grid_point(rng: &mut SplitMix64, offset: f64) -> [f64; 3] {
     let mut c = [0; 3].map(|_| offset + rng.int(-3, 3));
     if rng.below(3) == 0 {
         let k = rng.below(3);
@@ -506,7 +506,7 @@ fn grid_point(rng: &mut Rng, offset: f64) -> [f64; 3] {
 
 #[test]
 fn zero_area_is_decided_exactly_at_every_scale() {
-    let mut rng = Rng(1400);
+    let mut rng = SplitMix64(1400);
     let (mut zero, mut thin) = (0, 0);
     for seed in 0..300 {
         // Far from the origin (an offset of 2^40 or 0) or near it: collinear points of the
@@ -590,7 +590,7 @@ fn quad_crosses_itself(quad: &[[f64; 3]; 4]) -> bool {
 
 #[test]
 fn self_crossing_is_decided_exactly_at_every_scale() {
-    let mut rng = Rng(1401);
+    let mut rng = SplitMix64(1401);
     let (mut crossing, mut simple) = (0, 0);
     for seed in 0..400 {
         let offset = rng.pick(&[0.0, 1099511627776.0, 0.375]);
@@ -635,7 +635,7 @@ fn self_crossing_is_decided_exactly_at_every_scale() {
 /// given: from any vertex, reversed, or mirrored.
 #[test]
 fn a_polygon_not_exactly_planar_is_split_the_same_way_however_given() {
-    let mut rng = Rng(1402);
+    let mut rng = SplitMix64(1402);
     let mut checked = 0;
     for seed in 0..200 {
         // A star-shaped polygon around the z axis, bent off its plane.
@@ -758,7 +758,7 @@ fn exact_orientation(mesh: &Mesh) -> Ordering {
 /// turned towards the eye was drawn hidden.
 #[test]
 fn closed_meshes_are_oriented_exactly() {
-    let mut rng = Rng(0x0b1e);
+    let mut rng = SplitMix64(0x0b1e);
     let faces = vec![vec![1, 2, 0], vec![3, 1, 0], vec![3, 2, 1], vec![2, 3, 0]];
     let (mut checked, mut rounded_wrong) = (0, 0);
     for case in 0..400 {

@@ -6,7 +6,7 @@
 //! permutes and translates bit for bit (the visible surfaces translate up to the rounding of
 //! the points their frustum planes pass through).
 
-use crate::common::Rng;
+use crate::common::SplitMix64;
 use crate::common::invariance::segments;
 use kepler::geometry::{Point3, Vector3};
 use kepler::hidden::verify::{draw_traced, verify};
@@ -50,7 +50,7 @@ fn finite(d: &Drawing) -> bool {
 /// view clip): the same bits.
 #[test]
 fn an_object_behind_the_eye_changes_nothing() {
-    let mut rng = Rng(0xbe41d);
+    let mut rng = SplitMix64(0xbe41d);
     for case in 0..40 {
         let boxes: Vec<([f64; 3], [f64; 3])> = (0..4)
             .map(|_| {
@@ -103,7 +103,7 @@ fn an_object_behind_the_eye_changes_nothing() {
 /// eye and the sides of the frustum.
 #[test]
 fn eyes_inside_a_room_pass_verify() {
-    let mut rng = Rng(0x500f);
+    let mut rng = SplitMix64(0x500f);
     let (mut samples, mut drawn, mut meeting) = (0, 0, 0);
     for case in 0..30 {
         let mut scene = Scene::new();
@@ -219,7 +219,7 @@ fn eyes_inside_a_dense_mesh_pass_verify() {
     let mut scene = Scene::new();
     let torus = kepler::solids::torus(2.0, 0.75, 64, 32).unwrap();
     scene.add_mesh(None, "torus", torus).unwrap();
-    let mut rng = Rng(0x7042);
+    let mut rng = SplitMix64(0x7042);
     let mut samples = 0;
     for case in 0..12 {
         // Half the eyes in the hole, half inside the tube (at radius 2 ± 0.4).
@@ -289,7 +289,7 @@ fn mapped(scene: &Scene, f: impl Fn(Point3) -> Point3, reverse: bool) -> Scene {
 /// translated.
 #[test]
 fn clipped_drawings_mirror_permute_and_translate() {
-    let mut rng = Rng(0x3c1f);
+    let mut rng = SplitMix64(0x3c1f);
     let mut compared = 0;
     for case in 0..16 {
         let mut scene = Scene::new();
@@ -374,7 +374,7 @@ fn dyadic(x: f64) -> f64 {
 /// dyadic coordinates inside it: lines cross the plane of the eye and the frustum's sides,
 /// intersection lines too.
 fn dyadic_rooms(seed: u64, count: usize) -> Vec<Room> {
-    let mut rng = Rng(seed);
+    let mut rng = SplitMix64(seed);
     let mut out = Vec::new();
     while out.len() < count {
         let mut scene = Scene::new();

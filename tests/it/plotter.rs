@@ -176,7 +176,7 @@ fn touching_and_stacked_boxes_are_drawn_once() {
 // ---------------------------------------------------------------------------------------------
 // Invariance: the same stretches removed wherever the scene is placed (issue 27).
 
-use crate::common::Rng;
+use crate::common::SplitMix64;
 use crate::common::invariance::{
     Setup, Solid, Transform, along_an_axis, box_solid, check, dyadic, over_scenes, overlaps_removed,
 };
@@ -186,7 +186,7 @@ use kepler::hidden::EdgeSelection;
 /// Boxes on a quarter lattice, each touching the last along a face (beside it, on top of it,
 /// or sunk into it by a quarter), and tetrahedra on lattice points, some standing on a box's
 /// face: many stretches of line drawn twice, and intersection lines.
-fn touching_scene(rng: &mut Rng) -> Vec<Solid> {
+fn touching_scene(rng: &mut SplitMix64) -> Vec<Solid> {
     let mut solids = Vec::new();
     let mut lo = [0; 3].map(|_| dyadic(rng, -2, 0));
     for _ in 0..2 + rng.below(3) {

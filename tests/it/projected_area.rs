@@ -2,7 +2,7 @@
 //! references built here: the corners numbered from the paper's figure, a monotone-chain
 //! convex hull of the projected corners, and the textbook shoelace formula.
 
-use crate::common::Rng;
+use crate::common::SplitMix64;
 use kepler::bounds::tribox::TriboxBounds;
 use kepler::geometry::{Aabb, Point3, Vector3};
 use kepler::lab::oriented::OrientedBox;
@@ -129,7 +129,7 @@ fn valid_codes() -> Vec<u8> {
 }
 
 /// A coordinate in the region `s` along `[lo, hi]`, kept away from the planes.
-fn coordinate(rng: &mut Rng, s: i32, lo: f64, hi: f64) -> f64 {
+fn coordinate(rng: &mut SplitMix64, s: i32, lo: f64, hi: f64) -> f64 {
     let size = hi - lo;
     match s {
         -1 => lo - size * rng.range(0.05, 3.0),
@@ -138,7 +138,7 @@ fn coordinate(rng: &mut Rng, s: i32, lo: f64, hi: f64) -> f64 {
     }
 }
 
-fn random_box(rng: &mut Rng) -> Aabb {
+fn random_box(rng: &mut SplitMix64) -> Aabb {
     let min = [0; 3].map(|_| rng.range(-20.0, 20.0));
     let size = [0; 3].map(|_| 10f64.powf(rng.range(-1.0, 1.0)));
     Aabb {
@@ -147,13 +147,13 @@ fn random_box(rng: &mut Rng) -> Aabb {
     }
 }
 
-fn random_rotation(rng: &mut Rng) -> Rotation3<f64> {
+fn random_rotation(rng: &mut SplitMix64) -> Rotation3<f64> {
     let axis = Unit::new_normalize(rng.vector(1.0) + Vector3::new(1e-3, 0.0, 0.0));
     Rotation3::from_axis_angle(&axis, rng.range(0.0, std::f64::consts::TAU))
 }
 
 /// A perspective view from `eye` looking at `target`, random up and field of view.
-fn perspective(rng: &mut Rng, eye: Point3, target: Point3) -> View {
+fn perspective(rng: &mut SplitMix64, eye: Point3, target: Point3) -> View {
     loop {
         let up = rng.vector(1.0);
         if let Ok(v) = View::perspective(eye, target, up, rng.range(20.0, 120.0)) {
@@ -163,7 +163,7 @@ fn perspective(rng: &mut Rng, eye: Point3, target: Point3) -> View {
 }
 
 /// An orthographic view whose eye is at infinity along `toward_viewer`, random up.
-fn orthographic(rng: &mut Rng, toward_viewer: Vector3) -> View {
+fn orthographic(rng: &mut SplitMix64, toward_viewer: Vector3) -> View {
     loop {
         if let Ok(v) = View::orthographic(-toward_viewer, rng.vector(1.0)) {
             return v;
@@ -192,7 +192,7 @@ fn brute_force_row(view: &View, corners: &[[f64; 3]; 8]) -> Vec<u8> {
 
 #[test]
 fn hull_table_matches_the_hulls_of_projected_corners() {
-    let mut rng = Rng(1);
+    let mut rng = SplitMix64(1);
     for code in valid_codes() {
         let s = region(code).expect("valid");
         let mut checked = 0;
@@ -307,7 +307,7 @@ fn paper_table_is_wrong_only_in_row_5() {
 
 #[test]
 fn classify_is_exact_in_every_region() {
-    let mut rng = Rng(2);
+    let mut rng = SplitMix64(2);
     let b = Aabb {
         min: [-1.0, 0.5, 2.0],
         max: [3.0, 0.75, 2.5],
@@ -414,7 +414,7 @@ fn exact_values() {
 
 #[test]
 fn area_is_the_hull_of_the_projected_corners() {
-    let mut rng = Rng(3);
+    let mut rng = SplitMix64(3);
     let mut hits: [BTreeMap<u8, usize>; 4] = Default::default();
     for code in valid_codes() {
         let s = region(code).expect("valid");
@@ -503,7 +503,7 @@ fn area_is_the_hull_of_the_projected_corners() {
 
 #[test]
 fn eye_in_the_box_covers_the_view() {
-    let mut rng = Rng(4);
+    let mut rng = SplitMix64(4);
     let b = Aabb {
         min: [-1.0, 2.0, 0.0],
         max: [1.0, 3.0, 0.5],
@@ -579,7 +579,7 @@ fn boxes_behind_or_across_the_eye() {
 
 #[test]
 fn tribox_picture_lies_between_the_object_and_its_cbox() {
-    let mut rng = Rng(5);
+    let mut rng = SplitMix64(5);
     let solids = [
         kepler::solids::tetrahedron(2.0),
         kepler::solids::octahedron(2.0),

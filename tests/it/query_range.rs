@@ -2,7 +2,7 @@
 //! scaled by `2^k`, give the answers of the unscaled scene, for `k` from the bottom of the
 //! normal range to the top (the answers are signs, exact for every finite input).
 
-use crate::common::Rng;
+use crate::common::SplitMix64;
 use kepler::geometry::exact::ldexp;
 use kepler::geometry::{Point3, Vector3};
 use kepler::queries::include::IncludeIndex;
@@ -16,7 +16,7 @@ fn scaled(p: &Point3, k: i32) -> Point3 {
 
 /// Two boxes and a tetrahedron, one box hollowed by nothing, all with small integer
 /// coordinates; points on a half-integer lattice and on faces, edges and vertices.
-fn scene_and_points(rng: &mut Rng) -> (Scene, Vec<Point3>) {
+fn scene_and_points(rng: &mut SplitMix64) -> (Scene, Vec<Point3>) {
     let mut scene = Scene::new();
     for i in 0..2 {
         let lo = [rng.int(-4, 2), rng.int(-4, 2), rng.int(-4, 2)];
@@ -42,7 +42,7 @@ fn scene_and_points(rng: &mut Rng) -> (Scene, Vec<Point3>) {
 
 #[test]
 fn include_and_visp_answer_the_same_at_every_scale() {
-    let mut rng = Rng(0x9e7);
+    let mut rng = SplitMix64(0x9e7);
     for case in 0..8 {
         let (scene, points) = scene_and_points(&mut rng);
         let views = [

@@ -6,7 +6,7 @@
 //! faces, independently of the library's own normalisation, which brings every scene into the
 //! range where its arithmetic is exact before drawing it.
 
-use crate::common::Rng;
+use crate::common::SplitMix64;
 use kepler::geometry::exact::ldexp;
 use kepler::geometry::{Point3, Vector3};
 use kepler::hidden::{Drawing, EdgeSelection, Options, draw};
@@ -138,7 +138,7 @@ fn perspective_pictures_do_not_scale() {
 /// normalisation changes no bit whatever the power of two.
 #[test]
 fn random_scenes_scale_bit_for_bit() {
-    let mut rng = Rng(0x5ca1e);
+    let mut rng = SplitMix64(0x5ca1e);
     for case in 0..12 {
         let mut scene = Scene::new();
         for i in 0..4 {

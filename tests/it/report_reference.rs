@@ -24,7 +24,7 @@ use kepler::views::View;
 use nalgebra::{Matrix4, Rotation3, Unit};
 use std::time::Instant;
 
-use crate::common::Rng;
+use crate::common::SplitMix64;
 
 /// The relative tolerance of the comparison.
 const TOLERANCE: f64 = 1e-9;
@@ -361,7 +361,7 @@ fn nearly_edge_on_faces() {
 /// A few random scenes of rotated boxes and octahedra, overlapping and piercing.
 #[test]
 fn random_scenes() {
-    let mut rng = Rng(15);
+    let mut rng = SplitMix64(15);
     let mut runs = 0;
     for case in 0..12 {
         let scene = random_scene(&mut rng, 3);
@@ -378,7 +378,7 @@ fn random_scenes() {
 }
 
 /// `n` solids, mostly boxes, rotated and placed at random near the origin.
-fn random_scene(rng: &mut Rng, n: usize) -> Scene {
+fn random_scene(rng: &mut SplitMix64, n: usize) -> Scene {
     let meshes = (0..n)
         .map(|_| {
             let mesh = match rng.below(4) {
@@ -404,7 +404,7 @@ fn random_scene(rng: &mut Rng, n: usize) -> Scene {
 #[test]
 #[ignore = "slow: timings of the reference against the engine, about 30 s; a measurement, no check"]
 fn timings() {
-    let mut rng = Rng(7);
+    let mut rng = SplitMix64(7);
     for (icosahedra, boxes) in [(2, 1), (8, 3)] {
         let mut meshes = Vec::new();
         for _ in 0..icosahedra {

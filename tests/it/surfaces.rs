@@ -5,6 +5,7 @@
 use geo::{Area, BoundingRect, MultiPolygon};
 use kepler::geometry::{Point3, Vector3};
 use kepler::mesh::Mesh;
+use kepler::random::SplitMix64;
 use kepler::scene::{ObjectId, Scene};
 use kepler::solids;
 use kepler::surfaces::{Status, visfac};
@@ -298,13 +299,8 @@ fn locate(polygons: &MultiPolygon<f64>, p: [f64; 2]) -> (bool, f64) {
 fn visible_polygons_agree_with_visp() {
     use kepler::queries::visp::{Visibility, VisibilityIndex};
     use kepler::views::Picture;
-    let mut state = 0x5eed_u64;
-    let mut unit = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = SplitMix64(0x5eed);
+    let mut unit = move || rng.unit();
     let (mut checked, mut hidden) = (0usize, 0usize);
     for case in 0..12 {
         let mut scene = Scene::new();
@@ -389,13 +385,8 @@ fn kepler_face(points: &[[f64; 2]]) -> MultiPolygon<f64> {
 
 /// Random scenes of three rotated boxes (seeded).
 fn random_boxes(seed: u64) -> Scene {
-    let mut state = seed;
-    let mut unit = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = SplitMix64(seed);
+    let mut unit = move || rng.unit();
     let mut scene = Scene::new();
     for i in 0..3 {
         let size = Vector3::new(0.5 + 2.0 * unit(), 0.5 + 2.0 * unit(), 0.5 + 2.0 * unit());

@@ -62,7 +62,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use crate::common::exact::{
     P2, RefEye, RefView, V, cuboid_at, f2, parallelepiped, qp, ulp_of, ulps2,
 };
-use crate::common::{Q, Rng, q, qcross, qdot, qsign, qsub};
+use crate::common::{Q, SplitMix64, q, qcross, qdot, qsign, qsub};
 
 /// The largest error allowed for a vertex of a visible polygon, per coordinate, in units in the
 /// last place of the scene's scale.
@@ -1179,7 +1179,7 @@ fn lattice_scenes_touching_and_interpenetrating() {
 
 /// A random parallelepiped with dyadic vertices: a box of random size turned by a random
 /// rotation rounded to sixteenths (so its faces are exactly planar), anywhere in `[-2, 2]^3`.
-fn random_parallelepiped(rng: &mut Rng) -> Mesh {
+fn random_parallelepiped(rng: &mut SplitMix64) -> Mesh {
     let axis = nalgebra::Unit::new_normalize(rng.vector(1.0) + Vector3::new(1e-3, 0.0, 0.0));
     let r = nalgebra::Rotation3::from_axis_angle(&axis, rng.range(0.0, 6.3));
     let m = r.matrix().map(|x| (x * 16.0).round() / 16.0);
@@ -1194,7 +1194,7 @@ fn random_parallelepiped(rng: &mut Rng) -> Mesh {
 }
 
 /// A randomly turned octahedron (triangles: planar however rounded).
-fn random_octahedron(rng: &mut Rng) -> Mesh {
+fn random_octahedron(rng: &mut SplitMix64) -> Mesh {
     let axis = nalgebra::Unit::new_normalize(rng.vector(1.0) + Vector3::new(0.0, 1e-3, 0.0));
     let r = nalgebra::Rotation3::from_axis_angle(&axis, rng.range(0.0, 6.3));
     let t = nalgebra::Translation3::new(rng.range(-2.0, 2.0), rng.range(-2.0, 2.0), 0.0);
@@ -1206,14 +1206,14 @@ fn random_octahedron(rng: &mut Rng) -> Mesh {
 }
 
 /// A random box with integer corners in `[0, 4]^3`.
-fn random_lattice_box(rng: &mut Rng) -> Mesh {
+fn random_lattice_box(rng: &mut SplitMix64) -> Mesh {
     let lo = [0, 1, 2].map(|_| rng.int(0, 3));
     let hi = [0, 1, 2].map(|k| (lo[k] + rng.int(1, 2)).min(4.0));
     lattice_box(lo, hi)
 }
 
 /// A random general view: orthographic from any direction, or perspective from 12 to 18 away.
-fn random_view(rng: &mut Rng) -> View {
+fn random_view(rng: &mut SplitMix64) -> View {
     if rng.below(2) == 0 {
         let d = rng.vector(1.0) + Vector3::new(0.0, 0.0, 1e-3);
         View::orthographic(d, Vector3::z()).unwrap()
@@ -1228,7 +1228,7 @@ fn random_view(rng: &mut Rng) -> View {
 /// (e) Random scenes: turned boxes and octahedra from random views, and lattice boxes from
 /// lattice views.
 fn random_cases() -> Vec<Case> {
-    let mut rng = Rng(0x005e_ed0f_5a7f);
+    let mut rng = SplitMix64(0x005e_ed0f_5a7f);
     let lattice = lattice_views();
     let mut cases = Vec::new();
     for case in 0..24 {
@@ -1508,7 +1508,7 @@ enum ViewSpec {
 }
 
 impl ViewSpec {
-    fn random(rng: &mut Rng) -> ViewSpec {
+    fn random(rng: &mut SplitMix64) -> ViewSpec {
         let d = rng.vector(1.0) + Vector3::new(0.0, 0.0, 1e-3);
         if rng.below(2) == 0 {
             ViewSpec::Along([d.x, d.y, d.z])
@@ -1611,7 +1611,7 @@ fn faces_of(
 /// A random prism, turned by a rotation rounded to sixteenths (so its faces stay exactly
 /// planar): over a convex polygon with dyadic vertices (caps of 3 to 8 corners whose triangles
 /// differ in area), or over an L-shape (caps that are not convex).
-fn random_prism(rng: &mut Rng) -> Mesh {
+fn random_prism(rng: &mut SplitMix64) -> Mesh {
     use geo::ConvexHull;
     let outline = if rng.below(4) == 0 {
         let (a, b) = (rng.int(2, 6) / 4.0, rng.int(1, 3) / 4.0);
@@ -1645,7 +1645,7 @@ fn random_prism(rng: &mut Rng) -> Mesh {
 /// texture coordinates of a scaled scene are scaled).
 #[test]
 fn the_polygons_are_the_same_bits_mirrored_and_scaled() {
-    let mut rng = Rng(0x0000_5eed_0b17);
+    let mut rng = SplitMix64(0x0000_5eed_0b17);
     let mut mixed = 0;
     for case in 0..400 {
         let count = 2 + rng.below(3);

@@ -5,7 +5,7 @@
 //! through the plane of the eye hiding boxes in front), a box wholly behind the eye changes no
 //! bit of what a scene in front of it shows, and VISOBJ follows.
 
-use crate::common::Rng;
+use crate::common::SplitMix64;
 use crate::common::exact::cuboid_at;
 use geo::{InteriorPoint, MultiPolygon};
 use kepler::geometry::{Point3, Vector3};
@@ -28,7 +28,7 @@ fn view(eye: Point3, target: Point3) -> View {
 /// A room (a closed cube of edge 16 about the origin), an eye inside it and boxes that miss
 /// the eye and the walls.
 fn room(seed: u64) -> (Scene, View) {
-    let mut rng = Rng(seed);
+    let mut rng = SplitMix64(seed);
     let mut scene = Scene::new();
     scene
         .add_mesh(None, "room", kepler::solids::cube(16.0).unwrap())
@@ -72,7 +72,7 @@ fn well_inside(view: &View, x: &Point3) -> bool {
 }
 
 /// Sample points of a face (on its triangles, barycentric).
-fn samples(scene: &Scene, report: &FaceReport, rng: &mut Rng) -> Vec<Point3> {
+fn samples(scene: &Scene, report: &FaceReport, rng: &mut SplitMix64) -> Vec<Point3> {
     let mesh = scene[report.object].mesh().unwrap();
     let range = mesh.faces()[report.face].triangle_range();
     range
@@ -99,7 +99,7 @@ fn check(scene: &Scene, view: &View, seed: u64) -> ([usize; 3], usize) {
     let kepler::views::Eye::Point(eye) = *view.eye() else {
         unreachable!()
     };
-    let mut rng = Rng(seed ^ 0x5eed);
+    let mut rng = SplitMix64(seed ^ 0x5eed);
     let mut counts = [0; 3];
     // Points checked inside visible polygons, and sample points of VISIBLE or HIDDEN faces.
     let mut checked = [0; 2];
@@ -185,7 +185,7 @@ fn an_eye_inside_a_room_sees_only_its_frustum() {
 
 /// Boxes wholly inside the frustum of a view, and the view.
 fn in_front(seed: u64) -> (Scene, View, Vec<ObjectId>) {
-    let mut rng = Rng(seed);
+    let mut rng = SplitMix64(seed);
     let view = view(Point3::new(0.0, -20.0, 1.0), Point3::new(0.0, 0.0, 0.0));
     let frustum = view.frustum().unwrap();
     let mut scene = Scene::new();
@@ -252,7 +252,7 @@ fn occluders_across_the_plane_of_the_eye_hide_what_is_in_front() {
     let mut totals = [0; 3];
     for seed in 0..48 {
         let (mut scene, view, _) = in_front(seed);
-        let mut rng = Rng(seed ^ 0xba5);
+        let mut rng = SplitMix64(seed ^ 0xba5);
         let mut bars = 0;
         while bars < 3 {
             let size = [

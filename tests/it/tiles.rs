@@ -3,7 +3,7 @@
 //! stacked boxes whose edges and vertices lie on the windows' borders, on random boxes in
 //! random views and grids, and at extreme scales and offsets.
 
-use crate::common::Rng;
+use crate::common::SplitMix64;
 use crate::common::exact::cuboid_at;
 use kepler::geometry::{Point3, Vector3};
 use kepler::hidden::tiles::{TileDrawing, draw_tile, stitch, tile_windows};
@@ -113,7 +113,7 @@ fn metropolis_stitches_on_a_fine_grid() {
 /// borders pass through the boxes' vertices and along their edges.
 #[test]
 fn lattices_cut_through_vertices_and_along_edges() {
-    let mut rng = Rng(17);
+    let mut rng = SplitMix64(17);
     for round in 0..12 {
         let mut scene = Scene::new();
         for i in 0..6 {
@@ -137,7 +137,7 @@ fn lattices_cut_through_vertices_and_along_edges() {
         ];
         for (v, view) in views.iter().enumerate() {
             // Borders on whole and half units: through vertices, along edges.
-            let borders = |rng: &mut Rng| -> [f64; 2] {
+            let borders = |rng: &mut SplitMix64| -> [f64; 2] {
                 let a = rng.int(-1, 4) / rng.pick(&[1.0, 2.0]);
                 [a, a + rng.int(1, 3)]
             };
@@ -169,7 +169,7 @@ fn lattices_cut_through_vertices_and_along_edges() {
 /// Random boxes (some turned, some touching) in random views, random grids.
 #[test]
 fn random_boxes_in_random_views_and_grids() {
-    let mut rng = Rng(2026);
+    let mut rng = SplitMix64(2026);
     for round in 0..30 {
         let mut scene = Scene::new();
         for i in 0..5 {
@@ -399,7 +399,7 @@ fn the_city_seen_along_minus_1_minus_2_minus_3() {
 /// either side of them.
 #[test]
 fn borders_through_vertices_cuts_and_crossings_and_an_ulp_beside() {
-    let mut rng = Rng(2727);
+    let mut rng = SplitMix64(2727);
     let mut cases = 0;
     for round in 0..24 {
         let mut scene = Scene::new();
@@ -465,7 +465,7 @@ fn borders_through_vertices_cuts_and_crossings_and_an_ulp_beside() {
 /// overlaps kept and drawn once.
 #[test]
 fn bundled_scenes_in_random_views_and_grids() {
-    let mut rng = Rng(1616);
+    let mut rng = SplitMix64(1616);
     let scenes = [
         ("cube", true),
         ("solids", true),

@@ -8,6 +8,7 @@ use std::collections::HashMap;
 use kepler::bounds::tribox::{Tribox, TriboxBounds};
 use kepler::geometry::Point3;
 use kepler::geometry::exact::{accurate_sum, add_round_down, add_round_up, sum_sign, two_sum};
+use kepler::random::SplitMix64;
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{Float, Signed, ToPrimitive, Zero};
@@ -941,13 +942,8 @@ fn all_four_cases_occur_and_match() {
     // Deterministic pseudo-random clouds: every case appears at some corner, and each cloud
     // matches the brute force.
     let mut seen = [false; 5];
-    let mut state = 0x9e37_79b9_7f4a_7c15u64;
-    let mut next = || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = SplitMix64(0x9e37_79b9_7f4a_7c15);
+    let mut next = || rng.unit();
     for _ in 0..60 {
         let n = 3 + (next() * 6.0) as usize;
         let pts: Vec<Point3> = (0..n).map(|_| pt([next(), next(), next()])).collect();

@@ -7,7 +7,7 @@
 //!
 //! Each family runs 12 seeds here; the ignored `many_seeds` runs 300 of each.
 
-use crate::common::Rng;
+use crate::common::SplitMix64;
 use kepler::geometry::{Point3, Vector3};
 use kepler::hidden::verify::{Check, Source, Traced, Verification, draw_traced, verify};
 use kepler::hidden::{EdgeClass, EdgeSelection, Options};
@@ -340,7 +340,7 @@ const CASES: u64 = 12;
 /// Views that meet the degenerate cases: along the axes (faces of boxes edge-on), along a
 /// diagonal (edges end-on), random directions, and perspective from integer points, some of
 /// them in the planes of faces.
-fn views(rng: &mut Rng) -> Vec<View> {
+fn views(rng: &mut SplitMix64) -> Vec<View> {
     let mut views = vec![
         View::orthographic(Vector3::new(0.0, 0.0, -1.0), Vector3::y()).unwrap(),
         View::orthographic(Vector3::new(1.0, 0.0, 0.0), Vector3::z()).unwrap(),
@@ -363,10 +363,10 @@ fn views(rng: &mut Rng) -> Vec<View> {
     views
 }
 
-fn check_family(name: &str, cases: u64, build: impl Fn(&mut Rng) -> Scene) {
+fn check_family(name: &str, cases: u64, build: impl Fn(&mut SplitMix64) -> Scene) {
     let mut total = 0;
     for seed in 0..cases {
-        let mut rng = Rng(seed * 7919 + name.len() as u64);
+        let mut rng = SplitMix64(seed * 7919 + name.len() as u64);
         let scene = build(&mut rng);
         for (k, view) in views(&mut rng).iter().enumerate() {
             for edges in [EdgeSelection::Feature, EdgeSelection::All] {
@@ -388,7 +388,7 @@ fn check_family(name: &str, cases: u64, build: impl Fn(&mut Rng) -> Scene) {
 }
 
 /// A box on the integer grid in [-4, 4]³: touching, stacked, sharing face planes.
-fn grid_box(rng: &mut Rng) -> Mesh {
+fn grid_box(rng: &mut SplitMix64) -> Mesh {
     let lo = [0; 3].map(|_| rng.int(-4, 3));
     let hi = [0, 1, 2].map(|k| lo[k] + rng.int(1, 3));
     solids::box_between(lo, hi).unwrap()
@@ -402,7 +402,7 @@ fn scene_of(meshes: Vec<Mesh>) -> Scene {
     scene
 }
 
-fn boxes(rng: &mut Rng) -> Scene {
+fn boxes(rng: &mut SplitMix64) -> Scene {
     let n = 2 + rng.below(5);
     scene_of((0..n).map(|_| grid_box(rng)).collect())
 }
@@ -414,7 +414,7 @@ fn random_boxes_on_a_grid() {
 
 /// A tetrahedron with vertices on the integer grid (or random, when `generic`), turned
 /// outward.
-fn tetrahedron(rng: &mut Rng, generic: bool) -> Option<Mesh> {
+fn tetrahedron(rng: &mut SplitMix64, generic: bool) -> Option<Mesh> {
     let mut p: Vec<Point3> = (0..4)
         .map(|_| {
             if generic {
@@ -438,7 +438,7 @@ fn tetrahedron(rng: &mut Rng, generic: bool) -> Option<Mesh> {
     .ok()
 }
 
-fn tetrahedra(rng: &mut Rng) -> Scene {
+fn tetrahedra(rng: &mut SplitMix64) -> Scene {
     let n = 2 + rng.below(4);
     let generic = rng.below(2) == 0;
     scene_of((0..n).filter_map(|_| tetrahedron(rng, generic)).collect())
@@ -450,12 +450,12 @@ fn random_tetrahedra() {
 }
 
 /// A rotation about a random axis, as a matrix (its entries rounded).
-fn rotation(rng: &mut Rng) -> Matrix4<f64> {
+fn rotation(rng: &mut SplitMix64) -> Matrix4<f64> {
     let axis = Unit::new_normalize(rng.vector(1.0) + Vector3::new(0.0, 0.0, 1e-3));
     Rotation3::from_axis_angle(&axis, rng.range(0.0, std::f64::consts::TAU)).to_homogeneous()
 }
 
-fn touching_and_piercing(rng: &mut Rng) -> Scene {
+fn touching_and_piercing(rng: &mut SplitMix64) -> Scene {
     let mut meshes = vec![solids::box_between([0.0; 3], [2.0, 2.0, 2.0]).unwrap()];
     // One resting on the first, one sharing an edge with it, one piercing it; rotated or
     // not.
@@ -477,7 +477,7 @@ fn touching_and_piercing_solids() {
     check_family("touching and piercing", CASES, touching_and_piercing);
 }
 
-fn coplanar_and_edge_on(rng: &mut Rng) -> Scene {
+fn coplanar_and_edge_on(rng: &mut SplitMix64) -> Scene {
     // A stack of boxes sharing face planes, with a thin open square in a face's plane.
     let mut meshes: Vec<Mesh> = (0..3)
         .map(|k| {
@@ -508,7 +508,7 @@ fn coplanar_and_edge_on_faces() {
 
 /// A cone of `n` triangles around an apex, its base a polygon on the integer grid, open or
 /// closed.
-fn fan(rng: &mut Rng) -> Mesh {
+fn fan(rng: &mut SplitMix64) -> Mesh {
     let n = 8 + rng.below(40);
     // Off the grid of the boxes' edges (an edge through the apex is cut there: see
     // `an_edge_through_a_vertex_of_another_solid_is_cut_there`).
@@ -534,7 +534,7 @@ fn fan(rng: &mut Rng) -> Mesh {
     Mesh::from_polygons(vertices, faces).unwrap()
 }
 
-fn fan_scene(rng: &mut Rng) -> Scene {
+fn fan_scene(rng: &mut SplitMix64) -> Scene {
     let mut meshes = vec![fan(rng)];
     if rng.below(2) == 0 {
         meshes.push(grid_box(rng));
@@ -618,7 +618,7 @@ fn far_perspective_eyes_pass() {
 // Stiff families: features eight orders of magnitude apart, slivers, near-coplanar faces.
 
 /// Axis, diagonal and random orthographic views and a perspective view from outside the scene.
-fn views_of(rng: &mut Rng, scene: &Scene) -> Vec<View> {
+fn views_of(rng: &mut SplitMix64, scene: &Scene) -> Vec<View> {
     vec![
         View::orthographic(Vector3::new(0.0, 0.0, -1.0), Vector3::y()).unwrap(),
         View::orthographic(Vector3::new(1.0, 0.0, 0.0), Vector3::z()).unwrap(),
@@ -628,9 +628,9 @@ fn views_of(rng: &mut Rng, scene: &Scene) -> Vec<View> {
     ]
 }
 
-fn check_stiff(name: &str, cases: u64, build: impl Fn(&mut Rng) -> Scene) {
+fn check_stiff(name: &str, cases: u64, build: impl Fn(&mut SplitMix64) -> Scene) {
     for seed in 0..cases {
-        let mut rng = Rng(seed * 104_729 + name.len() as u64);
+        let mut rng = SplitMix64(seed * 104_729 + name.len() as u64);
         let scene = build(&mut rng);
         for (k, view) in views_of(&mut rng, &scene).iter().enumerate() {
             for edges in [EdgeSelection::Feature, EdgeSelection::All] {
@@ -845,7 +845,7 @@ fn edges_entering_a_box_across_a_split_diagonal_are_cut_there() {
 /// One case of [`boxes_with_faces_not_exactly_planar_pass_in_every_selection`].
 fn box_not_exactly_planar(seed: u64) {
     {
-        let mut rng = Rng(seed * 3_571 + 5);
+        let mut rng = SplitMix64(seed * 3_571 + 5);
         let lo = [0; 3].map(|_| rng.int(-4, 3));
         let hi = [0, 1, 2].map(|k| lo[k] + rng.int(1, 3));
         let mut v = box_vertices(lo, hi);
@@ -875,7 +875,7 @@ fn box_not_exactly_planar(seed: u64) {
 
 /// The faces that replace the quad `[a, b, c, d]` split at the vertices `xs` inserted in order
 /// along its side `ab`: the quad's other sides stay whole.
-fn split_quad(rng: &mut Rng, [a, b, c, d]: [u32; 4], xs: &[u32]) -> Vec<Vec<u32>> {
+fn split_quad(rng: &mut SplitMix64, [a, b, c, d]: [u32; 4], xs: &[u32]) -> Vec<Vec<u32>> {
     match *xs {
         [x] if rng.below(2) == 0 => vec![vec![a, x, c, d], vec![x, b, c]],
         [x] => vec![vec![a, x, d], vec![x, b, c, d]],
@@ -888,7 +888,7 @@ fn split_quad(rng: &mut Rng, [a, b, c, d]: [u32; 4], xs: &[u32]) -> Vec<Vec<u32>
 /// dyadic points of a random edge, one of the edge's faces split there (the other face's side
 /// then has T-junctions); sometimes the other face split too, at another dyadic point (each
 /// face's side then has a T-junction where the other's is split: the pieces alternate).
-fn box_with_t_junctions(rng: &mut Rng) -> (Mesh, Mesh) {
+fn box_with_t_junctions(rng: &mut SplitMix64) -> (Mesh, Mesh) {
     let lo = [0; 3].map(|_| rng.int(-4, 3));
     let hi = [0, 1, 2].map(|k| lo[k] + rng.int(1, 3));
     let mut vertices = box_vertices(lo, hi);
@@ -941,7 +941,7 @@ fn box_with_t_junctions(rng: &mut Rng) -> (Mesh, Mesh) {
 #[test]
 fn boxes_with_t_junctions_draw_as_without_them_and_pass() {
     for seed in 0..CASES {
-        let mut rng = Rng(seed * 6_151 + 17);
+        let mut rng = SplitMix64(seed * 6_151 + 17);
         let (plain, junctions) = box_with_t_junctions(&mut rng);
         let (plain, junctions) = (scene_of(vec![plain]), scene_of(vec![junctions]));
         for (k, view) in views(&mut rng).iter().enumerate() {
@@ -1104,7 +1104,7 @@ fn t_junctions_of_a_cube_and_of_an_open_mesh_pass() {
 #[test]
 fn coplanar_triangles_seen_edge_on_draw_as_their_polygon() {
     for seed in 0..4 {
-        let mut rng = Rng(seed * 911 + 3);
+        let mut rng = SplitMix64(seed * 911 + 3);
         let lo = [0; 3].map(|_| rng.int(-4, 3));
         let hi = [0, 1, 2].map(|k| lo[k] + rng.int(1, 3));
         let v = box_vertices(lo, hi);

@@ -16,7 +16,7 @@ use nalgebra::{Matrix4, Rotation3, Unit};
 use num_traits::{Signed, Zero};
 use std::cmp::Ordering;
 
-use crate::common::{Q, Rng, q, qcross, qdot, qsign, qsub, qv};
+use crate::common::{Q, SplitMix64, q, qcross, qdot, qsign, qsub, qv};
 
 use Visibility::{Hidden, Visible};
 
@@ -907,7 +907,7 @@ fn lattice_l_prism(at: [f64; 3]) -> Mesh {
 }
 
 /// A random mesh (a solid of several kinds) turned, scaled and moved at random.
-fn random_mesh(rng: &mut Rng) -> Mesh {
+fn random_mesh(rng: &mut SplitMix64) -> Mesh {
     let mesh = match rng.below(8) {
         0 => solids::cube(rng.range(0.5, 2.0)).unwrap(),
         1 => solids::cuboid(Vector3::new(
@@ -937,7 +937,7 @@ fn random_mesh(rng: &mut Rng) -> Mesh {
 
 /// A scene of 3 to 5 random meshes: at the top level, in a group, and in a group inside it;
 /// each mesh then moved by `world`.
-fn random_scene(rng: &mut Rng, world: &Matrix4<f64>) -> Scene {
+fn random_scene(rng: &mut SplitMix64, world: &Matrix4<f64>) -> Scene {
     let mut s = Scene::new();
     let g = s.add_group(None, "g").unwrap();
     let h = s.add_group(Some(g), "h").unwrap();
@@ -986,7 +986,7 @@ fn centre_and_extent(s: &Scene) -> (Point3, f64) {
 
 /// A random orthographic view (general, with zero components, or along an axis) or a
 /// perspective view from an eye outside the scene's box.
-fn random_view(rng: &mut Rng, s: &Scene) -> View {
+fn random_view(rng: &mut SplitMix64, s: &Scene) -> View {
     let (lo, hi) = scene_box(s);
     let (centre, extent) = centre_and_extent(s);
     match rng.below(5) {
@@ -1020,7 +1020,7 @@ fn random_view(rng: &mut Rng, s: &Scene) -> View {
 /// Test points: uniform in and around the scene's box, vertices, edge midpoints, centroids,
 /// lattice points, points on lines of sight through vertices and edge midpoints, and points
 /// beyond a perspective eye.
-fn random_points(rng: &mut Rng, s: &Scene, eye: &Eye, n: usize) -> Vec<Point3> {
+fn random_points(rng: &mut SplitMix64, s: &Scene, eye: &Eye, n: usize) -> Vec<Point3> {
     let (lo, hi) = scene_box(s);
     let (_, extent) = centre_and_extent(s);
     let margin = 0.2 * extent;
@@ -1135,7 +1135,7 @@ fn is_in(s: &Scene, mut id: ObjectId, root: ObjectId) -> bool {
 
 #[test]
 fn random_scenes_against_brute_force() {
-    let mut rng = Rng(0x5eed_0001);
+    let mut rng = SplitMix64(0x5eed_0001);
     let mut tally = Tally::default();
     for scene_number in 0..12 {
         let s = random_scene(&mut rng, &Matrix4::identity());
@@ -1165,7 +1165,7 @@ fn random_scenes_against_brute_force() {
 /// must keep their margins (never miss a box the exact line of sight meets).
 #[test]
 fn far_and_scaled_scenes_against_brute_force() {
-    let mut rng = Rng(0x5eed_0002);
+    let mut rng = SplitMix64(0x5eed_0002);
     let mut tally = Tally::default();
     let worlds = [
         Matrix4::new_translation(&Vector3::new(1e6, -2.5e6, 7e5)),
@@ -1192,7 +1192,7 @@ fn far_and_scaled_scenes_against_brute_force() {
 /// vertices abound, and every one is checked against the perturbation worked out exactly.
 #[test]
 fn lattice_scenes_against_the_exact_perturbation() {
-    let mut rng = Rng(0x1a77_1ce5);
+    let mut rng = SplitMix64(0x1a77_1ce5);
     let mut tally = Tally::default();
     for scene_number in 0..8 {
         let mut s = Scene::new();
@@ -1524,7 +1524,7 @@ fn rays_hand_made() {
 
 #[test]
 fn random_rays_against_exact_reference() {
-    let mut rng = Rng(0x0a7e_5eed_1234);
+    let mut rng = SplitMix64(0x0a7e_5eed_1234);
     let mut hits = 0;
     let mut total = 0;
     for scene_number in 0..10 {
@@ -1563,7 +1563,7 @@ fn random_rays_against_exact_reference() {
 /// meshes: every tie and grazing case.
 #[test]
 fn lattice_rays_against_exact_reference() {
-    let mut rng = Rng(0x1a77_1ce5_0002);
+    let mut rng = SplitMix64(0x1a77_1ce5_0002);
     let mut s = Scene::new();
     let g = s.add_group(None, "g").unwrap();
     s.add_mesh(

@@ -11,8 +11,8 @@ use kepler::hidden::ideographs::{Ideograph, ideographs};
 use kepler::hidden::verify::{Traced, draw_traced, verify};
 use kepler::hidden::{self, Drawing, EdgeClass, EdgeSelection, Overlaps};
 use kepler::output::{
-    DxfFormat, HatchLayer, PageTransform, Shading, SvgOptions, ordered, page_transform, pen_order,
-    pen_travel, write_dxf, write_json, write_svg_with_hatches,
+    DxfFormat, Finishing, HatchLayer, PageTransform, Shading, SvgOptions, finish, ordered_paths,
+    page_transform, write_dxf, write_json, write_svg_with_hatches,
 };
 use kepler::scene::Scene;
 use kepler::surfaces::hatch::{Hatching, hatch_faces};
@@ -185,9 +185,22 @@ pub fn run(args: Args) -> Result<()> {
         None => (scene, None),
     };
     let loaded = started.elapsed();
-    let traced = draw(&scene, &view, &options, args.verify)?;
-    let (plotted, plotter_stats) = for_plotters(&traced.drawing, &args);
-    let drawing = &plotted;
+    let mut traced = draw(&scene, &view, &options, args.verify)?;
+    // `--verify` checks the drawing as the pass made it; without it the pass's drawing is
+    // not needed after finishing.
+    let drawn = if args.verify {
+        traced.drawing.clone()
+    } else {
+        std::mem::replace(
+            &mut traced.drawing,
+            Drawing {
+                polylines: Vec::new(),
+                stages: Vec::new(),
+            },
+        )
+    };
+    let finished = finish(drawn, &Finishing { order: args.order });
+    let drawing = &finished.drawing;
     let (hatches, hatch_stats) = if args.hatch {
         hatch(&scene, &view, drawing, &svg_options, &args)?
     } else {
@@ -218,7 +231,7 @@ pub fn run(args: Args) -> Result<()> {
             );
         }
         eprintln!("{repairs}");
-        let plotter = plotter_stats + &hatch_stats;
+        let plotter = finished.stats() + &hatch_stats;
         eprint!("{}", stats_report(drawing, loaded, &plotter, written));
     }
     if args.verify {
@@ -263,17 +276,7 @@ fn hatch(
         .flat_map(|f| f.hatch.runs.iter().map(|r| r.points.clone()))
         .collect();
     let polylines = if args.order {
-        let paths: Vec<&[[f64; 2]]> = polylines.iter().map(Vec::as_slice).collect();
-        pen_order(&paths)
-            .into_iter()
-            .map(|(i, reversed)| {
-                let mut path = polylines[i].clone();
-                if reversed {
-                    path.reverse();
-                }
-                path
-            })
-            .collect()
+        ordered_paths(polylines)
     } else {
         polylines
     };
@@ -364,32 +367,6 @@ fn draw(scene: &Scene, view: &View, options: &hidden::Options, traced: bool) -> 
         bar.finish_and_clear();
     }
     Ok(traced)
-}
-
-/// The drawing as written: paths in pen order with `--order` (the pass has drawn each stretch
-/// of line once unless `--keep-overlaps`); and the `--stats` line of that step.
-fn for_plotters(drawing: &Drawing, args: &Args) -> (Drawing, String) {
-    let mut stats = String::new();
-    let clock = Instant::now();
-    let before = pen_travel(drawing);
-    let drawing = if args.order {
-        let drawing = ordered(drawing);
-        let _ = writeln!(
-            stats,
-            "order          {:>7.4}  pen travel between paths {before:.6} -> {:.6} (view coordinates)",
-            clock.elapsed().as_secs_f64(),
-            pen_travel(&drawing)
-        );
-        drawing
-    } else {
-        let _ = writeln!(
-            stats,
-            "order          {:>7}  skipped: pen travel between paths {before:.6} (--order shortens it)",
-            ""
-        );
-        drawing.clone()
-    };
-    (drawing, stats)
 }
 
 /// The `--stats` report: each stage, then lengths per class.

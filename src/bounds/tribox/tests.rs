@@ -11,26 +11,7 @@ use super::forms::CASE_TESTS;
 use super::{Tribox, TriboxBounds};
 use crate::geometry::Point3;
 use crate::geometry::exact::{accurate_sum, sum_sign};
-
-/// A xorshift generator.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-
-    fn unit(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn below(&mut self, n: u64) -> u64 {
-        self.next() % n
-    }
-}
+use crate::random::SplitMix64;
 
 /// The boundary by the generic corner formulas on exact forms (every clamped chamfer the
 /// form of its two principal bounds): each sign exact, each coordinate correctly rounded.
@@ -77,11 +58,11 @@ fn assert_same(t: &Tribox, r: &Tribox, b: &TriboxBounds) {
 /// A random cloud of a few points: generic, on a coarse grid (many exact ties and clamped
 /// chamfers whose sums cancel exactly), or of wildly different magnitudes; scaled by a
 /// power of ten from 1e-310 to 1e300, mixed signs (and no sum of bounds overflows).
-fn cloud(rng: &mut Rng) -> Vec<Point3> {
+fn cloud(rng: &mut SplitMix64) -> Vec<Point3> {
     const SCALES: [f64; 8] = [1.0, 1e-300, 1e300, 1e-160, 3e150, 1e-310, 0.1, -7.0];
-    let scale = SCALES[rng.below(8) as usize];
+    let scale = SCALES[rng.below(8)];
     let kind = rng.below(6);
-    let n = 1 + rng.below(9) as usize;
+    let n = 1 + rng.below(9);
     (0..n)
         .map(|_| {
             let mut c = [0.0; 3];
@@ -92,7 +73,7 @@ fn cloud(rng: &mut Rng) -> Vec<Point3> {
                         1 => (rng.below(5) as f64 - 2.0) * 0.5,
                         2 => rng.below(3) as f64,
                         3 => (rng.unit() - 0.5) * 2f64.powi(rng.below(120) as i32 - 100),
-                        4 => rng.below(4) as f64 * 0.1 + [0.0, 1e-17][rng.below(2) as usize],
+                        4 => rng.below(4) as f64 * 0.1 + [0.0, 1e-17][rng.below(2)],
                         _ => rng.unit(),
                     };
             }
@@ -103,7 +84,7 @@ fn cloud(rng: &mut Rng) -> Vec<Point3> {
 
 #[test]
 fn simplified_forms_match_the_exact_formulas() {
-    let mut rng = Rng(0x1234_5678_9abc_def1);
+    let mut rng = SplitMix64(0x1234_5678_9abc_def1);
     let mut masks = [0usize; 8];
     let mut cases = [0usize; 5];
     for it in 0..100_000 {
@@ -111,9 +92,9 @@ fn simplified_forms_match_the_exact_formulas() {
         if it % 3 == 2 {
             // Bounds of no point set: random cuts across random directions.
             for _ in 0..1 + rng.below(4) {
-                let d = rng.below(9) as usize;
+                let d = rng.below(9);
                 let (lo, hi) = (b.min()[d], b.max()[d]);
-                let pick = b.split(d, lo + (hi - lo) * rng.unit())[rng.below(2) as usize];
+                let pick = b.split(d, lo + (hi - lo) * rng.unit())[rng.below(2)];
                 if !pick.is_empty() {
                     b = pick;
                 }
@@ -139,11 +120,11 @@ fn simplified_forms_match_the_exact_formulas() {
 /// chamfers equal the sum of their principal bounds, and p lies on a principal plane,
 /// exactly and often), with chamfers set to the rounded sum of their principal bounds and
 /// bounds moved by an ulp either way; from subnormal scales to near overflow.
-fn edge_bounds(rng: &mut Rng) -> TriboxBounds {
+fn edge_bounds(rng: &mut SplitMix64) -> TriboxBounds {
     const SCALES: [i32; 8] = [-1074, -1060, -1000, -500, 0, 30, 500, 1000];
-    let scale = 2f64.powi(SCALES[rng.below(8) as usize]);
+    let scale = 2f64.powi(SCALES[rng.below(8)]);
     // An odd factor makes sums inexact (and their errors ties of a half ulp) at times.
-    let factor = [1.0, 3.0, 0.1, 1.0 + f64::EPSILON][rng.below(4) as usize];
+    let factor = [1.0, 3.0, 0.1, 1.0 + f64::EPSILON][rng.below(4)];
     let mut beta: [f64; 18] = std::array::from_fn(|j| {
         let range = if j < 6 { 5 } else { 9 };
         (rng.below(range) as f64 - 1.0) * factor * scale
@@ -155,7 +136,7 @@ fn edge_bounds(rng: &mut Rng) -> TriboxBounds {
         }
     }
     for _ in 0..rng.below(4) {
-        let j = rng.below(18) as usize;
+        let j = rng.below(18);
         beta[j] = if rng.below(2) == 0 {
             beta[j].next_up()
         } else {
@@ -167,7 +148,7 @@ fn edge_bounds(rng: &mut Rng) -> TriboxBounds {
 
 #[test]
 fn ties_and_near_ties_match_the_exact_formulas() {
-    let mut rng = Rng(0x0bad_cafe_f00d_d00d);
+    let mut rng = SplitMix64(0x0bad_cafe_f00d_d00d);
     // Corner tests (x_p > α_A and cyclically) that are exactly zero, and that the rounded
     // doubled p cannot decide (equal to 2α but not exactly), on unclamped corners.
     let (mut zero, mut undecided, mut clamp_ties) = (0, 0, 0);

@@ -19,6 +19,7 @@ use super::{Span, rounding};
 use crate::hidden::marks::Provenance;
 use crate::hidden::piece::Piece;
 use crate::sight::collinear::Support;
+use crate::union_find::UnionFind;
 use rayon::prelude::*;
 use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::{AABB, RTree};
@@ -208,7 +209,7 @@ fn runs(
 struct Grouping<'a, P> {
     provenance: &'a P,
     spans: &'a [Span],
-    parent: Vec<usize>,
+    sets: UnionFind,
     /// The supports of the spans compared so far, and whether their pictures are lines (few
     /// spans are: a map, not a slot for each).
     supports: HashMap<usize, (Support, bool)>,
@@ -219,7 +220,7 @@ impl<'a, P: Provenance> Grouping<'a, P> {
         Grouping {
             provenance,
             spans,
-            parent: (0..spans.len()).collect(),
+            sets: UnionFind::new(spans.len()),
             supports: HashMap::new(),
         }
     }
@@ -234,18 +235,9 @@ impl<'a, P: Provenance> Grouping<'a, P> {
         pictured.then_some(support)
     }
 
-    fn root(&mut self, mut s: usize) -> usize {
-        while self.parent[s] != s {
-            self.parent[s] = self.parent[self.parent[s]];
-            s = self.parent[s];
-        }
-        s
-    }
-
     /// Whether spans `s` and `t` lie on one picture line (exactly); joins them if so.
     fn join_if_same(&mut self, s: usize, t: usize) -> bool {
-        let (a, b) = (self.root(s), self.root(t));
-        if a == b {
+        if self.sets.find(s) == self.sets.find(t) {
             return true;
         }
         let (Some(x), Some(y)) = (self.support(s), self.support(t)) else {
@@ -254,16 +246,13 @@ impl<'a, P: Provenance> Grouping<'a, P> {
         if !x.same_picture(&y, self.provenance.eye()) {
             return false;
         }
-        self.parent[a.max(b)] = a.min(b);
+        self.sets.union_least(s, t);
         true
     }
 
     /// Joins the groups of spans `s` and `t`.
     fn join(&mut self, s: usize, t: usize) {
-        let (a, b) = (self.root(s), self.root(t));
-        if a != b {
-            self.parent[a.max(b)] = a.min(b);
-        }
+        self.sets.union_least(s, t);
     }
 
     /// Compares each short line with the lines that have a piece whose box, grown by the
@@ -314,10 +303,10 @@ impl<'a, P: Provenance> Grouping<'a, P> {
 
     /// The groups of two or more spans.
     fn groups(mut self) -> Vec<Vec<usize>> {
-        let n = self.parent.len();
+        let n = self.sets.len();
         let mut members: Vec<Vec<usize>> = vec![Vec::new(); n];
         for s in 0..n {
-            let r = self.root(s);
+            let r = self.sets.find(s);
             members[r].push(s);
         }
         let mut out: Vec<Vec<usize>> = members.into_iter().filter(|m| m.len() > 1).collect();

@@ -5,6 +5,7 @@
 use super::super::EdgeClass;
 use crate::geometry::Point3;
 use crate::mesh::Mesh;
+use crate::union_find::UnionFind;
 use crate::views::Eye;
 use std::cmp::Ordering;
 use std::collections::HashMap;
@@ -54,18 +55,18 @@ pub(super) type Cover = Vec<Vec<Vec<EdgeKey>>>;
 
 impl Chains {
     /// The chains of the sides `long` (each its vertices in order along it), of which those
-    /// with an index of one root in `parent` (a union-find forest) share pieces; and the chain
+    /// in one of the disjoint `sets` share pieces; and the chain
     /// of each side.
     pub(super) fn new(
         vertices: &[Point3],
         long: &[Vec<u32>],
-        parent: &mut [usize],
+        sets: &mut UnionFind,
     ) -> (Chains, Vec<usize>) {
         let mut chains = Chains::default();
         let mut of_root: HashMap<usize, usize> = HashMap::new();
         let mut chain_of = Vec::with_capacity(long.len());
         for (id, side) in long.iter().enumerate() {
-            let r = root(parent, id);
+            let r = sets.find(id);
             let c = *of_root.entry(r).or_insert_with(|| {
                 chains.points.push(Vec::new());
                 chains.points.len() - 1
@@ -155,15 +156,6 @@ impl Chains {
     }
 }
 
-/// The root of `g` in the union-find forest `parent`, halving the path.
-fn root(parent: &mut [usize], mut g: usize) -> usize {
-    while parent[g] != g {
-        parent[g] = parent[parent[g]];
-        g = parent[g];
-    }
-    g
-}
-
 /// A side of a triangle, or a piece of one between consecutive vertices lying on it (at
 /// T-junctions): the edge (lower, higher vertex), the triangle, whether the triangle runs along
 /// the edge from lower to higher, and the index of the side with T-junctions it is a piece of
@@ -246,13 +238,12 @@ pub(super) fn contour_edges(mesh: &Mesh, eye: &Eye) -> Contours {
     sides.sort_unstable();
     let groups: Vec<&[SidePiece]> = sides.chunk_by(|x, y| x.0 == y.0).collect();
     // Sides with T-junctions that share a piece lie on one line: one chain.
-    let mut parent: Vec<usize> = (0..long.len()).collect();
+    let mut sets = UnionFind::new(long.len());
     for group in &groups {
         let mut ids = group.iter().map(|s| s.3).filter(|&id| id != WHOLE);
         if let Some(first) = ids.next() {
             for id in ids {
-                let (r1, r2) = (root(&mut parent, first), root(&mut parent, id));
-                parent[r2] = r1;
+                sets.union(first, id);
             }
         }
     }
@@ -300,7 +291,7 @@ pub(super) fn contour_edges(mesh: &Mesh, eye: &Eye) -> Contours {
             None => unchecked += 1,
         }
     }
-    let (chains, chain_of) = Chains::new(vertices, &long, &mut parent);
+    let (chains, chain_of) = Chains::new(vertices, &long, &mut sets);
     for c in &mut contours {
         c.chain = c.chain.and_then(|id| chain_of.get(id).copied());
     }

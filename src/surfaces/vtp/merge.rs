@@ -5,12 +5,12 @@
 
 use super::rings::Piece;
 use super::signs::{form, times};
-use super::union_find::UnionFind;
 use super::{At, Vertex, Vtp};
 use crate::geometry::kernel::Polynomial;
 use crate::mesh::TextureFrame;
 use crate::sight::along::{cut_point, cut_point_on_plane};
 use crate::surfaces::lines::{self, Kind, Turn};
+use crate::union_find::UnionFind;
 use geo::{Coord, LineString, MultiPolygon, Polygon};
 use std::cmp::Ordering;
 use std::collections::HashMap;
@@ -182,7 +182,7 @@ impl<'a> Vtp<'a> {
         let mut at: Vec<u32> = Vec::new();
         for (i, &v) in ends.iter().enumerate() {
             if i > 0 && self.along(l, ends[i - 1], v) == Ordering::Equal {
-                points.union(ends[i - 1] as usize, v as usize);
+                points.union_least(ends[i - 1] as usize, v as usize);
             } else {
                 at.push(v);
             }
@@ -199,7 +199,7 @@ impl<'a> Vtp<'a> {
         }
         for j in 0..intervals {
             match (cover[0][j], cover[1][j]) {
-                (Some(a), Some(b)) => components.union(a, b),
+                (Some(a), Some(b)) => components.union_least(a, b),
                 // The cell on the positive side: walk against q_L, keeping it on the left.
                 (Some(c), None) => pieces.push(Piece {
                     from: at[j + 1],

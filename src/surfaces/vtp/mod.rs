@@ -33,9 +33,9 @@
 //! # Files
 //! - [`signs`]: lines, vertices and exact signs;
 //! - [`subtract`]: cell subtraction (occluder pieces and the clip);
-//! - [`merge`]: merging the cells into polygons, and the construction of their vertices;
-//! - [`rings`]: linking boundary pieces into rings;
-//! - [`union_find`]: disjoint sets.
+//! - [`merge`]: merging the cells into polygons (disjoint sets of equal points and of
+//!   connected cells, `crate::union_find`), and the construction of their vertices;
+//! - [`rings`]: linking boundary pieces into rings.
 
 /// Merging the cells into polygons.
 mod merge;
@@ -45,8 +45,6 @@ mod rings;
 mod signs;
 /// Cell subtraction.
 mod subtract;
-/// Disjoint sets.
-mod union_find;
 
 use super::lines::{Crossing, Frame, Kind, Line};
 use crate::geometry::Point3;

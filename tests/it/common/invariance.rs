@@ -7,7 +7,7 @@
 //! polylines may legitimately differ, nothing else; and the overlap stage must have removed
 //! the same groups of segments.
 
-use super::Rng;
+use super::SplitMix64;
 use kepler::geometry::{Point3, Vector3};
 use kepler::hidden::{Drawing, EdgeClass, Options, draw};
 use kepler::mesh::Mesh;
@@ -168,7 +168,7 @@ impl Transform {
     }
 }
 
-pub fn dyadic(rng: &mut Rng, lo: i32, hi: i32) -> f64 {
+pub fn dyadic(rng: &mut SplitMix64, lo: i32, hi: i32) -> f64 {
     rng.int(4 * lo, 4 * hi) / 4.0
 }
 
@@ -190,7 +190,7 @@ pub fn outward(vertices: Vec<Point3>, faces: Vec<Vec<u32>>) -> Solid {
     }
 }
 
-pub fn small_vector(rng: &mut Rng) -> Vector3 {
+pub fn small_vector(rng: &mut SplitMix64) -> Vector3 {
     loop {
         let v = Vector3::new(rng.int(-4, 4), rng.int(-4, 4), rng.int(-4, 4));
         if v != Vector3::zeros() {
@@ -199,7 +199,7 @@ pub fn small_vector(rng: &mut Rng) -> Vector3 {
     }
 }
 
-pub fn random_view(rng: &mut Rng, perspective: bool) -> ViewSpec {
+pub fn random_view(rng: &mut SplitMix64, perspective: bool) -> ViewSpec {
     loop {
         let up = small_vector(rng);
         let spec = if perspective {
@@ -278,7 +278,7 @@ pub struct Setup {
     pub options: Options,
     pub seeds: u64,
     pub base: u64,
-    pub scene: fn(&mut Rng) -> Vec<Solid>,
+    pub scene: fn(&mut SplitMix64) -> Vec<Solid>,
     /// Whether a drawing has what the family is about (intersection lines, overlaps).
     pub about: fn(&Drawing) -> bool,
 }
@@ -373,11 +373,11 @@ pub fn check(
 pub fn over_scenes(
     setup: &Setup,
     name: &str,
-    family: impl Fn(&mut Tally, &mut Rng, &[Solid], &ViewSpec),
+    family: impl Fn(&mut Tally, &mut SplitMix64, &[Solid], &ViewSpec),
 ) -> Tally {
     let mut tally = Tally::default();
     for seed in 0..setup.seeds {
-        let mut rng = Rng(setup.base + seed);
+        let mut rng = SplitMix64(setup.base + seed);
         tally.seed = seed;
         let scene = (setup.scene)(&mut rng);
         for perspective in [false, true] {
@@ -396,7 +396,7 @@ pub fn over_scenes(
 /// A random orthographic view along an axis (its index), with an up direction across it: its
 /// frame has exact zeros along the axis, so a translation along it leaves every exact picture
 /// unchanged.
-pub fn along_an_axis(rng: &mut Rng) -> (usize, ViewSpec) {
+pub fn along_an_axis(rng: &mut SplitMix64) -> (usize, ViewSpec) {
     let axis = rng.below(3);
     let mut direction = Vector3::zeros();
     direction[axis] = if rng.below(2) == 0 { 1.0 } else { -2.0 };

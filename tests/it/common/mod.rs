@@ -5,48 +5,12 @@
 pub mod exact;
 pub mod invariance;
 
-use kepler::geometry::Vector3;
 use num_rational::BigRational;
 use num_traits::Signed;
 use std::cmp::Ordering;
 
-/// SplitMix64: a small deterministic generator, so failures reproduce.
-pub struct Rng(pub u64);
-
-impl Rng {
-    pub fn next_u64(&mut self) -> u64 {
-        // SplitMix64.
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-
-    pub fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-
-    pub fn below(&mut self, n: usize) -> usize {
-        (self.next_u64() % n as u64) as usize
-    }
-
-    pub fn int(&mut self, lo: i32, hi: i32) -> f64 {
-        f64::from(lo + self.below((hi - lo + 1) as usize) as i32)
-    }
-
-    pub fn vector(&mut self, r: f64) -> Vector3 {
-        Vector3::new(self.range(-r, r), self.range(-r, r), self.range(-r, r))
-    }
-
-    pub fn pick<T: Copy>(&mut self, items: &[T]) -> T {
-        items[self.below(items.len())]
-    }
-}
+/// The crate's seeded generator, so failures reproduce.
+pub use kepler::random::SplitMix64;
 
 /// Exact rationals: every finite `f64` converts exactly.
 pub type Q = BigRational;
