@@ -50,19 +50,15 @@ impl UnionFind {
 
 #[cfg(test)]
 mod tests {
-    use super::UnionFind;
+    use crate::random::SplitMix64;
+    use crate::union_find::UnionFind;
 
     /// Against a brute-force labelling: after random joins (both rules), two indices have
     /// one root exactly when a chain of joins links them, and `union_least` roots are least.
     #[test]
     fn roots_agree_with_brute_force_labels() {
-        let mut state = 0x2545_f491_4f6c_dd1d_u64;
-        let mut next = |n: usize| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state % n as u64) as usize
-        };
+        let mut rng = SplitMix64(0x2545_f491_4f6c_dd1d);
+        let mut next = |n: usize| rng.below(n);
         for round in 0..200 {
             let n = 1 + next(40);
             let mut sets = UnionFind::new(n);

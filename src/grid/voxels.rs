@@ -53,7 +53,7 @@ pub struct Voxels {
 
 /// A convex polygon of at most 9 points (a triangle clipped by up to four planes).
 #[derive(Clone, Copy)]
-struct Piece {
+struct Clipped {
     points: [[f64; 3]; 9],
     len: usize,
 }
@@ -154,7 +154,7 @@ impl Voxels {
     /// assert_eq!(cells, vec![0, 1, 2, 3, 4, 6]); // not the cells 5, 7, 8 beyond x + y = 2.8
     /// ```
     pub fn triangle_cells(&self, t: &[Point3; 3], out: &mut Vec<u64>) {
-        let mut whole = Piece {
+        let mut whole = Clipped {
             points: [[0.0; 3]; 9],
             len: 3,
         };
@@ -267,7 +267,7 @@ impl Voxels {
 
     /// The indices along axis `k` of the cells that the piece's range, widened by the margin,
     /// reaches.
-    fn range(&self, piece: &Piece, k: usize) -> [usize; 2] {
+    fn range(&self, piece: &Clipped, k: usize) -> [usize; 2] {
         let (lo, hi) = piece.points[..piece.len]
             .iter()
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
@@ -286,7 +286,7 @@ impl Voxels {
     }
 
     /// Whether the piece's range along axis `k` reaches the region's, widened by the margin.
-    fn reaches(&self, piece: &Piece, k: usize) -> bool {
+    fn reaches(&self, piece: &Clipped, k: usize) -> bool {
         let points = &piece.points[..piece.len];
         points.iter().any(|p| p[k] >= self.low[k] - self.margin)
             && points
@@ -297,7 +297,7 @@ impl Voxels {
     /// The part of `piece` in the slab of cells `i` across axis `k`, widened by the margin
     /// (unbounded beyond the first and last cells, which hold everything outside the region,
     /// unless the grid is bounded).
-    fn slab(&self, piece: &Piece, k: usize, i: usize) -> Piece {
+    fn slab(&self, piece: &Clipped, k: usize, i: usize) -> Clipped {
         let mut out = *piece;
         if i > 0 || self.bounded {
             let lo = self.wall(k, i) - self.margin;
@@ -312,7 +312,7 @@ impl Voxels {
 }
 
 /// The part of `piece` where coordinate `k` is at least `bound` (`keep_above`) or at most it.
-fn clip(piece: &Piece, k: usize, bound: f64, keep_above: bool) -> Piece {
+fn clip(piece: &Clipped, k: usize, bound: f64, keep_above: bool) -> Clipped {
     let inside = |p: &[f64; 3]| {
         if keep_above {
             p[k] >= bound
@@ -320,7 +320,7 @@ fn clip(piece: &Piece, k: usize, bound: f64, keep_above: bool) -> Piece {
             p[k] <= bound
         }
     };
-    let mut out = Piece {
+    let mut out = Clipped {
         points: [[0.0; 3]; 9],
         len: 0,
     };

@@ -7,17 +7,17 @@ use rayon::prelude::*;
 use std::collections::HashMap;
 
 /// A segment's two ends.
-type Segment = [[f64; 2]; 2];
+type Ends = [[f64; 2]; 2];
 
 /// Chains the pieces of each class and visibility into polylines, joining pieces at ends
 /// shared by exactly two of them (ends are equal only when built from the same input, since
 /// each point is computed once). Closed chains repeat their first point. Pieces of zero length
 /// are left out.
 pub(crate) fn chain(pieces: &[Piece]) -> Vec<Polyline> {
-    let mut groups: Vec<(EdgeClass, bool, Vec<Segment>)> = Vec::new();
+    let mut groups: Vec<(EdgeClass, bool, Vec<Ends>)> = Vec::new();
     for class in EdgeClass::ALL {
         for visible in [false, true] {
-            let ends: Vec<Segment> = pieces
+            let ends: Vec<Ends> = pieces
                 .iter()
                 .filter(|p| p.class == class && p.visible == visible && p.ends[0] != p.ends[1])
                 .map(|p| p.ends)
@@ -49,7 +49,7 @@ fn key(p: [f64; 2]) -> [u64; 2] {
 }
 
 /// Chains one group's segments.
-pub(super) fn chain_group(segments: &[Segment]) -> Vec<Vec<[f64; 2]>> {
+pub(super) fn chain_group(segments: &[Ends]) -> Vec<Vec<[f64; 2]>> {
     // At each point, how many segment ends lie there and the first two segments: only a point
     // with exactly two is chained through.
     let mut at: HashMap<[u64; 2], (usize, [usize; 2]), FixedState> =

@@ -63,7 +63,7 @@ pub(crate) struct EdgeCounts {
 /// A face's side of an edge: the face's triangle with that side, its vertex off the edge, and
 /// whether the side is an edge of the input polygon.
 #[derive(Debug, Clone, Copy, Default)]
-struct Side {
+struct FaceSide {
     key: u64,
     third: u32,
     triangle: u32,
@@ -87,9 +87,31 @@ pub(crate) fn classify(
     crease_cos: f64,
     selection: EdgeSelection,
 ) -> (Vec<MeshEdge>, EdgeCounts) {
+    let mut sides = face_sides(mesh);
+    crate::mesh::sort_by_edge(&mut sides, |s| s.key);
+    let groups: Vec<&[FaceSide]> = sides.chunk_by(|x, y| x.key == y.key).collect();
+    let vertices = mesh.vertices();
+    let mut decided: Vec<Result<MeshEdge, Left>> = groups
+        .par_iter()
+        .map(|group| decide(group, vertices, eye, crease_cos, selection))
+        .collect();
+    if mesh.t_junctions() > 0 {
+        join_pieces(mesh, eye, &groups, &mut decided);
+    }
+    let counts = counted(&decided);
+    let mut edges: Vec<MeshEdge> = decided.into_iter().filter_map(Result::ok).collect();
+    if mesh.t_junctions() > 0 {
+        // In the order of their ends, as the edges of the mesh without the junctions are.
+        edges.sort_unstable_by_key(|e| key(e.a, e.b));
+    }
+    (edges, counts)
+}
+
+/// Every side of every face, as the side of the face's triangle that has it; a side cut at
+/// T-junctions as one side per piece between consecutive vertices on it.
+fn face_sides(mesh: &Mesh) -> Vec<FaceSide> {
     let triangles = mesh.triangles();
-    let mut sides: Vec<Side> = mesh
-        .faces()
+    mesh.faces()
         .par_iter()
         .enumerate()
         .flat_map_iter(|(f, face)| {
@@ -103,7 +125,7 @@ pub(crate) fn classify(
                         return None;
                     }
                     let third = tri.iter().copied().find(|&w| w != p && w != q)?;
-                    Some(Side {
+                    Some(FaceSide {
                         key: key(p, q),
                         third,
                         triangle: t as u32,
@@ -115,69 +137,72 @@ pub(crate) fn classify(
                     .chain(inner.iter().copied())
                     .zip(inner.iter().copied().chain(std::iter::once(q)));
                 pieces.filter_map(move |(a, b)| {
-                    side.map(|s| Side {
+                    side.map(|s| FaceSide {
                         key: key(a, b),
                         ..s
                     })
                 })
             })
         })
-        .collect();
-    crate::mesh::sort_by_edge(&mut sides, |s| s.key);
-    let groups: Vec<&[Side]> = sides.chunk_by(|x, y| x.key == y.key).collect();
-    let vertices = mesh.vertices();
-    let mut decided: Vec<Result<MeshEdge, Left>> = groups
-        .par_iter()
-        .map(|group| {
-            let (a, b) = ((group[0].key >> 32) as u32, group[0].key as u32);
-            let (pa, pb) = (&vertices[a as usize], &vertices[b as usize]);
-            if eye.sees_end_on(pa, pb) {
-                return Err(Left::EndOn);
-            }
-            let third = |k: usize| &vertices[group[k].third as usize];
-            let class = match group.len() {
-                1 => Some(EdgeClass::Boundary),
-                2 => class_of(pa, pb, [third(0), third(1)], eye, crease_cos),
-                _ => Some(class_of_many(
-                    pa,
-                    pb,
-                    group.iter().map(|s| &vertices[s.third as usize]),
-                    eye,
-                )),
-            };
-            let polygon_edge = group.iter().any(|s| s.polygon_edge);
-            let class = match class {
-                Some(class) => class,
-                None if selection == EdgeSelection::Mesh && polygon_edge => EdgeClass::Smooth,
-                None => return Err(Left::Flat),
-            };
-            let drawn = match selection {
-                EdgeSelection::Feature => class != EdgeClass::Smooth,
-                EdgeSelection::All => class != EdgeClass::Smooth || polygon_edge,
-                // A diagonal of a split polygon where the surface folds out of sight (or
-                // ends) is part of the outline: without it the outline has a gap.
-                EdgeSelection::Mesh => {
-                    polygon_edge || matches!(class, EdgeClass::Silhouette | EdgeClass::Boundary)
-                }
-            };
-            let edge = MeshEdge {
-                a,
-                b,
-                class,
-                triangles: [group[0].triangle, group[group.len().min(2) - 1].triangle],
-            };
-            if drawn {
-                Ok(edge)
-            } else {
-                Err(Left::NotAsked(class))
-            }
-        })
-        .collect();
-    if mesh.t_junctions() > 0 {
-        join_pieces(mesh, eye, &groups, &mut decided);
+        .collect()
+}
+
+/// The edge that the faces' sides `group` (one edge's) make, or why it is not drawn.
+fn decide(
+    group: &[FaceSide],
+    vertices: &[Point3],
+    eye: &Eye,
+    crease_cos: f64,
+    selection: EdgeSelection,
+) -> Result<MeshEdge, Left> {
+    let (a, b) = ((group[0].key >> 32) as u32, group[0].key as u32);
+    let (pa, pb) = (&vertices[a as usize], &vertices[b as usize]);
+    if eye.sees_end_on(pa, pb) {
+        return Err(Left::EndOn);
     }
+    let third = |k: usize| &vertices[group[k].third as usize];
+    let class = match group.len() {
+        1 => Some(EdgeClass::Boundary),
+        2 => class_of(pa, pb, [third(0), third(1)], eye, crease_cos),
+        _ => Some(class_of_many(
+            pa,
+            pb,
+            group.iter().map(|s| &vertices[s.third as usize]),
+            eye,
+        )),
+    };
+    let polygon_edge = group.iter().any(|s| s.polygon_edge);
+    let class = match class {
+        Some(class) => class,
+        None if selection == EdgeSelection::Mesh && polygon_edge => EdgeClass::Smooth,
+        None => return Err(Left::Flat),
+    };
+    let drawn = match selection {
+        EdgeSelection::Feature => class != EdgeClass::Smooth,
+        EdgeSelection::All => class != EdgeClass::Smooth || polygon_edge,
+        // A diagonal of a split polygon where the surface folds out of sight (or
+        // ends) is part of the outline: without it the outline has a gap.
+        EdgeSelection::Mesh => {
+            polygon_edge || matches!(class, EdgeClass::Silhouette | EdgeClass::Boundary)
+        }
+    };
+    let edge = MeshEdge {
+        a,
+        b,
+        class,
+        triangles: [group[0].triangle, group[group.len().min(2) - 1].triangle],
+    };
+    if drawn {
+        Ok(edge)
+    } else {
+        Err(Left::NotAsked(class))
+    }
+}
+
+/// The counts of the edges decided: drawn and left out by class, flat and end-on.
+fn counted(decided: &[Result<MeshEdge, Left>]) -> EdgeCounts {
     let mut counts = EdgeCounts::default();
-    for d in &decided {
+    for d in decided {
         match d {
             Ok(e) => counts.by_class[e.class as usize] += 1,
             Err(Left::NotAsked(class)) => {
@@ -189,12 +214,7 @@ pub(crate) fn classify(
             Err(Left::Joined) => {}
         }
     }
-    let mut edges: Vec<MeshEdge> = decided.into_iter().filter_map(Result::ok).collect();
-    if mesh.t_junctions() > 0 {
-        // In the order of their ends, as the edges of the mesh without the junctions are.
-        edges.sort_unstable_by_key(|e| key(e.a, e.b));
-    }
-    (edges, counts)
+    counts
 }
 
 /// Why an edge is not part of the drawing.
@@ -214,10 +234,13 @@ enum Left {
 /// surfaces into one edge: the same class, the side's own triangle on one side, and on the
 /// other coplanar triangles on the same side of the edge, turned the same way in the view. The
 /// joined edge replaces the first piece; the others are left out.
-fn join_pieces(mesh: &Mesh, eye: &Eye, groups: &[&[Side]], decided: &mut [Result<MeshEdge, Left>]) {
+fn join_pieces(
+    mesh: &Mesh,
+    eye: &Eye,
+    groups: &[&[FaceSide]],
+    decided: &mut [Result<MeshEdge, Left>],
+) {
     let group_of = |p: u32, q: u32| groups.binary_search_by_key(&key(p, q), |g| g[0].key).ok();
-    let vertices = mesh.vertices();
-    let point = |v: u32| &vertices[v as usize];
     // Disjoint sets of groups: each joined run is named by its first piece.
     let mut joined = UnionFind::new(groups.len());
     for (f, face) in mesh.faces().iter().enumerate() {
@@ -235,41 +258,71 @@ fn join_pieces(mesh: &Mesh, eye: &Eye, groups: &[&[Side]], decided: &mut [Result
                 let (Some(g1), Some(g2)) = (group_of(w[0], w[1]), group_of(w[1], w[2])) else {
                     continue;
                 };
-                let (Ok(e1), Ok(e2)) = (&decided[g1], &decided[g2]) else {
-                    continue;
-                };
-                if e1.class != e2.class || groups[g1].len() != 2 || groups[g2].len() != 2 {
-                    continue;
-                }
-                // The triangle both pieces share (this side's), and the other of each.
-                let shared = groups[g1].iter().find_map(|s| {
-                    groups[g2]
-                        .iter()
-                        .any(|t| t.triangle == s.triangle)
-                        .then_some(s.triangle)
-                });
-                let Some(shared) = shared else {
-                    continue;
-                };
-                let other = |g: usize| groups[g].iter().find(|s| s.triangle != shared);
-                let (Some(o1), Some(o2)) = (other(g1), other(g2)) else {
-                    continue;
-                };
-                let (a, b) = (point(w[0]), point(w[2]));
-                let (c1, c2) = (point(o1.third), point(o2.third));
-                let turned = |t: u32| {
-                    let [x, y, z] = mesh.triangle(t as usize);
-                    eye.orient3d(&x, &y, &z)
-                };
-                if same_half_plane(a, b, c1, c2) && turned(o1.triangle) == turned(o2.triangle) {
+                let pieces = [groups[g1], groups[g2]];
+                if one_edge(
+                    mesh,
+                    eye,
+                    pieces,
+                    [&decided[g1], &decided[g2]],
+                    [w[0], w[2]],
+                ) {
                     joined.union(g1, g2);
                 }
             }
         }
     }
+    stretch_runs(mesh, &mut joined, decided);
+}
+
+/// Whether two consecutive pieces of a side (the faces' sides `pieces`, decided as
+/// `decided`), from `ends[0]` to `ends[1]`, lie between the same two surfaces (see
+/// [`join_pieces`]).
+fn one_edge(
+    mesh: &Mesh,
+    eye: &Eye,
+    pieces: [&[FaceSide]; 2],
+    decided: [&Result<MeshEdge, Left>; 2],
+    ends: [u32; 2],
+) -> bool {
+    let [g1, g2] = pieces;
+    let (Ok(e1), Ok(e2)) = (decided[0], decided[1]) else {
+        return false;
+    };
+    if e1.class != e2.class || g1.len() != 2 || g2.len() != 2 {
+        return false;
+    }
+    // The triangle both pieces share (this side's), and the other of each.
+    let shared = g1.iter().find_map(|s| {
+        g2.iter()
+            .any(|t| t.triangle == s.triangle)
+            .then_some(s.triangle)
+    });
+    let Some(shared) = shared else {
+        return false;
+    };
+    let other = |g: &[FaceSide]| g.iter().find(|s| s.triangle != shared).copied();
+    let (Some(o1), Some(o2)) = (other(g1), other(g2)) else {
+        return false;
+    };
+    let vertices = mesh.vertices();
+    let point = |v: u32| &vertices[v as usize];
+    let (a, b) = (point(ends[0]), point(ends[1]));
+    let (c1, c2) = (point(o1.third), point(o2.third));
+    let turned = |t: u32| {
+        let [x, y, z] = mesh.triangle(t as usize);
+        eye.orient3d(&x, &y, &z)
+    };
+    same_half_plane(a, b, c1, c2) && turned(o1.triangle) == turned(o2.triangle)
+}
+
+/// Each run of joined pieces (a set of `joined` with more than one decided piece) made its
+/// first piece, stretched to the run's extreme ends; the others are left out as joined.
+fn stretch_runs(mesh: &Mesh, joined: &mut UnionFind, decided: &mut [Result<MeshEdge, Left>]) {
+    let vertices = mesh.vertices();
+    let point = |v: u32| &vertices[v as usize];
     // Each run becomes its first piece stretched to the run's extreme ends, along a
     // coordinate in which the run's (collinear) ends differ.
-    let mut runs: Vec<(usize, usize)> = (0..groups.len())
+    let mut runs: Vec<(usize, usize)> = (0..decided.len())
         .filter(|&g| decided[g].is_ok())
         .map(|g| (joined.find(g), g))
         .filter(|&(r, g)| r != g)

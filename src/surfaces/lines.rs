@@ -130,7 +130,7 @@ impl Frame {
 
 /// A line of the arrangement with the estimates of its form's coefficients.
 #[derive(Debug, Clone)]
-pub(super) struct Line {
+pub(super) struct ArrangementLine {
     pub(super) kind: Kind,
     /// `g_L`.
     g: [Est; 3],
@@ -141,10 +141,10 @@ pub(super) struct Line {
     exponents: Exponents,
 }
 
-impl Line {
-    pub(super) fn new(kind: Kind, frame: &Frame) -> Line {
+impl ArrangementLine {
+    pub(super) fn new(kind: Kind, frame: &Frame) -> ArrangementLine {
         let g = kind.gradient(&frame.eye);
-        Line {
+        ArrangementLine {
             kind,
             g,
             c: Est(kind.at(&frame.eye, frame.origin()).estimate()),
@@ -185,7 +185,7 @@ impl Line {
 }
 
 /// The exponents of every input a polynomial of these lines reads.
-fn exponents(frame: &Frame, lines: &[&Line]) -> Exponents {
+fn exponents(frame: &Frame, lines: &[&ArrangementLine]) -> Exponents {
     lines
         .iter()
         .fold(frame.exponents, |e, l| e.union(l.exponents))
@@ -195,8 +195,8 @@ fn exponents(frame: &Frame, lines: &[&Line]) -> Exponents {
 /// orders their directions (`q_A × q_B = g_F W`). Degree 6.
 pub(super) struct Turn<'a> {
     pub(super) frame: &'a Frame,
-    pub(super) a: &'a Line,
-    pub(super) b: &'a Line,
+    pub(super) a: &'a ArrangementLine,
+    pub(super) b: &'a ArrangementLine,
 }
 
 impl Polynomial for Turn<'_> {
@@ -231,7 +231,7 @@ pub(super) struct Crossing {
 }
 
 impl Crossing {
-    pub(super) fn new(a: &Line, b: &Line) -> Crossing {
+    pub(super) fn new(a: &ArrangementLine, b: &ArrangementLine) -> Crossing {
         Crossing {
             w: dot(&b.g, &a.q),
             n: [0, 1, 2].map(|k| a.c * b.q[k] - b.c * a.q[k]),
@@ -241,16 +241,16 @@ impl Crossing {
 
 /// `W · s_L(X)` at the point `X` of F's plane on the traces of `A` and `B`:
 /// `c_L W + g_L·N`, that is `c_L W + c_A g_L·q_B − c_B g_L·q_A`. Degree 9.
-pub(super) struct Side<'a> {
+pub(super) struct SideAtVertex<'a> {
     pub(super) frame: &'a Frame,
-    pub(super) a: &'a Line,
-    pub(super) b: &'a Line,
+    pub(super) a: &'a ArrangementLine,
+    pub(super) b: &'a ArrangementLine,
     /// The estimates of `W` and `N` for `A` and `B`.
     pub(super) at: &'a Crossing,
-    pub(super) l: &'a Line,
+    pub(super) l: &'a ArrangementLine,
 }
 
-impl Polynomial for Side<'_> {
+impl Polynomial for SideAtVertex<'_> {
     fn estimate(&self) -> Estimate {
         let (at, l) = (self.at, self.l);
         (l.c * at.w + dot(&l.g, &at.n)).0
@@ -281,8 +281,8 @@ impl Polynomial for Side<'_> {
 /// vanishes (parallel traces), `N` vanishes exactly when the traces coincide. Degree 7.
 pub(super) struct Numerator<'a> {
     pub(super) frame: &'a Frame,
-    pub(super) a: &'a Line,
-    pub(super) b: &'a Line,
+    pub(super) a: &'a ArrangementLine,
+    pub(super) b: &'a ArrangementLine,
     pub(super) k: usize,
 }
 
@@ -315,8 +315,8 @@ impl Polynomial for Numerator<'_> {
 /// Degree 8.
 pub(super) struct Alignment<'a> {
     pub(super) frame: &'a Frame,
-    pub(super) a: &'a Line,
-    pub(super) b: &'a Line,
+    pub(super) a: &'a ArrangementLine,
+    pub(super) b: &'a ArrangementLine,
 }
 
 impl Polynomial for Alignment<'_> {
@@ -344,7 +344,7 @@ impl Polynomial for Alignment<'_> {
 
 /// Whether the traces of `a` and `b` are the same line: `W = 0` and `N = 0`, exactly, with
 /// the estimates deciding at once when they can tell a component apart from zero.
-pub(super) fn coincide(frame: &Frame, a: &Line, b: &Line) -> bool {
+pub(super) fn coincide(frame: &Frame, a: &ArrangementLine, b: &ArrangementLine) -> bool {
     let turn = Turn { frame, a, b };
     let numerators = [0, 1, 2].map(|k| Numerator { frame, a, b, k });
     let nonzero = |e: Estimate| e.sign().is_some_and(|s| s != Ordering::Equal);
@@ -379,8 +379,8 @@ fn point<R: Ring>(frame: &Frame, a: &Kind, b: &Kind) -> [[R; 3]; 2] {
 /// exact rationals elsewhere.
 pub(super) fn construct(
     frame: &Frame,
-    a: &Line,
-    b: &Line,
+    a: &ArrangementLine,
+    b: &ArrangementLine,
     picture: &Picture,
     texture: &TextureFrame,
 ) -> ([f64; 2], [f64; 2]) {
@@ -396,8 +396,8 @@ pub(super) fn construct(
 /// [`construct`] in the ring `R`, with `round` rounding an exact value to the nearest double.
 fn construct_in<R: Ring>(
     frame: &Frame,
-    a: &Line,
-    b: &Line,
+    a: &ArrangementLine,
+    b: &ArrangementLine,
     picture: &Picture,
     texture: &TextureFrame,
     round: impl Fn(R) -> f64,

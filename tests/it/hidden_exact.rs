@@ -42,7 +42,7 @@ use crate::common::exact::{
     P2, RefView, V, cuboid_at, f2, opposite, parallelepiped, qadd, qdet, qlerp, qp, qscale, ulps,
     ulps2,
 };
-use crate::common::{Q, q, qcross, qdot, qsign, qsub, qv};
+use crate::common::{Q, q, qcross, qdot, qsign, qsub, qv, scene_of};
 
 /// The largest error allowed for a drawn vertex, in units in the last place per coordinate.
 const MAX_ULPS: f64 = 4.0;
@@ -381,14 +381,6 @@ fn match_segments(name: &str, d: &Drawing, want: &[RefSeg]) -> f64 {
 
 fn options() -> Options {
     Options::default()
-}
-
-fn scene_of(meshes: &[Mesh]) -> Scene {
-    let mut scene = Scene::new();
-    for (i, m) in meshes.iter().enumerate() {
-        scene.add_mesh(None, format!("m{i}"), m.clone()).unwrap();
-    }
-    scene
 }
 
 /// The mesh with every face's loop reversed (inside out).

@@ -24,7 +24,7 @@ use kepler::views::View;
 use nalgebra::{Matrix4, Rotation3, Unit};
 use std::time::Instant;
 
-use crate::common::SplitMix64;
+use crate::common::{SplitMix64, scene_of};
 
 /// The relative tolerance of the comparison.
 const TOLERANCE: f64 = 1e-9;
@@ -35,14 +35,6 @@ fn options() -> Options {
         edges: EdgeSelection::All,
         ..Default::default()
     }
-}
-
-fn scene_of(meshes: Vec<Mesh>) -> Scene {
-    let mut scene = Scene::new();
-    for (i, mesh) in meshes.into_iter().enumerate() {
-        scene.add_mesh(None, format!("solid{i}"), mesh).unwrap();
-    }
-    scene
 }
 
 fn boxed(min: [f64; 3], max: [f64; 3]) -> Mesh {
@@ -379,7 +371,7 @@ fn random_scenes() {
 
 /// `n` solids, mostly boxes, rotated and placed at random near the origin.
 fn random_scene(rng: &mut SplitMix64, n: usize) -> Scene {
-    let meshes = (0..n)
+    let meshes: Vec<Mesh> = (0..n)
         .map(|_| {
             let mesh = match rng.below(4) {
                 0 => solids::octahedron(rng.range(1.0, 2.5)).unwrap(),

@@ -62,7 +62,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use crate::common::exact::{
     P2, RefEye, RefView, V, cuboid_at, f2, parallelepiped, qp, ulp_of, ulps2,
 };
-use crate::common::{Q, SplitMix64, q, qcross, qdot, qsign, qsub};
+use crate::common::{Q, SplitMix64, q, qcross, qdot, qsign, qsub, scene_and_ids};
 
 /// The largest error allowed for a vertex of a visible polygon, per coordinate, in units in the
 /// last place of the scene's scale.
@@ -918,16 +918,6 @@ fn compare(case: &str, want: &Reference, got: &[FaceReport]) -> Outcome {
 // ---------------------------------------------------------------------------------------------
 // Scenes.
 
-fn scene_of(meshes: &[Mesh]) -> (Scene, Vec<ObjectId>) {
-    let mut scene = Scene::new();
-    let ids = meshes
-        .iter()
-        .enumerate()
-        .map(|(i, m)| scene.add_mesh(None, format!("m{i}"), m.clone()).unwrap())
-        .collect();
-    (scene, ids)
-}
-
 /// The axis-aligned box `[lo, hi]` (integer corners in the lattice scenes).
 fn lattice_box(lo: [f64; 3], hi: [f64; 3]) -> Mesh {
     cuboid_at(
@@ -957,7 +947,7 @@ fn perspective(eye: [f64; 3], target: [f64; 3]) -> View {
 
 /// The pass on `meshes` from `view` against the exact reference.
 fn run(case: &str, meshes: &[Mesh], view: &View) -> Outcome {
-    let (scene, ids) = scene_of(meshes);
+    let (scene, ids) = scene_and_ids(meshes);
     let want = reference(&scene, &ids, view);
     let got = visible_surfaces(&scene, view).unwrap();
     compare(case, &want, &got)
@@ -1346,7 +1336,7 @@ fn visobj_agrees_with_the_exact_answer() {
         .chain(lattice_cases())
         .chain(random_cases())
     {
-        let (scene, ids) = scene_of(&meshes);
+        let (scene, ids) = scene_and_ids(&meshes);
         for &a in &ids {
             for &b in &ids {
                 let want = expect_visobj(&scene, &ids, &view, a, b);
@@ -1374,7 +1364,7 @@ fn visobj_agrees_with_the_exact_answer() {
 
 #[test]
 fn the_comparison_rejects_wrong_answers() {
-    let (scene, ids) = scene_of(&two_boxes());
+    let (scene, ids) = scene_and_ids(&two_boxes());
     let view = ortho([-1.0, -2.0, -3.0]);
     let want = reference(&scene, &ids, &view);
     let good = visible_surfaces(&scene, &view).unwrap();
@@ -1576,7 +1566,7 @@ fn faces_of(
     picture: impl Fn([f64; 2]) -> [f64; 2],
     texture: Option<&dyn Fn([f64; 2]) -> [f64; 2]>,
 ) -> Faces {
-    let (scene, ids) = scene_of(meshes);
+    let (scene, ids) = scene_and_ids(meshes);
     let rings = |polygons: &MultiPolygon<f64>, f: &dyn Fn([f64; 2]) -> [f64; 2]| {
         polygons
             .iter()

@@ -7,7 +7,7 @@
 //!
 //! Each family runs 12 seeds here; the ignored `many_seeds` runs 300 of each.
 
-use crate::common::SplitMix64;
+use crate::common::{SplitMix64, scene_of};
 use kepler::geometry::{Point3, Vector3};
 use kepler::hidden::verify::{Check, Source, Traced, Verification, draw_traced, verify};
 use kepler::hidden::{EdgeClass, EdgeSelection, Options};
@@ -394,17 +394,9 @@ fn grid_box(rng: &mut SplitMix64) -> Mesh {
     solids::box_between(lo, hi).unwrap()
 }
 
-fn scene_of(meshes: Vec<Mesh>) -> Scene {
-    let mut scene = Scene::new();
-    for (i, m) in meshes.into_iter().enumerate() {
-        scene.add_mesh(None, format!("m{i}"), m).unwrap();
-    }
-    scene
-}
-
 fn boxes(rng: &mut SplitMix64) -> Scene {
     let n = 2 + rng.below(5);
-    scene_of((0..n).map(|_| grid_box(rng)).collect())
+    scene_of((0..n).map(|_| grid_box(rng)))
 }
 
 #[test]
@@ -441,7 +433,7 @@ fn tetrahedron(rng: &mut SplitMix64, generic: bool) -> Option<Mesh> {
 fn tetrahedra(rng: &mut SplitMix64) -> Scene {
     let n = 2 + rng.below(4);
     let generic = rng.below(2) == 0;
-    scene_of((0..n).filter_map(|_| tetrahedron(rng, generic)).collect())
+    scene_of((0..n).filter_map(|_| tetrahedron(rng, generic)))
 }
 
 #[test]

@@ -142,24 +142,8 @@ enum DxfEncoding {
 
 /// Draws the scene and writes the drawing.
 pub fn run(args: Args) -> Result<()> {
+    let dxf = checked(&args)?;
     let crease_angle = args.crease_angle;
-    if !(crease_angle.is_finite() && (0.0..=180.0).contains(&crease_angle)) {
-        anyhow::bail!("--crease-angle must be between 0 and 180 degrees, not {crease_angle}");
-    }
-    if args.light == Some([0.0; 3]) {
-        anyhow::bail!("--light 0,0,0 has no direction: give a nonzero vector towards the light");
-    }
-    if !(args.hatch_angle.is_finite() && args.hatch_stroke.is_finite() && args.hatch_stroke >= 0.0)
-    {
-        anyhow::bail!("--hatch-angle and --hatch-stroke must be finite (the stroke nonnegative)");
-    }
-    let dxf = args
-        .output
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("dxf"));
-    if dxf && args.hatch {
-        anyhow::bail!("--hatch writes SVG only, not DXF");
-    }
     let started = Instant::now();
     let scene = load_drawable(&args.scene, args.faces.validation())?;
     let repairs = repairs(&scene);
@@ -185,43 +169,21 @@ pub fn run(args: Args) -> Result<()> {
         None => (scene, None),
     };
     let loaded = started.elapsed();
-    let mut traced = draw(&scene, &view, &options, args.verify)?;
-    // `--verify` checks the drawing as the pass made it; without it the pass's drawing is
-    // not needed after finishing.
-    let drawn = if args.verify {
-        traced.drawing.clone()
+    let traced = draw(&scene, &view, &options, args.verify)?;
+    let finishing = Finishing { order: args.order };
+    // `--verify` checks the drawing as the pass made it, and its pieces.
+    let (finished, traced) = if args.verify {
+        (finish(traced.drawing.clone(), &finishing), Some(traced))
     } else {
-        std::mem::replace(
-            &mut traced.drawing,
-            Drawing {
-                polylines: Vec::new(),
-                stages: Vec::new(),
-            },
-        )
+        (finish(traced.drawing, &finishing), None)
     };
-    let finished = finish(drawn, &Finishing { order: args.order });
     let drawing = &finished.drawing;
     let (hatches, hatch_stats) = if args.hatch {
         hatch(&scene, &view, drawing, &svg_options, &args)?
     } else {
         (HatchLayer::default(), String::new())
     };
-    let clock = Instant::now();
-    write_file(&args.output, |mut out| {
-        if dxf {
-            let format = match args.dxf {
-                DxfEncoding::Text => DxfFormat::Text,
-                DxfEncoding::Binary => DxfFormat::Binary,
-            };
-            write_dxf(drawing, &svg_options, format, &mut out)
-        } else {
-            write_svg_with_hatches(drawing, &hatches, &svg_options, &mut out)
-        }
-    })?;
-    if let Some(json) = &args.json {
-        write_file(json, |mut out| write_json(drawing, &mut out))?;
-    }
-    let written = clock.elapsed();
+    let written = write(&args, dxf, drawing, &hatches, &svg_options)?;
     if args.stats {
         if let Some((objects, removed, added)) = culled {
             eprintln!(
@@ -234,8 +196,8 @@ pub fn run(args: Args) -> Result<()> {
         let plotter = finished.stats() + &hatch_stats;
         eprint!("{}", stats_report(drawing, loaded, &plotter, written));
     }
-    if args.verify {
-        let report = verify(&scene, &view, &options, &traced);
+    if let Some(traced) = &traced {
+        let report = verify(&scene, &view, &options, traced);
         eprint!("{report}");
         if report.disagreements > 0 {
             anyhow::bail!(
@@ -246,6 +208,56 @@ pub fn run(args: Args) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// Writes the drawing (and its hatches) as SVG or DXF, and as JSON when asked; the time
+/// that took.
+fn write(
+    args: &Args,
+    dxf: bool,
+    drawing: &Drawing,
+    hatches: &HatchLayer,
+    svg_options: &SvgOptions,
+) -> Result<Duration> {
+    let clock = Instant::now();
+    write_file(&args.output, |mut out| {
+        if dxf {
+            let format = match args.dxf {
+                DxfEncoding::Text => DxfFormat::Text,
+                DxfEncoding::Binary => DxfFormat::Binary,
+            };
+            write_dxf(drawing, svg_options, format, &mut out)
+        } else {
+            write_svg_with_hatches(drawing, hatches, svg_options, &mut out)
+        }
+    })?;
+    if let Some(json) = &args.json {
+        write_file(json, |mut out| write_json(drawing, &mut out))?;
+    }
+    Ok(clock.elapsed())
+}
+
+/// The arguments' errors that clap does not catch; whether the output is DXF.
+fn checked(args: &Args) -> Result<bool> {
+    let crease_angle = args.crease_angle;
+    if !(crease_angle.is_finite() && (0.0..=180.0).contains(&crease_angle)) {
+        anyhow::bail!("--crease-angle must be between 0 and 180 degrees, not {crease_angle}");
+    }
+    if args.light == Some([0.0; 3]) {
+        anyhow::bail!("--light 0,0,0 has no direction: give a nonzero vector towards the light");
+    }
+    if !(args.hatch_angle.is_finite() && args.hatch_stroke.is_finite() && args.hatch_stroke >= 0.0)
+    {
+        anyhow::bail!("--hatch-angle and --hatch-stroke must be finite (the stroke nonnegative)");
+    }
+    let dxf = args
+        .output
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("dxf"));
+    if dxf && args.hatch {
+        anyhow::bail!("--hatch writes SVG only, not DXF");
+    }
+    Ok(dxf)
 }
 
 /// The hatch layer (`--hatch`): every face's visible polygons, shaded, hatched at the page

@@ -10,7 +10,7 @@ use crate::geometry::exact::{accurate_sum_array, sum_sign_array};
 
 /// A linear form in the six local bounds `[α_A, α_B, α_C, α_AB, α_AC, α_BC]` of a corner, with
 /// integer coefficients in −2..=2 (so that every term `coef · α` is an exact double).
-pub(super) type Form = [i8; 6];
+pub(super) type LocalForm = [i8; 6];
 
 /// A signed combination of local bounds: up to four (local plane, coefficient) pairs, unused
 /// pairs with coefficient 0.
@@ -34,7 +34,7 @@ pub(super) const fn three(k: (usize, i8), l: (usize, i8), m: (usize, i8)) -> Com
 /// The effective local bound k of a corner whose clamped chamfers are the set bits of `mask`
 /// (bit 0: AB, bit 1: AC, bit 2: BC) as a form: a clamped chamfer is the exact sum of its two
 /// principal bounds.
-pub(super) const fn local_form(k: usize, mask: usize) -> Form {
+pub(super) const fn local_form(k: usize, mask: usize) -> LocalForm {
     let mut f = [0; 6];
     if k >= AB && mask & (1 << (k - AB)) != 0 {
         let [p, q] = [[A, B], [A, C], [B, C]][k - AB];
@@ -48,7 +48,7 @@ pub(super) const fn local_form(k: usize, mask: usize) -> Form {
 
 /// A combination of effective local bounds as a form, the symbolic cancellations of clamped
 /// chamfers done (evaluated at compile time only).
-pub(super) const fn form_of(combination: Combination, mask: usize) -> Form {
+pub(super) const fn form_of(combination: Combination, mask: usize) -> LocalForm {
     let mut f = [0i8; 6];
     let mut i = 0;
     while i < 4 {
@@ -126,18 +126,18 @@ pub(super) const fn rotated_coords(sigma: [usize; 6], perm: [usize; 3]) -> [[Com
 /// The formulas of a corner with a given clamp mask: its case tests, and per case its four
 /// vertices (slot order of [`CASES`]) in the canonical frame, as forms.
 pub(super) struct CornerForms {
-    pub(super) tests: [Form; 3],
+    pub(super) tests: [LocalForm; 3],
     /// The sign of each test when the clamping alone decides it (see [`known_sign`]).
     pub(super) known: [Option<Ordering>; 3],
     /// For each test, an earlier test of which it is the negation (its sign is then known).
     pub(super) negates: [Option<usize>; 3],
-    pub(super) coords: [[[Form; 3]; 4]; 4],
+    pub(super) coords: [[[LocalForm; 3]; 4]; 4],
 }
 
 /// The sign of a test form when the clamp mask decides it: the zero form is zero, and
 /// `±(α_P + α_Q − α_PQ)` for an unclamped chamfer PQ is positive (negative) since an unclamped
 /// chamfer bound is strictly below the sum of its principal bounds (see [`clamped_chamfers`]).
-pub(super) const fn known_sign(f: Form, mask: usize) -> Option<Ordering> {
+pub(super) const fn known_sign(f: LocalForm, mask: usize) -> Option<Ordering> {
     if forms_equal(f, [0; 6], 1) {
         return Some(Ordering::Equal);
     }
@@ -160,7 +160,7 @@ pub(super) const fn known_sign(f: Form, mask: usize) -> Option<Ordering> {
 }
 
 /// Whether `f = sign · g`.
-pub(super) const fn forms_equal(f: Form, g: Form, sign: i8) -> bool {
+pub(super) const fn forms_equal(f: LocalForm, g: LocalForm, sign: i8) -> bool {
     let mut m = 0;
     while m < 6 {
         if f[m] != sign * g[m] {
@@ -231,7 +231,7 @@ pub(super) const CORNER_FORMS: [CornerForms; 8] = {
 
 /// The nonzero terms `coef_k · α_k` of a form (exact doubles) and their number.
 #[inline(always)]
-pub(super) fn form_terms(f: &Form, al: &[f64; 6]) -> ([f64; 6], usize) {
+pub(super) fn form_terms(f: &LocalForm, al: &[f64; 6]) -> ([f64; 6], usize) {
     let mut terms = [0.0; 6];
     let mut n = 0;
     for (&c, &x) in f.iter().zip(al) {
@@ -247,7 +247,7 @@ pub(super) fn form_terms(f: &Form, al: &[f64; 6]) -> ([f64; 6], usize) {
 /// its sign; longer sums go through the filtered exact sign. The number of terms of a constant
 /// form is a constant, so one arm remains, on a fixed-length array (kept in registers).
 #[inline(always)]
-pub(super) fn form_sign(f: &Form, al: &[f64; 6]) -> Ordering {
+pub(super) fn form_sign(f: &LocalForm, al: &[f64; 6]) -> Ordering {
     let (t, n) = form_terms(f, al);
     match n {
         0..=2 => (t[0] + t[1]).partial_cmp(&0.0).unwrap_or(Ordering::Equal),
@@ -261,7 +261,7 @@ pub(super) fn form_sign(f: &Form, al: &[f64; 6]) -> Ordering {
 /// The exact value of a form, correctly rounded (one addition for at most two terms; see
 /// [`form_sign`] for the arms).
 #[inline(always)]
-pub(super) fn form_value(f: &Form, al: &[f64; 6]) -> f64 {
+pub(super) fn form_value(f: &LocalForm, al: &[f64; 6]) -> f64 {
     let (t, n) = form_terms(f, al);
     match n {
         0..=2 => t[0] + t[1],
@@ -273,7 +273,7 @@ pub(super) fn form_value(f: &Form, al: &[f64; 6]) -> f64 {
 }
 
 /// The number of nonzero coefficients of a form.
-pub(super) const fn form_len(f: &Form) -> usize {
+pub(super) const fn form_len(f: &LocalForm) -> usize {
     let mut n = 0;
     let mut m = 0;
     while m < 6 {
@@ -288,7 +288,7 @@ pub(super) const fn form_len(f: &Form) -> usize {
 /// A vertex from the forms of its coordinates. Written out so that, the forms being
 /// constants, every coefficient test folds away.
 #[inline(always)]
-pub(super) fn slot(coords: &[Form; 3], al: &[f64; 6]) -> [f64; 3] {
+pub(super) fn slot(coords: &[LocalForm; 3], al: &[f64; 6]) -> [f64; 3] {
     [
         form_value(&coords[0], al),
         form_value(&coords[1], al),
@@ -298,7 +298,7 @@ pub(super) fn slot(coords: &[Form; 3], al: &[f64; 6]) -> [f64; 3] {
 
 /// The four vertices of case 2, 3 or 4 from their forms.
 #[inline(always)]
-pub(super) fn slots(coords: &[[Form; 3]; 4], al: &[f64; 6]) -> [[f64; 3]; 4] {
+pub(super) fn slots(coords: &[[LocalForm; 3]; 4], al: &[f64; 6]) -> [[f64; 3]; 4] {
     [
         slot(&coords[0], al),
         slot(&coords[1], al),

@@ -3,7 +3,7 @@
 //! on both sides joins them. The boundary's rings ([`super::rings`]) are grouped by connected
 //! cells into polygons, and each vertex is constructed once from the input.
 
-use super::rings::Piece;
+use super::rings::BoundaryPiece;
 use super::signs::{form, times};
 use super::{At, Vertex, Vtp};
 use crate::geometry::kernel::Polynomial;
@@ -125,7 +125,7 @@ impl<'a> Vtp<'a> {
         let mut line_ids: Vec<u32> = by_line.keys().copied().collect();
         line_ids.sort_unstable();
         // Boundary pieces: (from, to, line, direction along q_L, cell on the left).
-        let mut pieces: Vec<Piece> = Vec::new();
+        let mut pieces: Vec<BoundaryPiece> = Vec::new();
         for l in line_ids {
             self.cut_line(l, &by_line[&l], &mut points, &mut components, &mut pieces);
         }
@@ -171,7 +171,7 @@ impl<'a> Vtp<'a> {
         edges: &[Edge],
         points: &mut UnionFind,
         components: &mut UnionFind,
-        pieces: &mut Vec<Piece>,
+        pieces: &mut Vec<BoundaryPiece>,
     ) {
         let mut ends: Vec<u32> = edges.iter().flat_map(|e| [e.0, e.1]).collect();
         ends.sort_unstable();
@@ -201,14 +201,14 @@ impl<'a> Vtp<'a> {
             match (cover[0][j], cover[1][j]) {
                 (Some(a), Some(b)) => components.union_least(a, b),
                 // The cell on the positive side: walk against q_L, keeping it on the left.
-                (Some(c), None) => pieces.push(Piece {
+                (Some(c), None) => pieces.push(BoundaryPiece {
                     from: at[j + 1],
                     to: at[j],
                     line: l,
                     forward: false,
                     cell: c,
                 }),
-                (None, Some(c)) => pieces.push(Piece {
+                (None, Some(c)) => pieces.push(BoundaryPiece {
                     from: at[j],
                     to: at[j + 1],
                     line: l,
@@ -226,7 +226,7 @@ impl<'a> Vtp<'a> {
     fn group_rings(
         &self,
         rings: Vec<Vec<usize>>,
-        pieces: &[Piece],
+        pieces: &[BoundaryPiece],
         components: &mut UnionFind,
     ) -> Vec<(VertexRing, Vec<VertexRing>)> {
         let mut groups: HashMap<usize, (Vec<VertexRing>, Vec<VertexRing>)> = HashMap::new();

@@ -46,7 +46,7 @@ mod signs;
 /// Cell subtraction.
 mod subtract;
 
-use super::lines::{Crossing, Frame, Kind, Line};
+use super::lines::{ArrangementLine, Crossing, Frame, Kind};
 use crate::geometry::Point3;
 use crate::views::{Eye, Picture};
 use std::cell::RefCell;
@@ -98,7 +98,7 @@ pub(super) struct Vtp<'a> {
     face: Vec<Point3>,
     picture: &'a Picture,
     /// The lines met so far.
-    lines: Vec<Line>,
+    lines: Vec<ArrangementLine>,
     /// The line for each plane met, by the plane's key, with the sign relating the line's
     /// form to the key's.
     kinds: HashMap<[u64; 9], (u32, Ordering)>,

@@ -11,7 +11,7 @@ impl<'a> Vtp<'a> {
     /// The boundary pieces linked into rings (of piece indices): at a point with several ways
     /// on, the first one clockwise from the way back; pieces along one line merged; rings
     /// through a point twice split there.
-    pub(super) fn link(&self, pieces: &[Piece]) -> Vec<Vec<usize>> {
+    pub(super) fn link(&self, pieces: &[BoundaryPiece]) -> Vec<Vec<usize>> {
         let mut leaving: HashMap<u32, Vec<usize>> = HashMap::new();
         for (i, p) in pieces.iter().enumerate() {
             leaving.entry(p.from).or_default().push(i);
@@ -57,7 +57,7 @@ impl<'a> Vtp<'a> {
     /// back along `incoming` (seen from the side F's plane's gradient points to).
     pub(super) fn next_clockwise(
         &self,
-        pieces: &[Piece],
+        pieces: &[BoundaryPiece],
         incoming: usize,
         options: &[usize],
     ) -> Option<usize> {
@@ -85,9 +85,9 @@ impl<'a> Vtp<'a> {
 
     /// The total turning of a ring of pieces, in radians (±2π): each turn's size from the
     /// rounded directions of the lines, its sign exact.
-    pub(super) fn turning(&self, pieces: &[Piece], ring: &[usize]) -> f64 {
+    pub(super) fn turning(&self, pieces: &[BoundaryPiece], ring: &[usize]) -> f64 {
         let n = ring.len();
-        let direction = |p: &Piece| {
+        let direction = |p: &BoundaryPiece| {
             let d = self.lines[p.line as usize].direction();
             let s = if p.forward { 1.0 } else { -1.0 };
             let norm = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
@@ -122,7 +122,7 @@ impl<'a> Vtp<'a> {
 }
 
 /// The ring split into rings through distinct points.
-pub(super) fn split_at_repeats(pieces: &[Piece], ring: Vec<usize>) -> Vec<Vec<usize>> {
+pub(super) fn split_at_repeats(pieces: &[BoundaryPiece], ring: Vec<usize>) -> Vec<Vec<usize>> {
     let mut out = Vec::new();
     let mut todo = vec![ring];
     while let Some(ring) = todo.pop() {
@@ -143,7 +143,7 @@ pub(super) fn split_at_repeats(pieces: &[Piece], ring: Vec<usize>) -> Vec<Vec<us
 }
 
 /// The ring with consecutive pieces along one line joined.
-pub(super) fn merge_collinear(pieces: &[Piece], ring: Vec<usize>) -> Vec<usize> {
+pub(super) fn merge_collinear(pieces: &[BoundaryPiece], ring: Vec<usize>) -> Vec<usize> {
     let n = ring.len();
     // Keep a piece when the one before it runs along another line.
     let kept: Vec<usize> = (0..n)
@@ -156,7 +156,7 @@ pub(super) fn merge_collinear(pieces: &[Piece], ring: Vec<usize>) -> Vec<usize> 
 /// A piece of the boundary of the cells' union: from one point to another along a line, the
 /// way `q_L` points (`forward`) or against it, with a cell on its left.
 #[derive(Debug, Clone, Copy)]
-pub(super) struct Piece {
+pub(super) struct BoundaryPiece {
     pub(super) from: u32,
     pub(super) to: u32,
     pub(super) line: u32,

@@ -8,7 +8,9 @@ use crate::geometry::Point3;
 use crate::geometry::kernel::{Difference, Polynomial, Product};
 use crate::geometry::predicates::orient3d;
 use crate::sight::along::Form;
-use crate::surfaces::lines::{self, Alignment, Crossing, Kind, Line, Side, Turn};
+use crate::surfaces::lines::{
+    self, Alignment, ArrangementLine, Crossing, Kind, SideAtVertex, Turn,
+};
 use crate::views::Eye;
 use std::cmp::Ordering;
 
@@ -72,7 +74,7 @@ impl<'a> Vtp<'a> {
         if let Some(&(id, first)) = self.kinds.get(&key) {
             return Trace::Line(id, times(sign, first));
         }
-        let new = Line::new(kind, &self.frame);
+        let new = ArrangementLine::new(kind, &self.frame);
         if new.parallel(&self.frame) {
             return Trace::Constant(new.sign_at_origin(&self.frame));
         }
@@ -299,7 +301,7 @@ impl<'a> Vtp<'a> {
             At::Cut(a, b, m, d) => return times(cut_sign(eye, &a, &b, &m, &line.kind), d),
             At::General => {}
         }
-        let side = Side {
+        let side = SideAtVertex {
             frame: &self.frame,
             a: &self.lines[vx.lines[0] as usize],
             b: &self.lines[vx.lines[1] as usize],

@@ -1,5 +1,5 @@
-//! Helpers shared by the integration tests: a deterministic random generator and exact
-//! rational arithmetic for references. Each test crate uses a subset of them.
+//! Helpers shared by the integration tests: a deterministic random generator, scenes of
+//! meshes, and exact rational arithmetic for references. Each test crate uses a subset of them.
 #![allow(dead_code)]
 
 pub mod exact;
@@ -11,6 +11,31 @@ use std::cmp::Ordering;
 
 /// The crate's seeded generator, so failures reproduce.
 pub use kepler::random::SplitMix64;
+
+/// A scene of `meshes`, each an object at the root named `m0`, `m1`, …, and their ids.
+pub fn scene_and_ids<M: std::borrow::Borrow<kepler::mesh::Mesh>>(
+    meshes: impl IntoIterator<Item = M>,
+) -> (kepler::scene::Scene, Vec<kepler::scene::ObjectId>) {
+    let mut scene = kepler::scene::Scene::new();
+    let ids = meshes
+        .into_iter()
+        .enumerate()
+        .map(|(i, m)| {
+            let mesh = m.borrow().clone();
+            scene
+                .add_mesh(None, format!("m{i}"), mesh)
+                .expect("a valid mesh")
+        })
+        .collect();
+    (scene, ids)
+}
+
+/// A scene of `meshes`, each an object at the root named `m0`, `m1`, ….
+pub fn scene_of<M: std::borrow::Borrow<kepler::mesh::Mesh>>(
+    meshes: impl IntoIterator<Item = M>,
+) -> kepler::scene::Scene {
+    scene_and_ids(meshes).0
+}
 
 /// Exact rationals: every finite `f64` converts exactly.
 pub type Q = BigRational;
