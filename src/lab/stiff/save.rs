@@ -53,6 +53,11 @@ pub fn write(stiff: &StiffScene, dir: &Path) -> std::io::Result<PathBuf> {
 }
 
 /// The `[camera]` section of a scene file for `camera`, its numbers written to round trip.
+///
+/// Written by hand rather than through serde and `toml`: `toml` (1.x, by `toml_writer`) writes
+/// a double with `Display`, positionally (`2^280` as 85 digits and `.0`), where these files
+/// have the shortest form of `{:?}` (`1.942668892225729e84`), as the scale family's cameras
+/// need.
 pub(super) fn camera_toml(camera: &Camera) -> String {
     let v = |p: [f64; 3]| format!("[{:?}, {:?}, {:?}]", p[0], p[1], p[2]);
     let projection = match camera.projection {
