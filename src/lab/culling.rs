@@ -105,28 +105,7 @@ pub fn cull(scene: &Scene, view: &View) -> Result<CullReport> {
         .collect();
     let n = bounds.len();
     let triangle_pairs = |i: usize, j: usize| bounds[i].triangles * bounds[j].triangles;
-    // The pairs whose projected boxes meet (all others are rstar's); those with an unbounded
-    // picture meet everything.
-    let boxes: Vec<GeomWithData<Rectangle<[f64; 2]>, usize>> = bounds
-        .iter()
-        .enumerate()
-        .filter_map(|(i, b)| {
-            let [lo, hi] = b.cbox.as_ref()?.extent;
-            Some(GeomWithData::new(Rectangle::from_corners(lo, hi), i))
-        })
-        .collect();
-    let tree = RTree::bulk_load(boxes);
-    let mut meeting: Vec<(usize, usize)> = tree
-        .intersection_candidates_with_other_tree(&tree)
-        .filter(|(a, b)| a.data < b.data)
-        .map(|(a, b)| (a.data, b.data))
-        .collect();
-    let unbounded: Vec<usize> = (0..n).filter(|&i| bounds[i].cbox.is_none()).collect();
-    for &i in &unbounded {
-        meeting.extend((0..n).filter(|&j| j != i).map(|j| (i.min(j), i.max(j))));
-    }
-    meeting.sort_unstable();
-    meeting.dedup();
+    let meeting = meeting_pairs(&bounds);
     let all_pairs = (n * n.saturating_sub(1) / 2) as u64;
     let all_triangle_pairs: u64 = {
         let total: u64 = bounds.iter().map(|b| b.triangles).sum();
@@ -192,6 +171,33 @@ pub fn cull(scene: &Scene, view: &View) -> Result<CullReport> {
         undecided: undecided.0,
         undecided_triangle_pairs: undecided.1,
     })
+}
+
+/// The pairs `(i, j)`, `i < j`, of objects whose projected boxes meet (all others are
+/// rstar's), sorted; those with an unbounded picture meet everything.
+fn meeting_pairs(bounds: &[Bounds]) -> Vec<(usize, usize)> {
+    let n = bounds.len();
+    let boxes: Vec<GeomWithData<Rectangle<[f64; 2]>, usize>> = bounds
+        .iter()
+        .enumerate()
+        .filter_map(|(i, b)| {
+            let [lo, hi] = b.cbox.as_ref()?.extent;
+            Some(GeomWithData::new(Rectangle::from_corners(lo, hi), i))
+        })
+        .collect();
+    let tree = RTree::bulk_load(boxes);
+    let mut meeting: Vec<(usize, usize)> = tree
+        .intersection_candidates_with_other_tree(&tree)
+        .filter(|(a, b)| a.data < b.data)
+        .map(|(a, b)| (a.data, b.data))
+        .collect();
+    let unbounded: Vec<usize> = (0..n).filter(|&i| bounds[i].cbox.is_none()).collect();
+    for &i in &unbounded {
+        meeting.extend((0..n).filter(|&j| j != i).map(|j| (i.min(j), i.max(j))));
+    }
+    meeting.sort_unstable();
+    meeting.dedup();
+    meeting
 }
 
 /// A filter's test on a pair of objects (by index): `true` when it decides the pair.

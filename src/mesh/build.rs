@@ -90,15 +90,6 @@ pub(crate) fn shape(
     fi: usize,
     validation: Validation,
 ) -> Result<Shape, MeshError> {
-    let repeated = |idx: &[u32]| {
-        if idx.len() <= 8 {
-            // Few vertices: every pair, without sorting a copy.
-            return (1..idx.len()).find_map(|j| idx[..j].contains(&idx[j]).then_some(idx[j]));
-        }
-        let mut sorted = idx.to_vec();
-        sorted.sort_unstable();
-        sorted.windows(2).find(|w| w[0] == w[1]).map(|w| w[0])
-    };
     match validation {
         Validation::Strict => {
             if let Some(v) = repeated(&idx) {
@@ -146,13 +137,7 @@ pub(crate) fn shape(
     // Projections in the order of the normal's components, largest first: for a planar
     // polygon the first is simple exactly when the polygon is; a polygon that is not planar
     // is split in the first projection where it is simple.
-    let n = newell_normal(&scaled(
-        &pts,
-        normalising_exponent(largest_coordinate(&pts), SAFE),
-    ));
-    let first = dominant_axis(&n);
-    let mut axes = [first, (first + 1) % 3, (first + 2) % 3];
-    axes[1..].sort_by(|&i, &j| n[j].abs().total_cmp(&n[i].abs()));
+    let axes = projection_axes(&pts);
     let tris = axes
         .iter()
         .find_map(|&axis| match off_plane {
@@ -164,6 +149,30 @@ pub(crate) fn shape(
         None => Shape::Planar(idx, tris),
         Some(_) => Shape::Split(idx, tris),
     })
+}
+
+/// A vertex index the loop visits twice, if any.
+fn repeated(idx: &[u32]) -> Option<u32> {
+    if idx.len() <= 8 {
+        // Few vertices: every pair, without sorting a copy.
+        return (1..idx.len()).find_map(|j| idx[..j].contains(&idx[j]).then_some(idx[j]));
+    }
+    let mut sorted = idx.to_vec();
+    sorted.sort_unstable();
+    sorted.windows(2).find(|w| w[0] == w[1]).map(|w| w[0])
+}
+
+/// The coordinate axes to project the polygon `pts` along, in the order of its (Newell)
+/// normal's components, largest first.
+fn projection_axes(pts: &[Point3]) -> [usize; 3] {
+    let n = newell_normal(&scaled(
+        pts,
+        normalising_exponent(largest_coordinate(pts), SAFE),
+    ));
+    let first = dominant_axis(&n);
+    let mut axes = [first, (first + 1) % 3, (first + 2) % 3];
+    axes[1..].sort_by(|&i, &j| n[j].abs().total_cmp(&n[i].abs()));
+    axes
 }
 
 /// The triangles (indices into the loop `idx`, turning as it does) that split a polygon that

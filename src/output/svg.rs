@@ -356,20 +356,7 @@ fn write_layers(
     options.check()?;
     super::check_finite(drawing)?;
     let t = page_transform(drawing, options);
-    let in_view = |mm: f64, what: &str| {
-        let v = mm / t.scale;
-        if v.is_finite() {
-            Ok(v)
-        } else {
-            Err(io::Error::new(
-                io::ErrorKind::InvalidInput,
-                format!(
-                    "{what} of {mm} mm is out of range at a scale of {} mm per unit",
-                    t.scale
-                ),
-            ))
-        }
-    };
+    let in_view = |mm: f64, what: &str| in_view(&t, mm, what);
     let dash = [
         in_view(options.hidden_dash[0], "the hidden dash")?,
         in_view(options.hidden_dash[1], "the hidden gap")?,
@@ -412,42 +399,87 @@ fn write_layers(
             writeln!(out, "</g>")?;
         }
         for (class, stroke_width) in EdgeClass::ALL.into_iter().zip(widths) {
-            let paths: Vec<&[[f64; 2]]> = drawing
-                .polylines
-                .iter()
-                .filter(|p| p.class == class && p.visible == visible && !p.points.is_empty())
-                .map(|p| p.points.as_slice())
-                .collect();
-            if paths.is_empty() {
-                continue;
-            }
-            let name = class.name();
-            let layer = |id: &str| {
-                format!(
-                    r#"id="{id}-{name}" inkscape:groupmode="layer" inkscape:label="{id} {name}""#
-                )
+            let layer = Layer {
+                class,
+                visible,
+                stroke_width,
+                dash,
+                placed: &placed,
             };
-            if visible {
-                writeln!(
-                    out,
-                    r#"<g {} {placed} stroke="{VISIBLE_COLOUR}" stroke-width="{stroke_width}">"#,
-                    layer("visible")
-                )?;
-            } else {
-                writeln!(
-                    out,
-                    r#"<g {} {placed} stroke="{HIDDEN_COLOUR}" stroke-width="{stroke_width}" stroke-dasharray="{} {}">"#,
-                    layer("hidden"),
-                    dash[0],
-                    dash[1]
-                )?;
-            }
-            write_paths(&paths, &mut out)?;
-            writeln!(out, "</g>")?;
+            write_class_layer(drawing, &layer, &mut out)?;
         }
     }
     writeln!(out, "</svg>")?;
     out.flush()
+}
+
+/// A length of `mm` millimetres on the page in drawing units under the transform `t`, or an
+/// error naming `what` when it is out of range.
+fn in_view(t: &PageTransform, mm: f64, what: &str) -> io::Result<f64> {
+    let v = mm / t.scale;
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!(
+                "{what} of {mm} mm is out of range at a scale of {} mm per unit",
+                t.scale
+            ),
+        ))
+    }
+}
+
+/// The layer of one class and visibility: its stroke width and hidden dash in drawing units,
+/// and the attributes of the page transform.
+struct Layer<'a> {
+    class: EdgeClass,
+    visible: bool,
+    stroke_width: f64,
+    dash: [f64; 2],
+    placed: &'a str,
+}
+
+/// Writes the layer of the drawing's polylines of `layer.class` and `layer.visible` (visible
+/// layers solid, hidden ones dashed), left out when it has none.
+fn write_class_layer(drawing: &Drawing, layer: &Layer, out: &mut impl Write) -> io::Result<()> {
+    let Layer {
+        class,
+        visible,
+        stroke_width,
+        dash,
+        placed,
+    } = *layer;
+    let paths: Vec<&[[f64; 2]]> = drawing
+        .polylines
+        .iter()
+        .filter(|p| p.class == class && p.visible == visible && !p.points.is_empty())
+        .map(|p| p.points.as_slice())
+        .collect();
+    if paths.is_empty() {
+        return Ok(());
+    }
+    let name = class.name();
+    let layer = |id: &str| {
+        format!(r#"id="{id}-{name}" inkscape:groupmode="layer" inkscape:label="{id} {name}""#)
+    };
+    if visible {
+        writeln!(
+            out,
+            r#"<g {} {placed} stroke="{VISIBLE_COLOUR}" stroke-width="{stroke_width}">"#,
+            layer("visible")
+        )?;
+    } else {
+        writeln!(
+            out,
+            r#"<g {} {placed} stroke="{HIDDEN_COLOUR}" stroke-width="{stroke_width}" stroke-dasharray="{} {}">"#,
+            layer("hidden"),
+            dash[0],
+            dash[1]
+        )?;
+    }
+    write_paths(&paths, out)?;
+    writeln!(out, "</g>")
 }
 
 /// Inkscape's namespace, for its layer attributes.

@@ -494,13 +494,40 @@ impl Builder<'_> {
     /// The local-coordinate proto of an object spec, its own placement and array included.
     fn proto(&mut self, o: &Spanned<ObjectSpec>) -> Result<Proto> {
         let s = o.get_ref();
+        let base = self.base(o)?;
+        let t = s.transform();
+        if t.scale
+            .iter()
+            .chain(&t.rotate)
+            .chain(&t.translate)
+            .any(|x| !x.is_finite())
+        {
+            return Err(self.err(o, "scale, rotate and translate must be finite"));
+        }
+        if t.scale.contains(&0.0) {
+            return Err(self.err(o, "a scale factor of 0 flattens the object"));
+        }
+        let name = s.name.clone().unwrap_or_else(|| match &base {
+            Proto::Leaf { name, .. } | Proto::Group { name, .. } => name.clone(),
+        });
+        let placed = base.placed(&t.matrix()).renamed(name.clone(), None);
+        let Some(a) = &s.array else {
+            return Ok(placed);
+        };
+        self.arrayed(o, a, placed, name)
+    }
+
+    /// The proto of an object spec before its own placement: its solid, mesh file, instance
+    /// or subobjects, exactly one of them.
+    fn base(&mut self, o: &Spanned<ObjectSpec>) -> Result<Proto> {
+        let s = o.get_ref();
         let kinds = [
             s.solid.is_some(),
             s.mesh.is_some(),
             s.instance.is_some(),
             !s.object.is_empty(),
         ];
-        let base = match kinds.iter().filter(|&&k| k).count() {
+        Ok(match kinds.iter().filter(|&&k| k).count() {
             0 => {
                 return Err(self.err(
                     o,
@@ -538,26 +565,18 @@ impl Builder<'_> {
                     "an object has only one of `solid`, `mesh`, `instance` or subobjects",
                 ));
             }
-        };
-        let t = s.transform();
-        if t.scale
-            .iter()
-            .chain(&t.rotate)
-            .chain(&t.translate)
-            .any(|x| !x.is_finite())
-        {
-            return Err(self.err(o, "scale, rotate and translate must be finite"));
-        }
-        if t.scale.contains(&0.0) {
-            return Err(self.err(o, "a scale factor of 0 flattens the object"));
-        }
-        let name = s.name.clone().unwrap_or_else(|| match &base {
-            Proto::Leaf { name, .. } | Proto::Group { name, .. } => name.clone(),
-        });
-        let placed = base.placed(&t.matrix()).renamed(name.clone(), None);
-        let Some(a) = &s.array else {
-            return Ok(placed);
-        };
+        })
+    }
+
+    /// The group of the copies of `placed` that the array `a` of the object spec `o` makes,
+    /// named `name`, the copies `name-1`, `name-2`, … (x fastest, then y, then z).
+    fn arrayed(
+        &self,
+        o: &Spanned<ObjectSpec>,
+        a: &ArraySpec,
+        placed: Proto,
+        name: String,
+    ) -> Result<Proto> {
         if a.step.iter().any(|x| !x.is_finite()) {
             return Err(self.err(o, "array step must be finite"));
         }
@@ -643,19 +662,29 @@ impl Builder<'_> {
         })
     }
 
-    fn solid(&self, o: &Spanned<ObjectSpec>, solid: &str) -> Result<Proto> {
-        let s = o.get_ref();
-        let key = solid.to_ascii_lowercase().replace(['_', ' '], "-");
-        let allowed: &[&str] = match key.as_str() {
+    /// The parameters the built-in solid `key` (named `solid` in the spec `o`) takes.
+    fn solid_parameters(
+        &self,
+        o: &Spanned<ObjectSpec>,
+        solid: &str,
+        key: &str,
+    ) -> Result<&'static [&'static str]> {
+        Ok(match key {
             "box" => &["size"],
             "cube" => &["edge", "size"],
             "prism" => &["outline", "height"],
             "sphere" | "uv-sphere" => &["radius", "segments", "rings"],
             "torus" => &["major-radius", "minor-radius", "segments", "sides"],
             "cylinder" => &["radius", "height", "segments"],
-            _ if Polyhedron::from_name(&key).is_some() => &["edge"],
+            _ if Polyhedron::from_name(key).is_some() => &["edge"],
             _ => return Err(self.err(o, format!("unknown solid `{solid}`"))),
-        };
+        })
+    }
+
+    fn solid(&self, o: &Spanned<ObjectSpec>, solid: &str) -> Result<Proto> {
+        let s = o.get_ref();
+        let key = solid.to_ascii_lowercase().replace(['_', ' '], "-");
+        let allowed = self.solid_parameters(o, solid, &key)?;
         if let Some(p) = s
             .given_parameters()
             .into_iter()

@@ -298,24 +298,7 @@ impl Polyhedron {
             TruncatedOctahedron => vec![Family::all([0.0, 1.0, 2.0])],
             Rhombicuboctahedron => vec![Family::all([1.0, 1.0, 1.0 + r2])],
             TruncatedCuboctahedron => vec![Family::all([1.0, 1.0 + r2, 1.0 + 2.0 * r2])],
-            SnubCube => {
-                // Even permutations with an even number of plus signs (an odd number of
-                // flips of the all-plus triple), odd permutations with an odd number.
-                let t = tribonacci();
-                let base = [1.0, 1.0 / t, t];
-                vec![
-                    Family {
-                        base,
-                        perms: Perms::Even,
-                        signs: Signs::OddFlips,
-                    },
-                    Family {
-                        base,
-                        perms: Perms::Odd,
-                        signs: Signs::EvenFlips,
-                    },
-                ]
-            }
+            SnubCube => snub_cube_families(),
             Icosidodecahedron => vec![
                 Family::even([0.0, 0.0, f]),
                 Family::even([0.5, f / 2.0, f * f / 2.0]),
@@ -342,30 +325,52 @@ impl Polyhedron {
                 Family::even([2.0 * f - 1.0, 2.0, 2.0 + f]),
                 Family::even([f, 3.0, 2.0 * f]),
             ],
-            SnubDodecahedron => {
-                // Even permutations with an even number of plus signs, where α = ξ − 1/ξ and
-                // β = ξφ + φ² + φ/ξ.
-                let x = snub_xi();
-                let a = x - 1.0 / x;
-                let b = x * f + f * f + f / x;
-                [
-                    [2.0 * a, 2.0, 2.0 * b],
-                    [a + b / f + f, -a * f + b + 1.0 / f, a / f + b * f - 1.0],
-                    [-a / f + b * f + 1.0, -a + b / f - f, a * f + b - 1.0 / f],
-                    [-a / f + b * f - 1.0, a - b / f - f, a * f + b + 1.0 / f],
-                    [a + b / f - f, a * f - b + 1.0 / f, a / f + b * f + 1.0],
-                ]
-                .into_iter()
-                .map(|base| Family {
-                    base,
-                    perms: Perms::Even,
-                    signs: Signs::OddFlips,
-                })
-                .collect()
-            }
+            SnubDodecahedron => snub_dodecahedron_families(f),
         };
         expand(&families)
     }
+}
+
+/// The snub cube's vertex families: even permutations of `(1, 1/t, t)` (`t` the tribonacci
+/// constant) with an even number of plus signs (an odd number of flips of the all-plus
+/// triple), odd permutations with an odd number.
+fn snub_cube_families() -> Vec<Family> {
+    let t = tribonacci();
+    let base = [1.0, 1.0 / t, t];
+    vec![
+        Family {
+            base,
+            perms: Perms::Even,
+            signs: Signs::OddFlips,
+        },
+        Family {
+            base,
+            perms: Perms::Odd,
+            signs: Signs::EvenFlips,
+        },
+    ]
+}
+
+/// The snub dodecahedron's vertex families (`f` the golden ratio φ): even permutations with
+/// an even number of plus signs, where α = ξ − 1/ξ and β = ξφ + φ² + φ/ξ.
+fn snub_dodecahedron_families(f: f64) -> Vec<Family> {
+    let x = snub_xi();
+    let a = x - 1.0 / x;
+    let b = x * f + f * f + f / x;
+    [
+        [2.0 * a, 2.0, 2.0 * b],
+        [a + b / f + f, -a * f + b + 1.0 / f, a / f + b * f - 1.0],
+        [-a / f + b * f + 1.0, -a + b / f - f, a * f + b - 1.0 / f],
+        [-a / f + b * f - 1.0, a - b / f - f, a * f + b + 1.0 / f],
+        [a + b / f - f, a * f - b + 1.0 / f, a / f + b * f + 1.0],
+    ]
+    .into_iter()
+    .map(|base| Family {
+        base,
+        perms: Perms::Even,
+        signs: Signs::OddFlips,
+    })
+    .collect()
 }
 
 /// Writes the kebab-case [`name`](Polyhedron::name).

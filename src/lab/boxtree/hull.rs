@@ -25,11 +25,53 @@ struct Face {
 /// `points`; `None` when all points lie in one plane.
 pub(crate) fn convex_hull(points: &[Point3]) -> Option<Vec<[u32; 3]>> {
     let start = initial_tetrahedron(points)?;
-    let sees = |f: &Face, p: u32| {
-        let [a, b, c] = f.v.map(|i| &points[i as usize]);
-        orient3d(a, b, c, &points[p as usize]) == Ordering::Less
-    };
-    // The tetrahedron, each face oriented to see its fourth vertex from inside.
+    let mut faces = tetrahedron_faces(points, start);
+    let mut point_conflicts = initial_conflicts(points, start, &mut faces);
+    let mut stamp = vec![u32::MAX; points.len()];
+    let mut horizon_start = vec![u32::MAX; points.len()];
+    for p in 0..points.len() as u32 {
+        let visible: Vec<u32> = std::mem::take(&mut point_conflicts[p as usize])
+            .into_iter()
+            .filter(|&f| faces[f as usize].alive)
+            .collect();
+        if visible.is_empty() {
+            continue;
+        }
+        for &f in &visible {
+            faces[f as usize].alive = false;
+        }
+        let created = cone_faces(
+            points,
+            p,
+            &visible,
+            &mut faces,
+            &mut point_conflicts,
+            &mut stamp,
+            &mut horizon_start,
+        );
+        // Around the new cone: face (u, w, p) meets, across (w, p), the face starting at w.
+        for &n in &created {
+            let w = faces[n as usize].v[1];
+            let next = horizon_start[w as usize];
+            faces[n as usize].neighbours[1] = next;
+            faces[next as usize].neighbours[2] = n;
+        }
+        for &f in &visible {
+            faces[f as usize].conflicts = Vec::new();
+        }
+    }
+    Some(faces.into_iter().filter(|f| f.alive).map(|f| f.v).collect())
+}
+
+/// Whether point `p` sees face `f`: lies strictly outside its plane.
+fn sees(points: &[Point3], f: &Face, p: u32) -> bool {
+    let [a, b, c] = f.v.map(|i| &points[i as usize]);
+    orient3d(a, b, c, &points[p as usize]) == Ordering::Less
+}
+
+/// The faces of the tetrahedron `start`, each oriented to see its fourth vertex from inside,
+/// with their neighbours.
+fn tetrahedron_faces(points: &[Point3], start: [usize; 4]) -> Vec<Face> {
     let [a, b, c, d] = start;
     let mut faces: Vec<Face> = Vec::new();
     let tet = if orient3d(&points[a], &points[b], &points[c], &points[d]) == Ordering::Greater {
@@ -46,86 +88,87 @@ pub(crate) fn convex_hull(points: &[Point3]) -> Option<Vec<[u32; 3]>> {
         });
     }
     link_neighbours(&mut faces);
+    faces
+}
+
+/// The conflict lists of the tetrahedron's faces (filled in `faces`) and of the points (the
+/// faces each sees, returned), the tetrahedron's own corners left out.
+fn initial_conflicts(points: &[Point3], start: [usize; 4], faces: &mut [Face]) -> Vec<Vec<u32>> {
     let mut point_conflicts: Vec<Vec<u32>> = vec![Vec::new(); points.len()];
     for p in 0..points.len() as u32 {
         if start.contains(&(p as usize)) {
             continue;
         }
         for (f, face) in faces.iter_mut().enumerate() {
-            if sees(face, p) {
+            if sees(points, face, p) {
                 face.conflicts.push(p);
                 point_conflicts[p as usize].push(f as u32);
             }
         }
     }
-    let mut stamp = vec![u32::MAX; points.len()];
-    let mut horizon_start = vec![u32::MAX; points.len()];
-    for p in 0..points.len() as u32 {
-        let visible: Vec<u32> = std::mem::take(&mut point_conflicts[p as usize])
-            .into_iter()
-            .filter(|&f| faces[f as usize].alive)
-            .collect();
-        if visible.is_empty() {
-            continue;
-        }
-        for &f in &visible {
-            faces[f as usize].alive = false;
-        }
-        // Horizon edges: an edge of a visible face whose neighbour is not visible.
-        let mut created: Vec<u32> = Vec::new();
-        for &f in &visible {
-            for i in 0..3 {
-                let g = faces[f as usize].neighbours[i];
-                if !faces[g as usize].alive {
-                    continue;
-                }
-                let (u, w) = (faces[f as usize].v[i], faces[f as usize].v[(i + 1) % 3]);
-                let new = faces.len() as u32;
-                // Candidates: points that saw either face along the edge.
-                let mut conflicts = Vec::new();
-                for &q in faces[f as usize]
-                    .conflicts
-                    .iter()
-                    .chain(&faces[g as usize].conflicts)
-                {
-                    if q > p && stamp[q as usize] != new {
-                        stamp[q as usize] = new;
-                        conflicts.push(q);
-                    }
-                }
-                let mut face = Face {
-                    v: [u, w, p],
-                    neighbours: [g, u32::MAX, u32::MAX],
-                    alive: true,
-                    conflicts: Vec::new(),
-                };
-                face.conflicts = conflicts.into_iter().filter(|&q| sees(&face, q)).collect();
-                for &q in &face.conflicts {
-                    point_conflicts[q as usize].push(new);
-                }
-                let back = faces[g as usize]
-                    .neighbours
-                    .iter()
-                    .position(|&h| h == f)
-                    .unwrap_or(0);
-                faces[g as usize].neighbours[back] = new;
-                horizon_start[u as usize] = new;
-                faces.push(face);
-                created.push(new);
+    point_conflicts
+}
+
+/// The cone of new faces from point `p` to the horizon of the `visible` faces (an edge of a
+/// visible face whose neighbour is not visible), linked across the horizon, each with the
+/// later points that see it (candidates: the points that saw either face along its edge).
+/// Returns the new faces; `horizon_start[u]` is the new face whose horizon edge starts at
+/// `u`, and `stamp` marks the candidates already taken for a face.
+fn cone_faces(
+    points: &[Point3],
+    p: u32,
+    visible: &[u32],
+    faces: &mut Vec<Face>,
+    point_conflicts: &mut [Vec<u32>],
+    stamp: &mut [u32],
+    horizon_start: &mut [u32],
+) -> Vec<u32> {
+    let mut created: Vec<u32> = Vec::new();
+    for &f in visible {
+        for i in 0..3 {
+            let g = faces[f as usize].neighbours[i];
+            if !faces[g as usize].alive {
+                continue;
             }
-        }
-        // Around the new cone: face (u, w, p) meets, across (w, p), the face starting at w.
-        for &n in &created {
-            let w = faces[n as usize].v[1];
-            let next = horizon_start[w as usize];
-            faces[n as usize].neighbours[1] = next;
-            faces[next as usize].neighbours[2] = n;
-        }
-        for &f in &visible {
-            faces[f as usize].conflicts = Vec::new();
+            let (u, w) = (faces[f as usize].v[i], faces[f as usize].v[(i + 1) % 3]);
+            let new = faces.len() as u32;
+            // Candidates: points that saw either face along the edge.
+            let mut conflicts = Vec::new();
+            for &q in faces[f as usize]
+                .conflicts
+                .iter()
+                .chain(&faces[g as usize].conflicts)
+            {
+                if q > p && stamp[q as usize] != new {
+                    stamp[q as usize] = new;
+                    conflicts.push(q);
+                }
+            }
+            let mut face = Face {
+                v: [u, w, p],
+                neighbours: [g, u32::MAX, u32::MAX],
+                alive: true,
+                conflicts: Vec::new(),
+            };
+            face.conflicts = conflicts
+                .into_iter()
+                .filter(|&q| sees(points, &face, q))
+                .collect();
+            for &q in &face.conflicts {
+                point_conflicts[q as usize].push(new);
+            }
+            let back = faces[g as usize]
+                .neighbours
+                .iter()
+                .position(|&h| h == f)
+                .unwrap_or(0);
+            faces[g as usize].neighbours[back] = new;
+            horizon_start[u as usize] = new;
+            faces.push(face);
+            created.push(new);
         }
     }
-    Some(faces.into_iter().filter(|f| f.alive).map(|f| f.v).collect())
+    created
 }
 
 /// Four points not in one plane, the first ones found in order; `None` if there are none.

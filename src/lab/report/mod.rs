@@ -476,6 +476,83 @@ impl Report {
     }
 }
 
+/// A run of `variant` that was not made, and why.
+fn not_run(variant: &Variant, why: &str) -> Run {
+    Run {
+        variant: variant.name(),
+        kind: variant.kind().to_string(),
+        seconds: None,
+        figures: None,
+        failure: Some(why.to_string()),
+    }
+}
+
+/// `variant` drawing the case up to `settings.repeats` times (once when a run takes a second
+/// or more): the times of the runs, the last drawing, and the failure that ended them, if any
+/// (a run that timed out sets `stuck`).
+fn timed_runs(
+    case: &Arc<Case>,
+    variant: Variant,
+    settings: &Settings,
+    stuck: &mut bool,
+) -> (Vec<f64>, Option<Drawing>, Option<String>) {
+    let mut times = Vec::new();
+    let mut drawing = None;
+    let mut failure = None;
+    for _ in 0..settings.repeats.max(1) {
+        let case = case.clone();
+        match bounded(settings.limit, move || {
+            variant.draw(&case.scene, &case.view, &case.options)
+        }) {
+            Ok((d, seconds)) => {
+                times.push(seconds);
+                drawing = Some(d);
+                // A run of a second or more is timed once: its noise is small.
+                if seconds >= 1.0 {
+                    break;
+                }
+            }
+            Err(f) => {
+                *stuck |= matches!(f, Failure::TimedOut);
+                failure = Some(f.describe(settings.limit));
+                break;
+            }
+        }
+    }
+    (times, drawing, failure)
+}
+
+/// The error figures of a variant's drawing: the exact drawing (kept in `exact`) against the
+/// rational reference, for a case of at most [`REFERENCE_LIMIT`] triangles; any other against
+/// the exact drawing, once there is one.
+fn figures_of(
+    case: &Arc<Case>,
+    settings: &Settings,
+    triangles: usize,
+    variant: Variant,
+    drawing: &Option<Drawing>,
+    exact: &mut Option<Arc<Drawing>>,
+) -> Option<Figures> {
+    match (drawing, variant, &*exact) {
+        (Some(d), Variant::Exact, _) => {
+            let d = Arc::new(d.clone());
+            *exact = Some(d.clone());
+            (triangles <= REFERENCE_LIMIT)
+                .then(|| {
+                    let case = case.clone();
+                    bounded(settings.limit, move || {
+                        reference::reference(&case.scene, &case.view, &case.options)
+                    })
+                    .ok()
+                    .map(|(r, _)| Figures::from(&compare(&r, &d, default_tolerance(&r))))
+                })
+                .flatten()
+        }
+        (Some(d), _, Some(e)) => Some(Figures::from(&compare(e, d, variant_tolerance(e, variant)))),
+        _ => None,
+    }
+}
+
 /// Every variant on one case.
 fn run_case(case: Arc<Case>, settings: &Settings, stuck: &mut bool) -> CaseReport {
     let triangles = case
@@ -494,13 +571,6 @@ fn run_case(case: Arc<Case>, settings: &Settings, stuck: &mut bool) -> CaseRepor
         checks: 0,
         disagreements: 0,
         runs: Vec::new(),
-    };
-    let not_run = |variant: &Variant, why: &str| Run {
-        variant: variant.name(),
-        kind: variant.kind().to_string(),
-        seconds: None,
-        figures: None,
-        failure: Some(why.to_string()),
     };
     let variants = Variant::all(settings.quick);
     if *stuck {
@@ -542,49 +612,8 @@ fn run_case(case: Arc<Case>, settings: &Settings, stuck: &mut bool) -> CaseRepor
                 .push(not_run(&variant, "not run: an earlier run did not end"));
             continue;
         }
-        let mut times = Vec::new();
-        let mut drawing = None;
-        let mut failure = None;
-        for _ in 0..settings.repeats.max(1) {
-            let case = case.clone();
-            match bounded(settings.limit, move || {
-                variant.draw(&case.scene, &case.view, &case.options)
-            }) {
-                Ok((d, seconds)) => {
-                    times.push(seconds);
-                    drawing = Some(d);
-                    // A run of a second or more is timed once: its noise is small.
-                    if seconds >= 1.0 {
-                        break;
-                    }
-                }
-                Err(f) => {
-                    *stuck |= matches!(f, Failure::TimedOut);
-                    failure = Some(f.describe(settings.limit));
-                    break;
-                }
-            }
-        }
-        let figures = match (&drawing, variant, &exact) {
-            (Some(d), Variant::Exact, _) => {
-                let d = Arc::new(d.clone());
-                exact = Some(d.clone());
-                (triangles <= REFERENCE_LIMIT)
-                    .then(|| {
-                        let case = case.clone();
-                        bounded(settings.limit, move || {
-                            reference::reference(&case.scene, &case.view, &case.options)
-                        })
-                        .ok()
-                        .map(|(r, _)| Figures::from(&compare(&r, &d, default_tolerance(&r))))
-                    })
-                    .flatten()
-            }
-            (Some(d), _, Some(e)) => {
-                Some(Figures::from(&compare(e, d, variant_tolerance(e, variant))))
-            }
-            _ => None,
-        };
+        let (times, drawing, failure) = timed_runs(&case, variant, settings, stuck);
+        let figures = figures_of(&case, settings, triangles, variant, &drawing, &mut exact);
         report.runs.push(Run {
             variant: variant.name(),
             kind: variant.kind().to_string(),

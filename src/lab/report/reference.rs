@@ -195,15 +195,44 @@ fn runs(
         map.picture(&b).ok_or_else(behind)?,
     ];
     let bounds = span(&ends);
-    // The four affine functions of each triangle that may hide part of the line, valued at
-    // `a` and at `b`: its plane (positive on the eye's side), then its three sides' planes of
-    // sight.
-    let mut forms: Vec<[Along; 4]> = Vec::new();
-    for h in hiders {
-        if !overlap(&bounds, &h.bounds) {
+    let forms = hider_forms(stroke, (hiders, slack), [&a, &b], &bounds);
+    let (params, spans) = visibility_spans(&forms);
+    let mut polylines = Vec::new();
+    for (i, j, visible) in spans {
+        if !visible && !keep_hidden {
             continue;
         }
-        let plane = (h.plane.at(&a), h.plane.at(&b));
+        let mut points = Vec::with_capacity(2);
+        for t in [&params[i], &params[j]] {
+            let p = [0, 1, 2].map(|k| &a[k] + t * (&b[k] - &a[k]));
+            points.push(map.picture(&p).ok_or_else(behind)?.map(|x| nearest(&x)));
+        }
+        if points[0] != points[1] {
+            polylines.push(Polyline {
+                class: stroke.class,
+                visible,
+                points,
+            });
+        }
+    }
+    Ok(polylines)
+}
+
+/// The four affine functions of each triangle that may hide part of the line from `a` to `b`
+/// (whose picture lies in `bounds`), valued at `a` and at `b`: its plane (positive on the
+/// eye's side), then its three sides' planes of sight.
+fn hider_forms(
+    stroke: &Stroke,
+    (hiders, slack): (&[Hider], &Q),
+    [a, b]: [&V; 2],
+    bounds: &[[Q; 2]; 2],
+) -> Vec<[Along; 4]> {
+    let mut forms: Vec<[Along; 4]> = Vec::new();
+    for h in hiders {
+        if !overlap(bounds, &h.bounds) {
+            continue;
+        }
+        let plane = (h.plane.at(a), h.plane.at(b));
         if !plane.0.is_negative() && !plane.1.is_negative() {
             continue;
         }
@@ -215,11 +244,18 @@ fn runs(
         let [s0, s1, s2] = &h.sides;
         forms.push([
             Along::new(&plane.0, &plane.1),
-            Along::new(&s0.at(&a), &s0.at(&b)),
-            Along::new(&s1.at(&a), &s1.at(&b)),
-            Along::new(&s2.at(&a), &s2.at(&b)),
+            Along::new(&s0.at(a), &s0.at(b)),
+            Along::new(&s1.at(a), &s1.at(b)),
+            Along::new(&s2.at(a), &s2.at(b)),
         ]);
     }
+    forms
+}
+
+/// The parameters along the line where some of the `forms` vanishes strictly inside it, with
+/// 0 and 1, and the runs of one visibility between them: (first parameter, last parameter,
+/// visible), as indices into the parameters.
+fn visibility_spans(forms: &[[Along; 4]]) -> (Vec<Q>, Vec<(usize, usize, bool)>) {
     // Where some function vanishes strictly inside the line.
     let (zero, one) = (Q::zero(), Q::one());
     let mut cuts: Vec<Q> = forms
@@ -244,25 +280,7 @@ fn runs(
             _ => spans.push((i, i + 1, visible)),
         }
     }
-    let mut polylines = Vec::new();
-    for (i, j, visible) in spans {
-        if !visible && !keep_hidden {
-            continue;
-        }
-        let mut points = Vec::with_capacity(2);
-        for t in [&params[i], &params[j]] {
-            let p = [0, 1, 2].map(|k| &a[k] + t * (&b[k] - &a[k]));
-            points.push(map.picture(&p).ok_or_else(behind)?.map(|x| nearest(&x)));
-        }
-        if points[0] != points[1] {
-            polylines.push(Polyline {
-                class: stroke.class,
-                visible,
-                points,
-            });
-        }
-    }
-    Ok(polylines)
+    (params, spans)
 }
 
 /// Whether the triangle with these four functions along the line hides the point at

@@ -313,12 +313,51 @@ impl Cell {
         }
         let [below_region, above_region] = self.region.split(d, h);
         let beta = offsets(&self.region);
-        let (lo_plane, hi_plane) = (2 * d, 2 * d + 1);
+
+        // Triangles, and the edges of S crossing h.
+        let sorted = self.triangles_by_side(mesh, d, h);
+
+        let mut new_vertices = edge_crossings(mesh, &sorted.crossing_edges, &beta, d, h);
+
+        // The polygon C ∩ h: a face of the upper region's boundary.
+        let boundary = Tribox::new(&above_region).cleaned();
+        let above_beta = offsets(&above_region);
+        new_vertices.extend(polygon_corners(tree, &boundary, &above_beta, d));
+        new_vertices.extend(polygon_edge_crossings(
+            mesh,
+            &boundary,
+            &above_beta,
+            &sorted.on_h,
+            d,
+            h,
+        ));
+
+        let (below_vertices, above_vertices) = self.vertices_by_side(&sides, &new_vertices);
+
+        let child = |region: TriboxBounds, triangles: Vec<u32>, vertices: Vec<CellVertex>| {
+            let tribox = bounds_of(&vertices)
+                .intersection(&region)
+                .intersection(&self.tribox);
+            Cell {
+                region,
+                tribox,
+                triangles,
+                vertices,
+            }
+        };
+        Some([
+            child(below_region, sorted.below, below_vertices),
+            child(above_region, sorted.above, above_vertices),
+        ])
+    }
+
+    /// The cell's triangles on each side of the plane `d · x = h` (those meeting it on both),
+    /// the triangles meeting it, and the edges of `S` crossing it strictly (each once, sorted).
+    fn triangles_by_side(&self, mesh: &Mesh, d: usize, h: f64) -> TrianglesBySide {
+        let hi_plane = 2 * d + 1;
         // The side of h as the sign of n · p − h with n = direction d: plane 2d + 1 with
         // offset h.
         let side_of = |p: &Point3| plane_sign(hi_plane, h, p);
-
-        // Triangles, and the edges of S crossing h.
         let mut below_triangles = Vec::new();
         let mut above_triangles = Vec::new();
         let mut on_h = Vec::new();
@@ -348,109 +387,24 @@ impl Cell {
         }
         crossing_edges.sort_unstable();
         crossing_edges.dedup();
-
-        let mut new_vertices = Vec::new();
-        // Edges of S crossing h inside C: the point (A b − B a) / (A − B) with A, B the values
-        // of the plane at a and b, inside C when each other half-space holds there.
-        let skip_d = |j: usize| j == lo_plane || j == hi_plane;
-        for &(a, b) in &crossing_edges {
-            let points = [mesh.vertices()[a as usize], mesh.vertices()[b as usize]];
-            let (va, vb) = (
-                plane_value(hi_plane, h, &points[0]),
-                plane_value(hi_plane, h, &points[1]),
-            );
-            let weights = [negated(&vb), va.clone()];
-            let total = expansion_sum(&va, &negated(&vb));
-            let total_sign = sum_sign(&total);
-            if combination_inside(&beta, skip_d, &weights, &points, total_sign) {
-                new_vertices.push(weighted_point(&weights, &points, &total));
-            }
+        TrianglesBySide {
+            below: below_triangles,
+            above: above_triangles,
+            on_h,
+            crossing_edges,
         }
+    }
 
-        // The polygon C ∩ h: a face of the upper region's boundary.
-        let boundary = Tribox::new(&above_region).cleaned();
-        let polygon = boundary.face(lo_plane);
-        let corners = boundary.vertices();
-        let above_beta = offsets(&above_region);
-        // A corner is exact when it lies exactly on its three (independent) planes.
-        let corner = |v: u8| {
-            let p = corners[v as usize];
-            let on_planes = boundary.vertex_planes()[v as usize]
-                .iter()
-                .all(|&j| plane_sign(j as usize, above_beta[j as usize], &p) == Ordering::Equal);
-            CellVertex::built(p, [on_planes; 3])
-        };
-        for &v in polygon {
-            let mut vertex = corner(v);
-            // A rounded corner that may lie within err of the surface is kept, not sure.
-            let inside = classify_point(tree, &vertex.p) != Containment::Outside;
-            if inside || tree.distance(&vertex.p) <= 4.0 * vertex.max_err() {
-                vertex.sure = inside && vertex.err == [0.0; 3];
-                new_vertices.push(vertex);
-            }
-        }
-
-        // Edges of the polygon crossing faces of S: the line {n_lo · x = β_lo, n_j · x = β_j}
-        // meets triangle t where its barycentric weights, the 2 × 2 determinants of the two
-        // plane values at the other two corners, agree in sign.
-        for (k, &u) in polygon.iter().enumerate() {
-            let v = polygon[(k + 1) % polygon.len()];
-            let Some(j) = (0..18).find(|&j| {
-                j != lo_plane && {
-                    let f = boundary.face(j);
-                    (0..f.len()).any(|i| {
-                        let (x, y) = (f[i], f[(i + 1) % f.len()]);
-                        (x, y) == (u, v) || (x, y) == (v, u)
-                    })
-                }
-            }) else {
-                continue;
-            };
-            let (pu, pv) = (corner(u), corner(v));
-            let pad = pu.max_err().max(pv.max_err());
-            let lo = [0, 1, 2].map(|i| pu.p[i].min(pv.p[i]) - pad);
-            let hi = [0, 1, 2].map(|i| pu.p[i].max(pv.p[i]) + pad);
-            for &t in &on_h {
-                let tri = mesh.triangle(t as usize);
-                let outside_box = (0..3)
-                    .any(|i| tri.iter().all(|p| p[i] < lo[i]) || tri.iter().all(|p| p[i] > hi[i]));
-                if outside_box {
-                    continue;
-                }
-                let values = tri.map(|p| {
-                    (
-                        plane_value(lo_plane, -h, &p),
-                        plane_value(j, above_beta[j], &p),
-                    )
-                });
-                let weights: Vec<Vec<f64>> = (0..3)
-                    .map(|i| {
-                        let (b, c) = (&values[(i + 1) % 3], &values[(i + 2) % 3]);
-                        expansion_sum(
-                            &expansion_product(&b.0, &c.1),
-                            &negated(&expansion_product(&c.0, &b.1)),
-                        )
-                    })
-                    .collect();
-                let total = expansion_sum(&expansion_sum(&weights[0], &weights[1]), &weights[2]);
-                let total_sign = sum_sign(&total);
-                if total_sign == Ordering::Equal
-                    || weights.iter().any(|w| sum_sign(w) == total_sign.reverse())
-                {
-                    continue;
-                }
-                let skip = |m: usize| skip_d(m) || m == j;
-                if combination_inside(&above_beta, skip, &weights, &tri, total_sign) {
-                    new_vertices.push(weighted_point(&weights, &tri, &total));
-                }
-            }
-        }
-
-        // The parent's vertices go to their side (both when a built point is within its err
-        // of h).
+    /// The parent's vertices on each side of the cut, `(below, above)` (both when a built
+    /// point is within its err of h), each followed by the vertices the cut made.
+    fn vertices_by_side(
+        &self,
+        sides: &[Side],
+        new_vertices: &[CellVertex],
+    ) -> (Vec<CellVertex>, Vec<CellVertex>) {
         let mut below_vertices = Vec::with_capacity(self.vertices.len() + new_vertices.len());
         let mut above_vertices = Vec::with_capacity(self.vertices.len() + new_vertices.len());
-        for (v, side) in self.vertices.iter().zip(&sides) {
+        for (v, side) in self.vertices.iter().zip(sides) {
             // A built point on both sides by its error box may be in either cell only.
             let kept = CellVertex {
                 sure: v.sure && (*side != Side::Both || v.err == [0.0; 3]),
@@ -463,25 +417,152 @@ impl Cell {
                 above_vertices.push(kept);
             }
         }
-        below_vertices.extend_from_slice(&new_vertices);
-        above_vertices.extend_from_slice(&new_vertices);
-
-        let child = |region: TriboxBounds, triangles: Vec<u32>, vertices: Vec<CellVertex>| {
-            let tribox = bounds_of(&vertices)
-                .intersection(&region)
-                .intersection(&self.tribox);
-            Cell {
-                region,
-                tribox,
-                triangles,
-                vertices,
-            }
-        };
-        Some([
-            child(below_region, below_triangles, below_vertices),
-            child(above_region, above_triangles, above_vertices),
-        ])
+        below_vertices.extend_from_slice(new_vertices);
+        above_vertices.extend_from_slice(new_vertices);
+        (below_vertices, above_vertices)
     }
+}
+
+/// A cell's triangles sorted by a splitting plane (see [`Cell::triangles_by_side`]).
+struct TrianglesBySide {
+    /// The triangles with a corner on or below the plane.
+    below: Vec<u32>,
+    /// The triangles with a corner on or above the plane.
+    above: Vec<u32>,
+    /// The triangles in both lists: those that meet the plane.
+    on_h: Vec<u32>,
+    /// The edges with one end strictly on each side, as `(lower index, higher index)`.
+    crossing_edges: Vec<(u32, u32)>,
+}
+
+/// The vertices where the edges of `S` crossing the plane `d · x = h` cross it inside the
+/// region of offsets `beta`: the point (A b − B a) / (A − B) with A, B the values of the plane
+/// at a and b, inside C when each other half-space holds there.
+fn edge_crossings(
+    mesh: &Mesh,
+    crossing_edges: &[(u32, u32)],
+    beta: &[f64; 18],
+    d: usize,
+    h: f64,
+) -> Vec<CellVertex> {
+    let (lo_plane, hi_plane) = (2 * d, 2 * d + 1);
+    let mut new_vertices = Vec::new();
+    let skip_d = |j: usize| j == lo_plane || j == hi_plane;
+    for &(a, b) in crossing_edges {
+        let points = [mesh.vertices()[a as usize], mesh.vertices()[b as usize]];
+        let (va, vb) = (
+            plane_value(hi_plane, h, &points[0]),
+            plane_value(hi_plane, h, &points[1]),
+        );
+        let weights = [negated(&vb), va.clone()];
+        let total = expansion_sum(&va, &negated(&vb));
+        let total_sign = sum_sign(&total);
+        if combination_inside(beta, skip_d, &weights, &points, total_sign) {
+            new_vertices.push(weighted_point(&weights, &points, &total));
+        }
+    }
+    new_vertices
+}
+
+/// Corner `v` of `boundary` (the upper region's, of offsets `beta`) as a cell vertex: exact
+/// when it lies exactly on its three (independent) planes.
+fn region_corner(boundary: &Tribox, beta: &[f64; 18], v: u8) -> CellVertex {
+    let p = boundary.vertices()[v as usize];
+    let on_planes = boundary.vertex_planes()[v as usize]
+        .iter()
+        .all(|&j| plane_sign(j as usize, beta[j as usize], &p) == Ordering::Equal);
+    CellVertex::built(p, [on_planes; 3])
+}
+
+/// The corners of the polygon C ∩ h (the face of plane `2d` of `boundary`, the upper region's,
+/// of offsets `beta`) inside `S`, or that may lie within their error of its surface (a
+/// rounded corner that may is kept, not sure).
+fn polygon_corners(
+    tree: &TriangleTree,
+    boundary: &Tribox,
+    beta: &[f64; 18],
+    d: usize,
+) -> Vec<CellVertex> {
+    let mut new_vertices = Vec::new();
+    for &v in boundary.face(2 * d) {
+        let mut vertex = region_corner(boundary, beta, v);
+        // A rounded corner that may lie within err of the surface is kept, not sure.
+        let inside = classify_point(tree, &vertex.p) != Containment::Outside;
+        if inside || tree.distance(&vertex.p) <= 4.0 * vertex.max_err() {
+            vertex.sure = inside && vertex.err == [0.0; 3];
+            new_vertices.push(vertex);
+        }
+    }
+    new_vertices
+}
+
+/// The points where the edges of the polygon C ∩ h (the face of plane `2d` of `boundary`, the
+/// upper region's, of offsets `beta`) cross the triangles `on_h` of `S`: the line
+/// {n_lo · x = β_lo, n_j · x = β_j} meets triangle t where its barycentric weights, the 2 × 2
+/// determinants of the two plane values at the other two corners, agree in sign.
+fn polygon_edge_crossings(
+    mesh: &Mesh,
+    boundary: &Tribox,
+    beta: &[f64; 18],
+    on_h: &[u32],
+    d: usize,
+    h: f64,
+) -> Vec<CellVertex> {
+    let (lo_plane, hi_plane) = (2 * d, 2 * d + 1);
+    let skip_d = |j: usize| j == lo_plane || j == hi_plane;
+    let polygon = boundary.face(lo_plane);
+    let mut new_vertices = Vec::new();
+    for (k, &u) in polygon.iter().enumerate() {
+        let v = polygon[(k + 1) % polygon.len()];
+        let Some(j) = (0..18).find(|&j| {
+            j != lo_plane && {
+                let f = boundary.face(j);
+                (0..f.len()).any(|i| {
+                    let (x, y) = (f[i], f[(i + 1) % f.len()]);
+                    (x, y) == (u, v) || (x, y) == (v, u)
+                })
+            }
+        }) else {
+            continue;
+        };
+        let (pu, pv) = (
+            region_corner(boundary, beta, u),
+            region_corner(boundary, beta, v),
+        );
+        let pad = pu.max_err().max(pv.max_err());
+        let lo = [0, 1, 2].map(|i| pu.p[i].min(pv.p[i]) - pad);
+        let hi = [0, 1, 2].map(|i| pu.p[i].max(pv.p[i]) + pad);
+        for &t in on_h {
+            let tri = mesh.triangle(t as usize);
+            let outside_box = (0..3)
+                .any(|i| tri.iter().all(|p| p[i] < lo[i]) || tri.iter().all(|p| p[i] > hi[i]));
+            if outside_box {
+                continue;
+            }
+            let values = tri.map(|p| (plane_value(lo_plane, -h, &p), plane_value(j, beta[j], &p)));
+            let weights: Vec<Vec<f64>> = (0..3)
+                .map(|i| {
+                    let (b, c) = (&values[(i + 1) % 3], &values[(i + 2) % 3]);
+                    expansion_sum(
+                        &expansion_product(&b.0, &c.1),
+                        &negated(&expansion_product(&c.0, &b.1)),
+                    )
+                })
+                .collect();
+            let total = expansion_sum(&expansion_sum(&weights[0], &weights[1]), &weights[2]);
+            let total_sign = sum_sign(&total);
+            if total_sign == Ordering::Equal
+                || weights.iter().any(|w| sum_sign(w) == total_sign.reverse())
+            {
+                continue;
+            }
+            let skip = |m: usize| skip_d(m) || m == j;
+            if combination_inside(beta, skip, &weights, &tri, total_sign) {
+                new_vertices.push(weighted_point(&weights, &tri, &total));
+            }
+        }
+    }
+    new_vertices
 }
 
 /// The tribox of the vertices' boxes: the exact bounds of the object's vertices, and of the

@@ -96,28 +96,86 @@ pub fn hausdorff(triboxes: &[TriboxBounds], tree: &TriangleTree, tolerance: f64)
         .flat_map(|t| t.min()[..3].iter().chain(&t.max()[..3]))
         .fold(0.0f64, |m, v| m.max(v.abs()));
     let slack = 64.0 * f64::EPSILON * scale + f64::MIN_POSITIVE;
-    // The signed distance: negative inside (to the surface), positive outside, 0 on it.
-    let signed = |p: &Point3| match classify_point(tree, p) {
-        Containment::Outside => tree.distance(p),
-        Containment::Inside => -tree.distance(p),
-        Containment::Boundary => 0.0,
-    };
     let mut lower = 0.0f64;
     for t in triboxes {
         for v in Tribox::new(t).cleaned().vertices() {
-            lower = lower.max(signed(v) - slack);
+            lower = lower.max(signed_distance(tree, v) - slack);
         }
     }
-    let mut heap = BinaryHeap::new();
-    let mut dropped = 0.0f64;
+    let mut search = Search {
+        triboxes,
+        tree,
+        tolerance,
+        slack,
+        lower,
+        heap: BinaryHeap::new(),
+        dropped: 0.0f64,
+    };
     let mut boxes = 0;
-    let consider = |cell: Aabb,
-                    i: usize,
-                    lower: &mut f64,
-                    heap: &mut BinaryHeap<Candidate>,
-                    dropped: &mut f64| {
+    for (i, t) in triboxes.iter().enumerate() {
+        if t.is_empty() {
+            continue;
+        }
+        // A tribox's first three slabs are its axis-aligned box.
+        let cell = Aabb {
+            min: [t.min()[0], t.min()[1], t.min()[2]],
+            max: [t.max()[0], t.max()[1], t.max()[2]],
+        };
+        search.consider(cell, i);
+    }
+    while let Some(top) = search.heap.peek() {
+        if top.upper <= search.lower + tolerance || boxes >= MAX_BOXES {
+            break;
+        }
+        let Some(b) = search.heap.pop() else { break };
+        let (lo, hi) = (b.cell.min, b.cell.max);
+        let mid = [0, 1, 2].map(|k| 0.5 * lo[k] + 0.5 * hi[k]);
+        for c in 0..8 {
+            let octant = Aabb {
+                min: [0, 1, 2].map(|k| if c >> k & 1 == 0 { lo[k] } else { mid[k] }),
+                max: [0, 1, 2].map(|k| if c >> k & 1 == 0 { mid[k] } else { hi[k] }),
+            };
+            search.consider(octant, b.tribox);
+            boxes += 1;
+        }
+    }
+    let open = search.heap.peek().map_or(0.0, |c| c.upper);
+    DistanceBounds {
+        lower: search.lower,
+        upper: open.max(search.dropped).max(search.lower),
+    }
+}
+
+/// The signed distance from `p` to the solid of `tree`: negative inside (to the surface),
+/// positive outside, 0 on it.
+fn signed_distance(tree: &TriangleTree, p: &Point3) -> f64 {
+    match classify_point(tree, p) {
+        Containment::Outside => tree.distance(p),
+        Containment::Inside => -tree.distance(p),
+        Containment::Boundary => 0.0,
+    }
+}
+
+/// The branch and bound of [`hausdorff`]: the lower bound so far, the boxes still open (by
+/// their upper bounds), and the largest upper bound of the boxes dropped.
+struct Search<'a> {
+    triboxes: &'a [TriboxBounds],
+    tree: &'a TriangleTree,
+    tolerance: f64,
+    slack: f64,
+    lower: f64,
+    heap: BinaryHeap<Candidate>,
+    dropped: f64,
+}
+
+impl Search<'_> {
+    /// Bounds the distance over the part of tribox `i` in `cell` by the distance at the
+    /// cell's centre and its radius: raises the lower bound when the centre is in the tribox,
+    /// drops the cell when it cannot raise the result beyond the tolerance, else keeps it
+    /// open.
+    fn consider(&mut self, cell: Aabb, i: usize) {
         let (lo, hi) = (cell.min, cell.max);
-        if !TriboxBounds::from_points(&cell.corners()).intersects(&triboxes[i]) {
+        if !TriboxBounds::from_points(&cell.corners()).intersects(&self.triboxes[i]) {
             return;
         }
         let c = Point3::new(
@@ -130,51 +188,19 @@ pub fn hausdorff(triboxes: &[TriboxBounds], tree: &TriangleTree, tolerance: f64)
             .sum::<f64>()
             .sqrt()
             * (1.0 + 8.0 * f64::EPSILON);
-        let d = signed(&c);
-        if d > 0.0 && triboxes[i].contains_point(&c) {
-            *lower = lower.max(d - slack);
+        let d = signed_distance(self.tree, &c);
+        if d > 0.0 && self.triboxes[i].contains_point(&c) {
+            self.lower = self.lower.max(d - self.slack);
         }
-        let upper = (d + r).max(0.0) + slack;
-        if upper <= *lower + tolerance || r <= slack {
-            *dropped = dropped.max(upper);
+        let upper = (d + r).max(0.0) + self.slack;
+        if upper <= self.lower + self.tolerance || r <= self.slack {
+            self.dropped = self.dropped.max(upper);
         } else {
-            heap.push(Candidate {
+            self.heap.push(Candidate {
                 upper,
                 cell,
                 tribox: i,
             });
         }
-    };
-    for (i, t) in triboxes.iter().enumerate() {
-        if t.is_empty() {
-            continue;
-        }
-        // A tribox's first three slabs are its axis-aligned box.
-        let cell = Aabb {
-            min: [t.min()[0], t.min()[1], t.min()[2]],
-            max: [t.max()[0], t.max()[1], t.max()[2]],
-        };
-        consider(cell, i, &mut lower, &mut heap, &mut dropped);
-    }
-    while let Some(top) = heap.peek() {
-        if top.upper <= lower + tolerance || boxes >= MAX_BOXES {
-            break;
-        }
-        let Some(b) = heap.pop() else { break };
-        let (lo, hi) = (b.cell.min, b.cell.max);
-        let mid = [0, 1, 2].map(|k| 0.5 * lo[k] + 0.5 * hi[k]);
-        for c in 0..8 {
-            let octant = Aabb {
-                min: [0, 1, 2].map(|k| if c >> k & 1 == 0 { lo[k] } else { mid[k] }),
-                max: [0, 1, 2].map(|k| if c >> k & 1 == 0 { mid[k] } else { hi[k] }),
-            };
-            consider(octant, b.tribox, &mut lower, &mut heap, &mut dropped);
-            boxes += 1;
-        }
-    }
-    let open = heap.peek().map_or(0.0, |c| c.upper);
-    DistanceBounds {
-        lower,
-        upper: open.max(dropped).max(lower),
     }
 }

@@ -273,24 +273,7 @@ impl Hierarchy {
     /// assert_eq!(Hierarchy::build(&open, &HierarchyOptions::default()).unwrap_err(), TriboxesError::NotSolid);
     /// ```
     pub fn build(mesh: &Mesh, options: &HierarchyOptions) -> Result<Hierarchy, TriboxesError> {
-        if !(options.gain < 1.0 && options.gain.is_finite()) {
-            return Err(TriboxesError::Option(format!(
-                "the gain must be a number below 1, not {}",
-                options.gain
-            )));
-        }
-        if !(options.hausdorff_tolerance > 0.0 && options.hausdorff_tolerance.is_finite()) {
-            return Err(TriboxesError::Option(format!(
-                "the Hausdorff tolerance must be positive, not {}",
-                options.hausdorff_tolerance
-            )));
-        }
-        if mesh.triangles().is_empty() {
-            return Err(TriboxesError::Empty);
-        }
-        if !mesh.is_solid() {
-            return Err(TriboxesError::NotSolid);
-        }
+        check_input(mesh, options)?;
         let tree = TriangleTree::new(mesh);
         let root = Cell::root(mesh);
         let diagonal = {
@@ -569,6 +552,30 @@ fn snapped_boundary(tribox: &TriboxBounds, tol: f64) -> (Vec<Point3>, Vec<Vec<u3
         })
         .collect();
     (vertices, faces)
+}
+
+/// Refuses what [`Hierarchy::build`] cannot build on: a gain of 1 or more, a Hausdorff
+/// tolerance not positive, a mesh without triangles or not solid.
+fn check_input(mesh: &Mesh, options: &HierarchyOptions) -> Result<(), TriboxesError> {
+    if !(options.gain < 1.0 && options.gain.is_finite()) {
+        return Err(TriboxesError::Option(format!(
+            "the gain must be a number below 1, not {}",
+            options.gain
+        )));
+    }
+    if !(options.hausdorff_tolerance > 0.0 && options.hausdorff_tolerance.is_finite()) {
+        return Err(TriboxesError::Option(format!(
+            "the Hausdorff tolerance must be positive, not {}",
+            options.hausdorff_tolerance
+        )));
+    }
+    if mesh.triangles().is_empty() {
+        return Err(TriboxesError::Empty);
+    }
+    if !mesh.is_solid() {
+        return Err(TriboxesError::NotSolid);
+    }
+    Ok(())
 }
 
 /// A node for a cell.

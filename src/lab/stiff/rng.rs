@@ -1,0 +1,32 @@
+//! The seeded choices of a stiff scene.
+
+use crate::lab::boxtree::spheres::SplitMix64;
+
+/// The seeded choices of a scene. [`SplitMix64`] (shared with the BOXTREE sphere experiment)
+/// is a dozen lines where a random-number crate would be a dependency, and gives the same
+/// scenes on every machine.
+pub(super) struct Rng(pub(super) SplitMix64);
+
+impl Rng {
+    /// A uniform integer in `0..n` (for `n > 0`).
+    pub(super) fn below(&mut self, n: usize) -> usize {
+        ((self.0.unit() * n as f64) as usize).min(n - 1)
+    }
+
+    /// A uniform multiple of 1/8 in `[lo, hi]` (the first above `lo` when there is none).
+    pub(super) fn eighths(&mut self, lo: f64, hi: f64) -> f64 {
+        let (a, b) = ((lo * 8.0).ceil(), (hi * 8.0).floor());
+        let steps = if b > a { (b - a) as usize + 1 } else { 1 };
+        (a + self.below(steps) as f64) / 8.0
+    }
+
+    /// One of `items` (not empty).
+    pub(super) fn pick<T: Copy>(&mut self, items: &[T]) -> T {
+        items[self.below(items.len())]
+    }
+
+    /// 1 or −1.
+    pub(super) fn sign(&mut self) -> f64 {
+        if self.below(2) == 0 { 1.0 } else { -1.0 }
+    }
+}
