@@ -342,19 +342,15 @@ const PARALLEL_VERTICES: usize = 1 << 14;
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::random::SplitMix64;
 
     /// The merge against a first-seen hash table: on vertex lists below and above the
     /// parallel size, drawn from few distinct points (many copies, -0.0 among them) in any
     /// order, the same distinct vertices in the same order and the same map.
     #[test]
     fn merging_keeps_the_first_of_equal_vertices_in_input_order() {
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut below = |n: u64| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state % n
-        };
+        let mut rng = SplitMix64(0x9e37_79b9_7f4a_7c15);
+        let mut below = |n: u64| rng.next_u64() % n;
         let coordinate = [0.0, -0.0, 1.0, -1.0, 0.1, 1e-300, f64::MIN_POSITIVE, 1e300];
         for (len, distinct) in [
             (0, 1),

@@ -4,6 +4,7 @@ use super::expansion::{grow_expansion, with_expansion};
 use super::sign::{exact_sign, sign_of};
 use super::sum::{exact_round, min_half_gap, round_expansion};
 use super::*;
+use crate::random::SplitMix64;
 use std::cmp::Ordering;
 
 #[test]
@@ -50,13 +51,8 @@ fn expansion_sign(terms: &[f64]) -> Ordering {
 
 #[test]
 fn cascade_signs_and_fixed_arrays_agree_with_the_expansion() {
-    let mut state = 0x2545_f491_4f6c_dd1du64;
-    let mut next = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        state
-    };
+    let mut rng = SplitMix64(0x2545_f491_4f6c_dd1d);
+    let mut next = move || rng.next_u64();
     // Terms that cancel exactly or nearly: shared magnitudes, halves, tiny tails, zeros,
     // from 1e-300 to 1e300 and mixed signs.
     let pool = [

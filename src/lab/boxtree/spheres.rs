@@ -27,6 +27,7 @@ use super::{BoxTree, Merge, NodeShape, Shape};
 use crate::bounds::tribox::TriboxBounds;
 use crate::geometry::{Aabb, Point3};
 use crate::mesh::Mesh;
+use crate::random::SplitMix64;
 use crate::solids::{MAX_FACES, SolidError};
 use serde::Serialize;
 
@@ -246,35 +247,4 @@ fn random_sphere(n: usize, radius: f64, rng: &mut SplitMix64) -> Result<Mesh, So
         })
         .collect();
     Ok(Mesh::from_polygons(vertices, faces)?)
-}
-
-/// SplitMix64 (Steele, Lea and Flood 2014): a tiny seeded generator, so the spheres (and the
-/// benchmarks' data) are the same on every machine; the seed of [`sphere_experiment`] is its
-/// state. Written by hand because the library has no random-number dependency.
-///
-/// ```
-/// use kepler::lab::boxtree::spheres::SplitMix64;
-/// let mut a = SplitMix64(7);
-/// let x = a.unit();
-/// assert!((0.0..1.0).contains(&x));
-/// assert_eq!(SplitMix64(7).unit(), x);
-/// assert!((2.0..3.0).contains(&a.range(2.0, 3.0)));
-/// ```
-pub struct SplitMix64(pub u64);
-
-impl SplitMix64 {
-    /// A uniform double in `[lo, hi)` (for `lo < hi`).
-    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-
-    /// A uniform double in `[0, 1)`.
-    pub fn unit(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
 }

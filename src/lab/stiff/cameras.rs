@@ -1,7 +1,7 @@
 //! The cameras of the stiff scenes: generic orthographic views, exact ones for the edge-on
 //! family, and perspective views.
 
-use super::rng::Rng;
+use super::choices::Choices;
 use crate::scene::{Camera, Projection};
 
 /// View directions for the generic orthographic views: from the front (`+y`), above and to a
@@ -24,7 +24,7 @@ pub(super) const EXACT_DIRECTIONS: [[f64; 3]; 4] = [
 ];
 
 /// An orthographic camera along one of [`GENERIC_DIRECTIONS`], `z` up.
-pub(super) fn generic_view(rng: &mut Rng) -> Camera {
+pub(super) fn generic_view(rng: &mut Choices) -> Camera {
     Camera {
         projection: Projection::Orthographic {
             direction: rng.pick(&GENERIC_DIRECTIONS),

@@ -3,7 +3,7 @@
 
 use super::Layout;
 use super::cameras::{EXACT_DIRECTIONS, generic_view, perspective};
-use super::rng::Rng;
+use super::choices::Choices;
 use super::shapes::{
     hexahedron, named, outward, parallelepiped, prism, reversed, ten_to_the, tetrahedron,
 };
@@ -16,7 +16,7 @@ use crate::solids;
 /// A plate sunk into a block, its top tilted `10^-k` about a line in the block's top (so the
 /// two tops cross there), and a block in front whose back face is tilted `10^-k` about a
 /// vertical line in the block's front face. `k = 16`: both exactly coplanar.
-pub(super) fn tilt(k: i32, rng: &mut Rng) -> crate::Result<Layout> {
+pub(super) fn tilt(k: i32, rng: &mut Choices) -> crate::Result<Layout> {
     let t = if k >= 16 { 0.0 } else { ten_to_the(-k) };
     let (w, y0, h) = (
         rng.eighths(3.0, 4.5),
@@ -71,7 +71,7 @@ pub(super) fn tilt(k: i32, rng: &mut Rng) -> crate::Result<Layout> {
 
 /// A needle (a triangular prism about 3.5 long, its cross-section about `4·10^-k`) and a blade
 /// (a tetrahedron about 2 across and `2·10^-k` thick), both piercing a box's front face.
-pub(super) fn sliver(k: i32, rng: &mut Rng) -> crate::Result<Layout> {
+pub(super) fn sliver(k: i32, rng: &mut Choices) -> crate::Result<Layout> {
     let h = 4.0 * ten_to_the(-k);
     let (w, y0, depth, height) = (
         rng.eighths(3.0, 4.0),
@@ -125,7 +125,7 @@ pub(super) fn sliver(k: i32, rng: &mut Rng) -> crate::Result<Layout> {
 /// sunk, one across its front edge), all moved `10^k` along each axis (the signs by the seed).
 /// The features are multiples of 1/8, so every coordinate is exact up to `k = 15`; at
 /// `k = 16` the doubles are 2 apart, and the scene is 16 times larger to stay exact.
-pub(super) fn offset(k: i32, rng: &mut Rng) -> crate::Result<Layout> {
+pub(super) fn offset(k: i32, rng: &mut Choices) -> crate::Result<Layout> {
     let t = 10f64.powi(k);
     let grow = ((t.next_up() - t) * 8.0).max(1.0);
     let origin = [rng.sign() * t, rng.sign() * t, rng.sign() * t];
@@ -167,7 +167,7 @@ pub(super) fn offset(k: i32, rng: &mut Rng) -> crate::Result<Layout> {
 
 /// A block pierced by a rod and a spike, a box in front of it, all scaled by `2^k` (exactly);
 /// seen orthographically on even seeds, in perspective (the eye scaled too) on odd ones.
-pub(super) fn scale(k: i32, rng: &mut Rng, seed_is_odd: bool) -> crate::Result<Layout> {
+pub(super) fn scale(k: i32, rng: &mut Choices, seed_is_odd: bool) -> crate::Result<Layout> {
     let (w, d, h) = (
         rng.eighths(3.0, 4.0),
         rng.eighths(3.0, 4.0),
@@ -239,7 +239,7 @@ pub(super) fn scale(k: i32, rng: &mut Rng, seed_is_odd: bool) -> crate::Result<L
 /// Seen along an exact direction `d`: a prism along `d` (faces edge-on, edges end-on), a slab
 /// with two faces containing `d` but no edge along it, piercing the prism, a slab behind whose
 /// faces are `10^-k` from containing `d`, and a floor.
-pub(super) fn edge_on(k: i32, rng: &mut Rng) -> crate::Result<Layout> {
+pub(super) fn edge_on(k: i32, rng: &mut Choices) -> crate::Result<Layout> {
     let d = rng.pick(&EXACT_DIRECTIONS);
     let half = Vector3::from(d) / 2.0;
     let eps = ten_to_the(-k);
@@ -290,7 +290,7 @@ pub(super) fn edge_on(k: i32, rng: &mut Rng) -> crate::Result<Layout> {
 /// sides, on half the seeds; open, its rim on the floor, on the others), a bar through it
 /// below the apex and, on half the seeds, a post whose vertical edge passes exactly through the
 /// apex; the eye above looks at a point 1/8 from the apex.
-pub(super) fn fan(k: i32, rng: &mut Rng) -> crate::Result<Layout> {
+pub(super) fn fan(k: i32, rng: &mut Choices) -> crate::Result<Layout> {
     let (ax, ay, height) = (
         rng.eighths(-0.5, 0.5),
         rng.eighths(-0.5, 0.5),
@@ -361,7 +361,7 @@ pub(super) fn fan(k: i32, rng: &mut Rng) -> crate::Result<Layout> {
 /// An outer box with 2 to 4 boxes nested in it, each face of each inset by 0, 1, 2 or 3 times
 /// `10^-k` or by 1/8 to 1/4; a rod through them all, a lid resting on the outer box and a box
 /// against its side; seen in perspective.
-pub(super) fn nested(k: i32, rng: &mut Rng) -> crate::Result<Layout> {
+pub(super) fn nested(k: i32, rng: &mut Choices) -> crate::Result<Layout> {
     let g = ten_to_the(-k);
     let mut lo = [
         rng.eighths(-2.0, -1.5),
@@ -413,7 +413,7 @@ pub(super) fn nested(k: i32, rng: &mut Rng) -> crate::Result<Layout> {
 /// Boxes in the cells of a 3 × 2 × 2 grid (each cell taken with probability 2/3), neighbours
 /// touching or apart by `10^-k` or `2·10^-k` along each axis, and a tetrahedron standing on
 /// the top of one with a corner at the box's corner; seen in perspective.
-pub(super) fn touching(k: i32, rng: &mut Rng) -> crate::Result<Layout> {
+pub(super) fn touching(k: i32, rng: &mut Choices) -> crate::Result<Layout> {
     let g = ten_to_the(-k);
     let cells = [3, 2, 2];
     let start = [-2.25, -1.5, -1.25];
@@ -475,7 +475,7 @@ pub(super) fn touching(k: i32, rng: &mut Rng) -> crate::Result<Layout> {
 
 /// The block of the tangent and inside-out families and its width, front, depth and height:
 /// `[0, w] × [y0, y0 + d] × [0, h]`.
-pub(super) fn block(rng: &mut Rng) -> crate::Result<(Mesh, [f64; 4])> {
+pub(super) fn block(rng: &mut Choices) -> crate::Result<(Mesh, [f64; 4])> {
     let (w, y0, d, h) = (
         rng.eighths(3.0, 3.75),
         rng.eighths(0.0, 0.5),
@@ -490,7 +490,7 @@ pub(super) fn block(rng: &mut Rng) -> crate::Result<(Mesh, [f64; 4])> {
 
 /// A block with a box sunk `10^-k` into its top, one pressed `10^-k` into its front face, and
 /// two tetrahedra whose lowest edge runs `10^-k` below and `10^-k` above its top.
-pub(super) fn tangent(k: i32, rng: &mut Rng) -> crate::Result<Layout> {
+pub(super) fn tangent(k: i32, rng: &mut Choices) -> crate::Result<Layout> {
     let g = ten_to_the(-k);
     let (block, [w, y0, d, h]) = block(rng)?;
     let (xs, ys) = (
@@ -537,7 +537,7 @@ pub(super) fn tangent(k: i32, rng: &mut Rng) -> crate::Result<Layout> {
 /// A block; a box turned inside out, through the block's side, its top `10^-k` above or below
 /// the block's; a tetrahedron turned inside out through the block's front face; an outward box
 /// in front, `10^-k` from the front face.
-pub(super) fn inside_out(k: i32, rng: &mut Rng) -> crate::Result<Layout> {
+pub(super) fn inside_out(k: i32, rng: &mut Choices) -> crate::Result<Layout> {
     let g = ten_to_the(-k);
     let (block, [w, y0, _, h]) = block(rng)?;
     let (xb, yb, zb) = (
@@ -578,7 +578,7 @@ pub(super) fn inside_out(k: i32, rng: &mut Rng) -> crate::Result<Layout> {
 
 /// A wedge: a tetrahedron whose lowest edge runs from `a` along `x` (1 to 1.5 long), its other
 /// two corners above the edge's middle, one on each side.
-pub(super) fn wedge(rng: &mut Rng, a: Point3) -> crate::Result<Mesh> {
+pub(super) fn wedge(rng: &mut Choices, a: Point3) -> crate::Result<Mesh> {
     let length = rng.eighths(1.0, 1.5);
     let b = Point3::new(a.x + length, a.y + rng.eighths(-0.25, 0.25), a.z);
     let up = a.z + rng.eighths(0.5, 0.75);

@@ -69,16 +69,16 @@
 //! ```
 
 mod cameras;
+mod choices;
 mod families;
-mod rng;
 mod save;
 mod shapes;
 
 pub use save::write;
 
-use self::rng::Rng;
-use super::boxtree::spheres::SplitMix64;
+use self::choices::Choices;
 use crate::mesh::Mesh;
+use crate::random::SplitMix64;
 use crate::scene::{Camera, Scene};
 use crate::views::View;
 use std::fmt;
@@ -351,7 +351,7 @@ pub(super) type Layout = (Vec<(String, Mesh)>, Camera);
 
 /// The scene and view of a family at stiffness `k`, placed by `seed`.
 fn build(family: Family, k: i32, seed: u64) -> crate::Result<(Scene, View)> {
-    let rng = &mut Rng(SplitMix64(seed));
+    let rng = &mut Choices(SplitMix64(seed));
     let (objects, camera) = match family {
         Family::Tilt => families::tilt(k, rng),
         Family::Sliver => families::sliver(k, rng),

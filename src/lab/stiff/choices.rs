@@ -1,13 +1,13 @@
 //! The seeded choices of a stiff scene.
 
-use crate::lab::boxtree::spheres::SplitMix64;
+use crate::random::SplitMix64;
 
-/// The seeded choices of a scene. [`SplitMix64`] (shared with the BOXTREE sphere experiment)
-/// is a dozen lines where a random-number crate would be a dependency, and gives the same
-/// scenes on every machine.
-pub(super) struct Rng(pub(super) SplitMix64);
+/// The seeded choices of a scene, drawn from the crate's [`SplitMix64`] (so the same seed
+/// gives the same scene on every machine). Integers are drawn by scaling a uniform double, as
+/// the scenes published so far were made.
+pub(super) struct Choices(pub(super) SplitMix64);
 
-impl Rng {
+impl Choices {
     /// A uniform integer in `0..n` (for `n > 0`).
     pub(super) fn below(&mut self, n: usize) -> usize {
         ((self.0.unit() * n as f64) as usize).min(n - 1)
