@@ -108,52 +108,9 @@ impl<'a> PictureGrid<'a> {
         let side = (cell_factor(n, queries) * size)
             .max(mean / 16.0)
             .max((extent[0] * extent[1] / 4.0 / n as f64).sqrt());
-        let mut shape = [0, 1].map(|k| {
-            if side > 0.0 && side.is_finite() {
-                ((extent[k] / side).ceil() as usize).clamp(1, n)
-            } else {
-                1
-            }
-        });
-        while shape[0] * shape[1] > 4 * n {
-            shape = shape.map(|c| c.div_ceil(2));
-        }
-        if n <= ONE_CELL {
-            shape = [1, 1];
-        }
-        let cells = Cells::new(lo, extent, shape);
+        let cells = Cells::new(lo, extent, cell_shape(side, extent, n));
         let margin = MARGIN * lo.iter().chain(&hi).fold(0.0f64, |m, v| m.max(v.abs()));
-        let pairs: Vec<(u32, u32)> = boxes
-            .par_iter()
-            .enumerate()
-            .filter_map(|(t, b)| b.map(|b| (t, b)))
-            .fold(
-                || (Vec::new(), Vec::new()),
-                |(mut out, mut listed): (Vec<(u32, u32)>, Vec<usize>), (t, [low, high])| {
-                    let tri = &mesh.triangles()[t];
-                    if whole(tri) {
-                        listed.clear();
-                        cells.covering_triangle(
-                            tri.map(|v| pictures[v as usize]),
-                            margin,
-                            &mut listed,
-                        );
-                        out.extend(listed.iter().map(|&c| (c as u32, t as u32)));
-                    } else {
-                        out.extend(
-                            cells
-                                .covering(low, high, margin)
-                                .map(|c| (c as u32, t as u32)),
-                        );
-                    }
-                    (out, listed)
-                },
-            )
-            .map(|(out, _)| out)
-            .reduce(Vec::new, |mut x, mut y| {
-                x.append(&mut y);
-                x
-            });
+        let pairs = listed_pairs(mesh, pictures, &boxes, (&cells, margin), whole);
         PictureGrid {
             lists: CellLists::new(cells.count(), pairs),
             cells,
@@ -192,6 +149,65 @@ impl<'a> PictureGrid<'a> {
     pub(crate) fn entries(&self) -> usize {
         self.lists.entries()
     }
+}
+
+/// The number of cells along each axis of a grid over `extent` with cells of about `side`
+/// for `n` listed triangles: at most `n` along an axis and about `4·n` in all, one cell for
+/// at most [`ONE_CELL`] triangles.
+fn cell_shape(side: f64, extent: [f64; 2], n: usize) -> [usize; 2] {
+    let mut shape = [0, 1].map(|k| {
+        if side > 0.0 && side.is_finite() {
+            ((extent[k] / side).ceil() as usize).clamp(1, n)
+        } else {
+            1
+        }
+    });
+    while shape[0] * shape[1] > 4 * n {
+        shape = shape.map(|c| c.div_ceil(2));
+    }
+    if n <= ONE_CELL {
+        shape = [1, 1];
+    }
+    shape
+}
+
+/// Every `(cell, triangle)` listing of the triangles of `mesh` with a box in `boxes`: a
+/// triangle wholly pictured (`whole`) in the cells its picture meets, grown by `margin`,
+/// another in those its box covers.
+fn listed_pairs(
+    mesh: &Mesh,
+    pictures: &[[f64; 2]],
+    boxes: &[Option<[[f64; 2]; 2]>],
+    (cells, margin): (&Cells, f64),
+    whole: impl Fn(&[u32; 3]) -> bool + Sync,
+) -> Vec<(u32, u32)> {
+    boxes
+        .par_iter()
+        .enumerate()
+        .filter_map(|(t, b)| b.map(|b| (t, b)))
+        .fold(
+            || (Vec::new(), Vec::new()),
+            |(mut out, mut listed): (Vec<(u32, u32)>, Vec<usize>), (t, [low, high])| {
+                let tri = &mesh.triangles()[t];
+                if whole(tri) {
+                    listed.clear();
+                    cells.covering_triangle(tri.map(|v| pictures[v as usize]), margin, &mut listed);
+                    out.extend(listed.iter().map(|&c| (c as u32, t as u32)));
+                } else {
+                    out.extend(
+                        cells
+                            .covering(low, high, margin)
+                            .map(|c| (c as u32, t as u32)),
+                    );
+                }
+                (out, listed)
+            },
+        )
+        .map(|(out, _)| out)
+        .reduce(Vec::new, |mut x, mut y| {
+            x.append(&mut y);
+            x
+        })
 }
 
 /// The box of the picture of the part of triangle `tri` in front of the eye, within the window

@@ -2,8 +2,8 @@
 //!
 //! Candidate triangle pairs are those whose boxes meet, found with a uniform 3-D grid over the
 //! region where the two meshes' boxes overlap (a crowded cell, such as where the rims of two
-//! fans of slivers meet, split into smaller cells); objects whose CBOXes do not overlap are
-//! not compared at all. Which vertices lie on which side of the other triangle's plane is
+//! fans of slivers meet, split into smaller cells: see [`candidates`]); objects whose CBOXes
+//! do not overlap are not compared at all. Which vertices lie on which side of the other triangle's plane is
 //! decided exactly, and two triangles pierce each other only when each has vertices strictly
 //! on both sides of the other's plane, or lies on it along a diagonal of its flat face (the
 //! face is then cut along the diagonal, whichever way it is triangulated): touching faces (a
@@ -24,14 +24,16 @@
 
 use super::along::{Form, Zero};
 use super::meet::{Meet, OnLine, reversed};
+use crate::geometry::Point3;
 use crate::geometry::predicates::{collinear, orient3d};
-use crate::geometry::{Aabb, Point3};
-use crate::grid::Voxels;
-use crate::mesh::{Mesh, by_bucket};
+use crate::mesh::Mesh;
 use crate::views::Eye;
+use candidates::candidate_pairs;
 use rayon::prelude::*;
 use std::cmp::Ordering;
 use std::collections::HashMap;
+
+mod candidates;
 
 /// Which plane stands for a face in a segment: the face's own (its vertices lie exactly on one
 /// plane), or one triangle's.
@@ -85,44 +87,7 @@ pub(crate) fn meetings(
     same: bool,
     eye: &Eye,
 ) -> (Vec<Segment>, Vec<[usize; 3]>) {
-    // The pairs that pierce each other, and those where a face's side passes through the
-    // other triangle (partners for piercings even where they make no segment).
-    type Found = (Vec<(usize, usize, Sides)>, Vec<[usize; 3]>);
-    let (crossing, contacts): Found = candidate_pairs(m0, m1, same)
-        .par_iter()
-        .fold(
-            || (Vec::new(), Vec::new()),
-            |(mut crossing, mut contacts): Found, &(i, j)| {
-                let (i, j) = (i as usize, j as usize);
-                if let Some([s0, s1]) = sides(m0, i, m1, j) {
-                    if crosses(&s0, m0, i)
-                        && crosses(&s1, m1, j)
-                        && !surely_apart(&m0.triangle(i), &m1.triangle(j))
-                    {
-                        crossing.push((i, j, [s0, s1]));
-                    }
-                    // (Also for a pair that pierces: it may meet in one point, no segment.)
-                    if straddles(&s0) || straddles(&s1) {
-                        let (t0, t1) = (m0.triangle(i), m1.triangle(j));
-                        if edge_through(&t0, &s0, m0, i, &t1) {
-                            contacts.push([0, i, j]);
-                        }
-                        if edge_through(&t1, &s1, m1, j, &t0) {
-                            contacts.push([1, j, i]);
-                        }
-                    }
-                }
-                (crossing, contacts)
-            },
-        )
-        .reduce(
-            || (Vec::new(), Vec::new()),
-            |(mut a, mut b), (c, d)| {
-                a.extend(c);
-                b.extend(d);
-                (a, b)
-            },
-        );
+    let (crossing, contacts) = crossing_and_contacts(m0, m1, same);
     if crossing.is_empty() {
         return (Vec::new(), contacts);
     }
@@ -165,6 +130,51 @@ pub(crate) fn meetings(
     (segments, contacts)
 }
 
+/// The pairs of triangles that pierce each other (with their sides), and those where a face's
+/// side passes through the other triangle (partners for piercings even where they make no
+/// segment), as [`meetings`] returns them: `[k, t, u]`.
+type Found = (Vec<(usize, usize, Sides)>, Vec<[usize; 3]>);
+
+/// The candidate pairs of `m0` and `m1` ([`candidate_pairs`]) tested exactly: those that
+/// pierce each other, and the contacts (see [`Found`]).
+fn crossing_and_contacts(m0: &Mesh, m1: &Mesh, same: bool) -> Found {
+    candidate_pairs(m0, m1, same)
+        .par_iter()
+        .fold(
+            || (Vec::new(), Vec::new()),
+            |(mut crossing, mut contacts): Found, &(i, j)| {
+                let (i, j) = (i as usize, j as usize);
+                if let Some([s0, s1]) = sides(m0, i, m1, j) {
+                    if crosses(&s0, m0, i)
+                        && crosses(&s1, m1, j)
+                        && !surely_apart(&m0.triangle(i), &m1.triangle(j))
+                    {
+                        crossing.push((i, j, [s0, s1]));
+                    }
+                    // (Also for a pair that pierces: it may meet in one point, no segment.)
+                    if straddles(&s0) || straddles(&s1) {
+                        let (t0, t1) = (m0.triangle(i), m1.triangle(j));
+                        if edge_through(&t0, &s0, m0, i, &t1) {
+                            contacts.push([0, i, j]);
+                        }
+                        if edge_through(&t1, &s1, m1, j, &t0) {
+                            contacts.push([1, j, i]);
+                        }
+                    }
+                }
+                (crossing, contacts)
+            },
+        )
+        .reduce(
+            || (Vec::new(), Vec::new()),
+            |(mut a, mut b), (c, d)| {
+                a.extend(c);
+                b.extend(d);
+                (a, b)
+            },
+        )
+}
+
 /// The pieces of one pair of planes, merged where they touch end to end.
 fn merged(group: &[Piece], eye: &Eye) -> Vec<Segment> {
     let meet = group[0].meet;
@@ -198,330 +208,6 @@ fn merged(group: &[Piece], eye: &Eye) -> Vec<Segment> {
     out
 }
 
-/// The pairs of triangles (of `m0`, of `m1`) whose closed boxes meet and that may meet, each
-/// once, in increasing order: a uniform 3-D grid ([`Voxels`]) over the region where the
-/// meshes' boxes overlap, each triangle listed in the cells it meets (not in all the cells of
-/// its box: the slivers of a fan all share the fan's box), pairs tested cell by cell. For one
-/// mesh (`same`), pairs sharing a vertex or a face are left out, and where most of a cell's
-/// triangles share one vertex (a fan's apex, a pole of a UV sphere) those are not paired with
-/// each other at all: only with the rest, so ten thousand edges at one point cost no more
-/// than ten thousand elsewhere. A crowded cell is split into smaller ones ([`Pairing::cell`]).
-fn candidate_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32)> {
-    // Each triangle read once for its box and its size (the square root of twice its area).
-    let boxes = |m: &Mesh| -> (Vec<Aabb>, f64) {
-        let (boxes, sizes): (Vec<Aabb>, Vec<f64>) = (0..m.triangles().len())
-            .into_par_iter()
-            .map(|t| {
-                let [a, b, c] = m.triangle(t);
-                (
-                    Aabb::from_points(&[a, b, c]),
-                    (b - a).cross(&(c - a)).norm().sqrt(),
-                )
-            })
-            .unzip();
-        (boxes, sizes.iter().sum())
-    };
-    let (b0, s0) = boxes(m0);
-    let (b1, s1) = if same { (Vec::new(), 0.0) } else { boxes(m1) };
-    if b0.len() * if same { b0.len() } else { b1.len() } <= FEW_PAIRS {
-        return few_pairs(m0, &b0, if same { &b0 } else { &b1 }, same);
-    }
-    let second = if same { &b0 } else { &b1 };
-    let whole = |b: &[Aabb]| b.iter().fold(Aabb::EMPTY, |u, x| u.union(x));
-    let (w0, w1) = (whole(&b0), whole(second));
-    let region = Aabb::new(
-        Point3::from([0, 1, 2].map(|k| w0.min[k].max(w1.min[k]))),
-        Point3::from([0, 1, 2].map(|k| w0.max[k].min(w1.max[k]))),
-    );
-    if (0..3).any(|k| region.min[k] > region.max[k]) {
-        return Vec::new();
-    }
-    let grid = Voxels::new(region, cell_side(&[&b0, &b1], s0 + s1));
-    let list = |m: &Mesh, b: &[Aabb], mesh: u32| -> Vec<(u64, u32)> {
-        b.par_iter()
-            .enumerate()
-            .fold(
-                || (Vec::new(), Vec::new()),
-                |(mut out, mut cells): (Vec<(u64, u32)>, Vec<u64>), (t, bx)| {
-                    if (0..3).any(|k| bx.max[k] < region.min[k] || bx.min[k] > region.max[k]) {
-                        return (out, cells);
-                    }
-                    cells.clear();
-                    if !grid.box_cells(bx, BOX_CELLS, &mut cells) {
-                        grid.triangle_cells(&m.triangle(t), &mut cells);
-                    }
-                    out.extend(cells.iter().map(|&c| (c, (mesh << 31) | t as u32)));
-                    (out, cells)
-                },
-            )
-            .map(|(out, _)| out)
-            .reduce(Vec::new, |mut x, mut y| {
-                x.append(&mut y);
-                x
-            })
-    };
-    let mut items = list(m0, &b0, 0);
-    if !same {
-        items.extend(list(m1, &b1, 1));
-    }
-    // By cell, then mesh, then triangle, sorted in place (a counting pass would need a second
-    // array of the entries at once, the largest of this stage).
-    items.par_sort_unstable();
-    let runs: Vec<&[(u64, u32)]> = items.chunk_by(|x, y| x.0 == y.0).collect();
-    let pairing = Pairing {
-        meshes: [m0, m1],
-        boxes: [&b0, second],
-        same,
-    };
-    let mut pairs: Vec<(u32, u32)> = runs
-        .par_iter()
-        .fold(
-            || (Vec::new(), Vec::new(), Vec::new()),
-            |(mut out, mut items, mut tris): (Vec<(u32, u32)>, Vec<u32>, Vec<CellTriangle>),
-             run| {
-                // One buffer per thread for the cells' items, not one per cell.
-                items.clear();
-                items.extend(run.iter().map(|x| x.1));
-                let cell = grid.cell_box(run[0].0);
-                pairing.cell(&items, &cell, 0, &mut out, &mut tris);
-                (out, items, tris)
-            },
-        )
-        .map(|(out, ..)| out)
-        .reduce(Vec::new, |mut x, mut y| {
-            x.append(&mut y);
-            x
-        });
-    // A pair meeting in several cells was found in each.
-    pairs.par_sort_unstable();
-    pairs.dedup();
-    pairs
-}
-
-/// The side of the cells: twice the mean size of a triangle (`sizes` sums the square roots
-/// of twice their areas), so that a cell holds a few triangles of a surface; no smaller than
-/// a sixteenth of the mean box, so that a mesh of slivers is not cut into more cells than its
-/// boxes are across.
-fn cell_side(boxes: &[&[Aabb]], sizes: f64) -> f64 {
-    let n = boxes.iter().map(|b| b.len()).sum::<usize>().max(1) as f64;
-    let boxes: f64 = boxes
-        .iter()
-        .flat_map(|b| b.iter())
-        .map(|b| b.size().into_iter().fold(0.0, f64::max))
-        .sum::<f64>()
-        / n;
-    let side = (2.0 * sizes / n).max(boxes / 16.0);
-    if side.is_finite() { side } else { boxes }
-}
-
-/// A triangle of a cell, with what the pair tests read: its index, vertices and box (copied
-/// together, so a cell's pairs read one small array instead of the whole mesh).
-type CellTriangle = (u32, [u32; 3], Aabb);
-
-/// What the pairs of a cell are found from: the two meshes (the same one twice for `same`)
-/// and their triangles' boxes. An item is a triangle index with the mesh in its top bit.
-struct Pairing<'a> {
-    meshes: [&'a Mesh; 2],
-    boxes: [&'a [Aabb]; 2],
-    same: bool,
-}
-
-/// A crowded cell is split into this many cells along each axis.
-const SPLIT: f64 = 4.0;
-
-/// A cell of at least [`CROWD`] (or [`CROWD_OF_ONE`]) triangles is crowded when it has more
-/// than this many pairs to test per triangle (listing a triangle in smaller cells costs a few
-/// pair tests).
-const CROWDED: usize = 8;
-
-/// The fewest triangles of a crowded cell whose pairs are between two groups (two meshes, or
-/// a hub's fan and the others): their boxes mostly meet, and each pair costs an exact test.
-const CROWD: usize = 24;
-
-/// The fewest triangles of a crowded cell whose pairs are among them all (a patch of one
-/// surface): most of those pairs are told apart by their boxes alone, so a split pays only
-/// in a larger cell.
-const CROWD_OF_ONE: usize = 64;
-
-/// A cell is split at most this many times over.
-const SPLITS: usize = 3;
-
-impl Pairing<'_> {
-    /// The mesh and index of an item.
-    fn of(&self, item: u32) -> (&Mesh, usize) {
-        (
-            self.meshes[(item >> 31) as usize],
-            (item & 0x7fff_ffff) as usize,
-        )
-    }
-
-    /// The box of an item's triangle.
-    fn bbox(&self, item: u32) -> &Aabb {
-        &self.boxes[(item >> 31) as usize][(item & 0x7fff_ffff) as usize]
-    }
-
-    /// Appends to `out` the pairs among the `items` of one cell (`region`, split `depth`
-    /// times already) whose boxes meet (in one mesh, those sharing no vertex and no face).
-    /// A crowded cell, one whose pairs would be many more than its triangles (the rims of
-    /// two fans that touch, slivers crossing), is split into smaller cells in which each
-    /// triangle is listed again (in the cells it meets), when that leaves fewer pairs to test:
-    /// a pair meeting at a point is listed together in that point's smaller cell.
-    fn cell(
-        &self,
-        items: &[u32],
-        region: &Aabb,
-        depth: usize,
-        out: &mut Vec<(u32, u32)>,
-        tris: &mut Vec<CellTriangle>,
-    ) {
-        if self.same {
-            let m = self.meshes[0];
-            tris.clear();
-            tris.extend(
-                items
-                    .iter()
-                    .map(|&t| (t, m.triangles()[t as usize], self.boxes[0][t as usize])),
-            );
-            self.same_mesh(tris, region, depth, out);
-            return;
-        }
-        // Items come by mesh within a cell (mesh 0 first): split there.
-        let (firsts, seconds) = items.split_at(items.partition_point(|i| i >> 31 == 0));
-        if items.len() >= CROWD
-            && firsts.len() * seconds.len() > CROWDED * items.len()
-            && self.split(items, region, depth, out, |sub| {
-                let firsts = sub.partition_point(|i| i >> 31 == 0);
-                firsts * (sub.len() - firsts)
-            })
-        {
-            return;
-        }
-        for &x in firsts {
-            for &y in seconds {
-                if self.bbox(x).intersects(self.bbox(y)) {
-                    out.push((x, y & 0x7fff_ffff));
-                }
-            }
-        }
-    }
-
-    /// [`Pairing::cell`] in one mesh. Where at least a quarter of the triangles share one
-    /// vertex (a hub: a fan's apex, a pole of a UV sphere), those are paired only with the
-    /// others, and the others among themselves the same way: ten thousand edges at one
-    /// point cost no more than ten thousand elsewhere.
-    fn same_mesh(
-        &self,
-        tris: &[CellTriangle],
-        region: &Aabb,
-        depth: usize,
-        out: &mut Vec<(u32, u32)>,
-    ) {
-        let m = self.meshes[0];
-        let test = |x: &CellTriangle, y: &CellTriangle, out: &mut Vec<(u32, u32)>| {
-            if x.2.intersects(&y.2)
-                && !shares_vertex(&x.1, &y.1)
-                && m.face_of(x.0 as usize) != m.face_of(y.0 as usize)
-            {
-                out.push((x.0.min(y.0), x.0.max(y.0)));
-            }
-        };
-        let split = |out: &mut Vec<(u32, u32)>, load: &dyn Fn(&[u32]) -> usize| {
-            let items: Vec<u32> = tris.iter().map(|t| t.0).collect();
-            self.split(&items, region, depth, out, load)
-        };
-        if tris.len() > 16 {
-            let mut vertices: Vec<u32> = tris.iter().flat_map(|t| t.1).collect();
-            vertices.sort_unstable();
-            let (hub, count) = vertices
-                .chunk_by(|x, y| x == y)
-                .map(|run| (run[0], run.len()))
-                .max_by(|x, y| x.1.cmp(&y.1).then(y.0.cmp(&x.0)))
-                .unwrap_or((0, 0));
-            if 4 * count >= tris.len() {
-                if tris.len() >= CROWD
-                    && count * (tris.len() - count) > CROWDED * tris.len()
-                    && split(out, &|sub| {
-                        let at = sub
-                            .iter()
-                            .filter(|&&t| m.triangles()[t as usize].contains(&hub))
-                            .count();
-                        at * (sub.len() - at)
-                    })
-                {
-                    return;
-                }
-                let (at, rest): (Vec<CellTriangle>, Vec<CellTriangle>) =
-                    tris.iter().partition(|t| t.1.contains(&hub));
-                for x in &at {
-                    for y in &rest {
-                        test(x, y, out);
-                    }
-                }
-                self.same_mesh(&rest, region, depth, out);
-                return;
-            }
-        }
-        if tris.len() >= CROWD_OF_ONE
-            && tris.len() * tris.len() / 2 > CROWDED * tris.len()
-            && split(out, &|sub| sub.len() * sub.len())
-        {
-            return;
-        }
-        for (n, x) in tris.iter().enumerate() {
-            for y in &tris[n + 1..] {
-                test(x, y, out);
-            }
-        }
-    }
-
-    /// Splits the cell `region` of `items` into smaller cells and appends their pairs to
-    /// `out`, unless it has been split [`SPLITS`] times already or the split would not
-    /// lessen the `load` (the pairs to test among some items, as the caller counts them):
-    /// triangles all through one point stay together in every split. Then returns `false`
-    /// and appends nothing.
-    fn split(
-        &self,
-        items: &[u32],
-        region: &Aabb,
-        depth: usize,
-        out: &mut Vec<(u32, u32)>,
-        load: impl Fn(&[u32]) -> usize,
-    ) -> bool {
-        if depth >= SPLITS {
-            return false;
-        }
-        let side = region.size().into_iter().fold(0.0, f64::max) / SPLIT;
-        let grid = Voxels::within(*region, side);
-        let mut listed: Vec<(u64, u32)> = Vec::new();
-        let mut cells = Vec::new();
-        for &item in items {
-            cells.clear();
-            if !grid.box_cells(self.bbox(item), BOX_CELLS, &mut cells) {
-                let (m, t) = self.of(item);
-                grid.triangle_cells(&m.triangle(t), &mut cells);
-            }
-            listed.extend(cells.iter().map(|&c| (c, item)));
-        }
-        let count = grid.shape().iter().product::<usize>();
-        let (start, placed) = by_bucket(count, &listed, |x| x.0 as usize, |x| x.1);
-        let subcells = || {
-            start
-                .windows(2)
-                .enumerate()
-                .filter(|(_, w)| w[1] > w[0])
-                .map(|(c, w)| (c as u64, &placed[w[0]..w[1]]))
-        };
-        if subcells().map(|(_, sub)| load(sub)).sum::<usize>() >= load(items) {
-            return false;
-        }
-        let mut tris = Vec::new();
-        for (c, sub) in subcells() {
-            self.cell(sub, &grid.cell_box(c), depth + 1, out, &mut tris);
-        }
-        true
-    }
-}
-
 /// Whether the closed triangles `a` and `b` are certainly disjoint: some direction across an
 /// edge of each (one of the nine cross products of their sides) separates their projections by
 /// more than the rounding of the projections can move them. A filter before the exact section
@@ -553,38 +239,6 @@ fn surely_apart(a: &[Point3; 3], b: &[Point3; 3]) -> bool {
             gap.is_finite() && gap > slack
         })
     })
-}
-
-/// A triangle whose box spans at most this many cells is listed in all of them (found from
-/// its box alone); a larger one only in the cells it meets.
-const BOX_CELLS: usize = 4;
-
-/// Up to this many triangle pairs, every pair is tested: no grid.
-const FEW_PAIRS: usize = 1 << 14;
-
-/// [`candidate_pairs`] by testing every pair of the triangles' boxes `b0` and `b1`.
-fn few_pairs(m0: &Mesh, b0: &[Aabb], b1: &[Aabb], same: bool) -> Vec<(u32, u32)> {
-    let mut out = Vec::new();
-    for (i, bi) in b0.iter().enumerate() {
-        let start = if same { i + 1 } else { 0 };
-        for (j, bj) in b1.iter().enumerate().skip(start) {
-            if bi.intersects(bj) && !(same && neighbours(m0, i, j)) {
-                out.push((i as u32, j as u32));
-            }
-        }
-    }
-    out
-}
-
-/// Whether triangles `i` and `j` of one mesh lie on one face or share a vertex: they are
-/// not compared for intersection.
-fn neighbours(m: &Mesh, i: usize, j: usize) -> bool {
-    shares_vertex(&m.triangles()[i], &m.triangles()[j]) || m.face_of(i) == m.face_of(j)
-}
-
-/// Whether two triangles share a vertex index.
-fn shares_vertex(a: &[u32; 3], b: &[u32; 3]) -> bool {
-    a.iter().any(|v| b.contains(v))
 }
 
 /// The plane that stands for the face of triangle `t`, and its key: for a face whose vertices
@@ -870,246 +524,4 @@ pub(crate) fn pierces_line(
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::solids::uv_sphere;
-    use nalgebra::{Matrix4, Vector3};
-
-    /// Whether the pair `(i, j)` gives the pass anything: a piece of an intersection segment,
-    /// or a contact (an edge through the other triangle).
-    fn productive(m0: &Mesh, i: usize, m1: &Mesh, j: usize) -> bool {
-        let Some([s0, s1]) = sides(m0, i, m1, j) else {
-            return false;
-        };
-        let (t0, t1) = (m0.triangle(i), m1.triangle(j));
-        let eye = Eye::Infinity(Vector3::z());
-        let planes = [plane_of(m0, i), plane_of(m1, j)];
-        (crosses(&s0, m0, i)
-            && crosses(&s1, m1, j)
-            && piece(m0, i, m1, j, [s0, s1], planes, &eye).is_some())
-            || edge_through(&t0, &s0, m0, i, &t1)
-            || edge_through(&t1, &s1, m1, j, &t0)
-    }
-
-    /// The grid's pairs against every pair: none that gives anything is missed, and each
-    /// found is a pair whose boxes meet (and, in one mesh, that shares no vertex).
-    fn check(m0: &Mesh, m1: &Mesh, same: bool) -> usize {
-        let boxes = |m: &Mesh| {
-            (0..m.triangles().len())
-                .map(|t| Aabb::from_points(&m.triangle(t)))
-                .collect::<Vec<_>>()
-        };
-        let (b0, b1) = (boxes(m0), boxes(m1));
-        assert!(b0.len() * b1.len() > FEW_PAIRS, "the grid is not used");
-        let grid = candidate_pairs(m0, m1, same);
-        assert!(
-            grid.windows(2).all(|w| w[0] < w[1]),
-            "not sorted and unique"
-        );
-        let all = few_pairs(m0, &b0, &b1, same);
-        for &(i, j) in &grid {
-            assert!(
-                all.binary_search(&(i, j)).is_ok(),
-                "({i}, {j}) is not a candidate"
-            );
-        }
-        let mut productive_pairs = 0;
-        for &(i, j) in &all {
-            if productive(m0, i as usize, m1, j as usize) {
-                productive_pairs += 1;
-                assert!(
-                    grid.binary_search(&(i, j)).is_ok(),
-                    "({i}, {j}) missed: {:?} {:?} same {same}",
-                    m0.triangle(i as usize),
-                    m1.triangle(j as usize)
-                );
-            }
-        }
-        productive_pairs
-    }
-
-    fn moved(m: &Mesh, by: [f64; 3], scale: f64) -> Mesh {
-        let t = Matrix4::new_translation(&Vector3::from(by)) * Matrix4::new_scaling(scale);
-        m.transformed(&t).unwrap()
-    }
-
-    /// Random triangles, some large and some slivers, crossing each other everywhere.
-    fn soup(n: usize, seed: u64) -> Mesh {
-        let mut s = seed;
-        let mut next = || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        };
-        let mut vertices = Vec::new();
-        let mut faces = Vec::new();
-        for k in 0..n {
-            let c = Point3::new(next(), next(), next());
-            let r = if k % 3 == 0 { 0.5 } else { 0.08 };
-            let thin = if k % 5 == 0 { 1e-6 } else { 1.0 };
-            let a = c + Vector3::new(next() - 0.5, next() - 0.5, next() - 0.5) * r;
-            let b = c + Vector3::new(next() - 0.5, next() - 0.5, next() - 0.5) * r;
-            let d = a
-                + (b - a) * 0.5
-                + Vector3::new(next() - 0.5, next() - 0.5, next() - 0.5) * r * thin;
-            let v = vertices.len() as u32;
-            vertices.extend([a, b, d]);
-            faces.push(vec![v, v + 1, v + 2]);
-        }
-        Mesh::from_polygons(vertices, faces).unwrap()
-    }
-
-    #[test]
-    fn triangles_surely_apart_make_nothing() {
-        // Pairs of the soups, and pairs that touch exactly: at a vertex, along an edge, a
-        // vertex on the other's interior; and pairs apart by one ulp.
-        let mut apart = 0;
-        for seed in 0..3 {
-            let (s, t) = (soup(300, seed), soup(300, seed + 50));
-            for i in 0..s.triangles().len() {
-                for j in 0..t.triangles().len() {
-                    if surely_apart(&s.triangle(i), &t.triangle(j)) {
-                        apart += 1;
-                        assert!(!productive(&s, i, &t, j), "{i} {j} are not apart");
-                    }
-                }
-            }
-        }
-        assert!(apart > 10_000);
-        let p = |x: f64, y: f64, z: f64| Point3::new(x, y, z);
-        let a = [p(0.0, 0.0, 0.0), p(1.0, 0.0, 0.0), p(0.0, 1.0, 0.0)];
-        let touching = [
-            [p(1.0, 0.0, 0.0), p(2.0, 1.0, 1.0), p(2.0, -1.0, 0.5)],
-            [p(0.5, 0.5, 0.0), p(0.5, 0.5, 1.0), p(1.5, 1.5, 0.3)],
-            [p(0.25, 0.25, 0.0), p(3.0, 1.0, 1.0), p(1.0, 3.0, -1.0)],
-            [p(0.1, 0.1, -1.0), p(0.1, 0.1, 1.0), p(-3.0, 0.1, 0.0)],
-        ];
-        for b in &touching {
-            assert!(!surely_apart(&a, b), "{b:?} touches");
-            assert!(!surely_apart(b, &a), "{b:?} touches");
-        }
-        let next = 1.0f64.next_up();
-        let beyond = [p(next, 0.0, 0.0), p(2.0, 1.0, 1.0), p(2.0, -1.0, 0.5)];
-        // One ulp away is apart, but too close for the filter to be sure: the exact test decides.
-        assert!(!surely_apart(&a, &beyond));
-        let far = [p(1.5, 0.0, 0.0), p(2.0, 1.0, 1.0), p(2.0, -1.0, 0.5)];
-        assert!(surely_apart(&a, &far));
-    }
-
-    #[test]
-    fn crowded_cells_are_split_and_miss_no_pair() {
-        // Two fans of 3,000 slivers, one turned by a third of a sliver about the axis and
-        // raised a little: along the rims, each sliver crosses several of the other's, and
-        // the rims' cells hold hundreds of triangles.
-        let fan = uv_sphere(1.0, 1500, 2).unwrap();
-        let turn =
-            nalgebra::Rotation3::from_axis_angle(&Vector3::z_axis(), 0.7e-3).to_homogeneous();
-        let turned = fan
-            .transformed(&(Matrix4::new_translation(&Vector3::new(0.0, 0.0, 1e-3)) * turn))
-            .unwrap();
-        assert!(check(&fan, &turned, false) > 1000);
-        // A crowded cell on the rims is split, and the smaller cells find every pair that
-        // meets in it.
-        let boxes = |m: &Mesh| -> Vec<Aabb> {
-            (0..m.triangles().len())
-                .map(|t| Aabb::from_points(&m.triangle(t)))
-                .collect()
-        };
-        let (b0, b1) = (boxes(&fan), boxes(&turned));
-        let pairing = Pairing {
-            meshes: [&fan, &turned],
-            boxes: [&b0, &b1],
-            same: false,
-        };
-        let region = Aabb::new(
-            Point3::new(0.95, -0.05, -0.05),
-            Point3::new(1.05, 0.05, 0.05),
-        );
-        let near = |b: &[Aabb]| -> Vec<u32> {
-            (0..b.len() as u32)
-                .filter(|&t| b[t as usize].intersects(&region))
-                .collect()
-        };
-        let (near0, near1) = (near(&b0), near(&b1));
-        assert!(near0.len() > 30 && near1.len() > 30);
-        let items: Vec<u32> = near0
-            .iter()
-            .copied()
-            .chain(near1.iter().map(|t| t | 1 << 31))
-            .collect();
-        let mut out = Vec::new();
-        let load = |sub: &[u32]| {
-            let firsts = sub.partition_point(|i| i >> 31 == 0);
-            firsts * (sub.len() - firsts)
-        };
-        assert!(pairing.split(&items, &region, 0, &mut out, load));
-        out.sort_unstable();
-        out.dedup();
-        let mut productive_pairs = 0;
-        for &i in &near0 {
-            for &j in &near1 {
-                let (t0, t1) = (fan.triangle(i as usize), turned.triangle(j as usize));
-                // Pairs that meet in the region: slivers with a rim corner well inside it
-                // (they meet within a sliver's width of their rim corners).
-                let inner = Aabb::new(
-                    Point3::new(0.96, -0.04, -0.04),
-                    Point3::new(1.04, 0.04, 0.04),
-                );
-                let inside = |t: &[Point3; 3]| t.iter().any(|p| inner.contains_point(p));
-                if inside(&t0) && inside(&t1) && productive(&fan, i as usize, &turned, j as usize) {
-                    productive_pairs += 1;
-                    assert!(out.binary_search(&(i, j)).is_ok(), "({i}, {j}) missed");
-                }
-            }
-        }
-        assert!(productive_pairs > 30);
-        // One mesh: the two fans as one soup of crossing slivers.
-        let both = Mesh::from_polygons(
-            fan.vertices()
-                .iter()
-                .chain(turned.vertices())
-                .copied()
-                .collect(),
-            fan.triangles()
-                .iter()
-                .map(|t| t.to_vec())
-                .chain(
-                    turned
-                        .triangles()
-                        .iter()
-                        .map(|t| t.iter().map(|v| v + fan.vertices().len() as u32).collect()),
-                )
-                .collect(),
-        )
-        .unwrap();
-        assert!(check(&both, &both, true) > 1000);
-    }
-
-    #[test]
-    fn the_grid_misses_no_pair_of_a_fan_or_a_soup() {
-        // Two cones of 600 slivers base to base: every pair meets at an apex or the rim.
-        let fan = uv_sphere(1.0, 600, 2).unwrap();
-        check(&fan, &fan, true);
-        // The fan against itself turned and moved so the apexes pierce the other's sides.
-        let other = moved(&fan, [0.25, 0.1, 0.5], 0.75);
-        assert!(check(&fan, &other, false) > 0);
-        for seed in 0..4 {
-            let s = soup(400, seed);
-            assert!(check(&s, &s, true) > 0);
-            let t = soup(300, seed + 100);
-            assert!(check(&s, &t, false) > 0);
-        }
-        // Spheres that cut each other, and at extreme scales and offsets.
-        let sphere = uv_sphere(1.0, 48, 24).unwrap();
-        for (by, scale) in [
-            ([0.5, 0.3, 0.2], 1.0),
-            ([1e8, 0.0, 0.0], 1e-7),
-            ([0.0; 3], 1e-90),
-        ] {
-            let a = moved(&sphere, by, scale);
-            let b = moved(&sphere, [by[0] + 0.7 * scale, by[1], by[2]], scale);
-            assert!(check(&a, &b, false) > 0);
-        }
-    }
-}
+mod tests;

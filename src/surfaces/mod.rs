@@ -49,27 +49,28 @@
 //! ```
 
 use crate::geometry::exact::ldexp;
-use crate::geometry::polygon::bounding_box;
-use crate::geometry::predicates::orient3d;
-use crate::geometry::{Aabb, Point3};
-use crate::grid::{CellLists, Cells};
-use crate::mesh::{Face, Mesh};
+use crate::mesh::{Mesh, TextureFrame};
 use crate::scene::{Content, ObjectId, Scene, SceneError};
 use crate::sight::frustum::{self, Clip};
-use crate::sight::line::Sight;
 use crate::sight::own_solid::hidden_by_own_solid;
 use crate::sight::range::in_working_range;
-use crate::views::{Eye, Picture, View, ViewError};
-use geo::{Coord, LineString, MapCoords, MultiPolygon, Polygon};
+use crate::views::{Picture, View, ViewError};
+use geo::{Coord, MapCoords, MultiPolygon};
 use rayon::prelude::*;
 use slotmap::SecondaryMap;
 use std::cmp::Ordering;
 
+mod face_grid;
 pub mod hatch;
 mod lines;
+mod occluders;
 mod overlap;
+mod target;
 mod vtp;
 
+use face_grid::FaceGrid;
+use occluders::{Occluder, visfac2};
+use target::{Framing, Target, ring, spanning_triangle};
 use vtp::Vtp;
 
 /// Why visible surfaces could not be computed: the surfaces layer's error.
@@ -424,33 +425,15 @@ fn visfac_among(
     grids: Option<&SecondaryMap<ObjectId, FaceGrid>>,
     clip: Option<&Clip>,
 ) -> Result<(VisibleFace, MultiPolygon<f64>)> {
-    let mesh = scene[owner].mesh().ok_or_else(|| SurfacesError::NotMesh {
-        object: scene.path(owner),
-    })?;
-    if face >= mesh.faces().len() {
-        return Err(SurfacesError::NoFace {
-            object: scene.path(owner),
-            face,
-            faces: mesh.faces().len(),
-        });
-    }
-    let nothing = MultiPolygon::new(Vec::new());
-    let answer = |status, polygons, exits, edge_on| VisibleFace {
-        status,
-        polygons,
-        exits,
-        edge_on,
-    };
+    let mesh = face_mesh(scene, owner, face)?;
     let target = Target::new(mesh, face, view, clip);
     if target.framing == Framing::Outside {
         // Nothing of it in the frustum: nothing of it is seen.
-        return Ok((
-            answer(Status::Hidden, nothing.clone(), Exits::default(), false),
-            nothing,
-        ));
+        return Ok(hidden(Exits::default()));
     }
     if target.eye_side == Ordering::Equal {
         // Seen edge-on: no area to hide, so VTP(F) stays F (of zero area, no polygons).
+        let nothing = MultiPolygon::new(Vec::new());
         let seen = answer(Status::Visible, nothing.clone(), Exits::default(), true);
         return Ok((seen, nothing));
     }
@@ -464,10 +447,7 @@ fn visfac_among(
     };
     if back_side == Some(target.eye_side) {
         exits.solid_hid = 1;
-        return Ok((
-            answer(Status::Hidden, nothing.clone(), exits, false),
-            nothing,
-        ));
+        return Ok(hidden(exits));
     }
     let mut occluders = Vec::new();
     let mut all_hidden = false;
@@ -487,28 +467,83 @@ fn visfac_among(
     }
     let frame = &mesh.faces()[face].texture();
     if all_hidden {
-        return Ok((
-            answer(Status::Hidden, nothing.clone(), exits, false),
-            nothing,
-        ));
+        return Ok(hidden(exits));
     }
-    let whole = |exits| {
-        let texture = target
-            .vertices
-            .iter()
-            .map(|v| lines::texture_of(frame, v))
-            .collect();
-        (
-            answer(Status::Visible, target.polygon(), exits, false),
-            ring(texture),
-        )
-    };
     // Every occluder hides some area of F (decided exactly), so none means VISIBLE, when all
     // of F is inside the frustum.
     let cut = clip.filter(|_| target.framing == Framing::Across);
     if occluders.is_empty() && cut.is_none() {
-        return Ok(whole(exits));
+        return Ok(whole(&target, frame, exits));
     }
+    let vtp = carved(mesh, face, &target, (clip, cut), &occluders);
+    Ok(if vtp.is_empty() {
+        hidden(exits)
+    } else if !vtp.changed() {
+        whole(&target, frame, exits)
+    } else {
+        let (polygons, texture) = vtp.polygons(frame, target.eye_side);
+        (answer(Status::Mixed, polygons, exits, false), texture)
+    })
+}
+
+/// The mesh of the object `owner`, which must be a mesh object with a face `face`.
+fn face_mesh(scene: &Scene, owner: ObjectId, face: usize) -> Result<&Mesh> {
+    let mesh = scene[owner].mesh().ok_or_else(|| SurfacesError::NotMesh {
+        object: scene.path(owner),
+    })?;
+    if face >= mesh.faces().len() {
+        return Err(SurfacesError::NoFace {
+            object: scene.path(owner),
+            face,
+            faces: mesh.faces().len(),
+        });
+    }
+    Ok(mesh)
+}
+
+/// VISFAC's answer for a face.
+fn answer(status: Status, polygons: MultiPolygon<f64>, exits: Exits, edge_on: bool) -> VisibleFace {
+    VisibleFace {
+        status,
+        polygons,
+        exits,
+        edge_on,
+    }
+}
+
+/// A face of which nothing is seen: HIDDEN, without polygons in the picture or the texture.
+fn hidden(exits: Exits) -> (VisibleFace, MultiPolygon<f64>) {
+    let nothing = MultiPolygon::new(Vec::new());
+    (
+        answer(Status::Hidden, nothing.clone(), exits, false),
+        nothing,
+    )
+}
+
+/// A face seen whole: VISIBLE, its picture, and its vertices in its texture coordinates
+/// (`frame`).
+fn whole(target: &Target, frame: &TextureFrame, exits: Exits) -> (VisibleFace, MultiPolygon<f64>) {
+    let texture = target
+        .vertices
+        .iter()
+        .map(|v| lines::texture_of(frame, v))
+        .collect();
+    (
+        answer(Status::Visible, target.polygon(), exits, false),
+        ring(texture),
+    )
+}
+
+/// VTP(F) of face `face` of `mesh` (the `target`): F as convex cells of its plane, cut to the
+/// frustum `cut` (`clip` when the view clips and F lies across its planes), less what each of
+/// the `occluders` hides of it, until nothing is left.
+fn carved<'t>(
+    mesh: &Mesh,
+    face: usize,
+    target: &'t Target,
+    (clip, cut): (Option<&Clip>, Option<&Clip>),
+    occluders: &[Occluder],
+) -> Vtp<'t> {
     let (plane, planar) = spanning_triangle(mesh, face, &target.eye);
     let mut vtp = Vtp::new(
         &target.canonical,
@@ -525,7 +560,7 @@ fn visfac_among(
     if let Some(clip) = cut {
         vtp.clip(clip);
     }
-    for occluder in &occluders {
+    for occluder in occluders {
         vtp.subtract(
             &occluder.corners,
             occluder.plane,
@@ -536,418 +571,10 @@ fn visfac_among(
             break;
         }
     }
-    Ok(if vtp.is_empty() {
-        (
-            answer(Status::Hidden, nothing.clone(), exits, false),
-            nothing,
-        )
-    } else if !vtp.changed() {
-        whole(exits)
-    } else {
-        let (polygons, texture) = vtp.polygons(frame, target.eye_side);
-        (answer(Status::Mixed, polygons, exits, false), texture)
-    })
+    vtp
 }
 
 /// Whether `id` is one of `objects` or lies below one of them.
 fn within(scene: &Scene, id: ObjectId, objects: &[ObjectId]) -> bool {
     std::iter::successors(Some(id), |&o| scene[o].parent()).any(|o| objects.contains(&o))
-}
-
-/// The face being tested: its vertices, plane and picture.
-struct Target {
-    vertices: Vec<Point3>,
-    /// Its vertex loop from a canonical start and way round (see [`canonical_loop`]).
-    canonical: Vec<Point3>,
-    /// The face's triangles.
-    triangles: Vec<[Point3; 3]>,
-    /// The face's first triangle (its plane).
-    plane: [Point3; 3],
-    eye: Eye,
-    picture: Picture,
-    /// The side of the face's plane the eye is on.
-    eye_side: Ordering,
-    /// A box holding the picture of its part inside the frustum: the bounding box of its
-    /// picture, or the picture's window for a face not wholly in front of the eye.
-    extent: [[f64; 2]; 2],
-    /// Where it lies against the frustum of a view that clips.
-    framing: Framing,
-}
-
-/// Where a face lies against the frustum of a view that clips (decided exactly at its
-/// vertices).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Framing {
-    /// Every vertex strictly inside (and any face, when the view does not clip).
-    Inside,
-    /// Every vertex weakly outside one of its planes: no area inside.
-    Outside,
-    /// Neither: its visible polygons are cut by the planes.
-    Across,
-}
-
-impl Target {
-    fn new(mesh: &Mesh, face: usize, view: &View, clip: Option<&Clip>) -> Target {
-        let vertices: Vec<Point3> = mesh.face_points(face).collect();
-        let triangles: Vec<[Point3; 3]> = mesh.faces()[face]
-            .triangle_range()
-            .map(|t| mesh.triangle(t))
-            .collect();
-        let plane = triangles[0];
-        let eye = *view.eye();
-        let picture = Picture::of(view);
-        let framing = match clip {
-            None => Framing::Inside,
-            Some(c)
-                if c.planes().all(|(form, inside)| {
-                    vertices.iter().all(|v| form.sign_at(&eye, v) == inside)
-                }) =>
-            {
-                Framing::Inside
-            }
-            Some(c)
-                if c.planes().any(|(form, inside)| {
-                    vertices.iter().all(|v| form.sign_at(&eye, v) != inside)
-                }) =>
-            {
-                Framing::Outside
-            }
-            Some(_) => Framing::Across,
-        };
-        // No picture of a point not in front of the eye is ever built.
-        let extent = match (clip, window(view)) {
-            (Some(c), Some(w)) if !vertices.iter().all(|x| c.in_front(x)) => w,
-            _ => bounding_box(vertices.iter().map(|v| picture.point(v))),
-        };
-        Target {
-            eye_side: eye.orient3d(&plane[0], &plane[1], &plane[2]),
-            canonical: canonical_loop(mesh, face),
-            vertices,
-            triangles,
-            plane,
-            eye,
-            picture,
-            extent,
-            framing,
-        }
-    }
-
-    /// The whole face in the picture.
-    fn polygon(&self) -> MultiPolygon<f64> {
-        ring(
-            self.vertices
-                .iter()
-                .map(|v| self.picture.point(v))
-                .collect(),
-        )
-    }
-
-    /// Whether nothing in the closed box can hide the face: no point of it lies strictly on the
-    /// eye's side of the face's plane (decided exactly at its corners), or its picture misses
-    /// the face's.
-    fn cannot_be_hidden_by(&self, b: &Aabb) -> bool {
-        let [p, q, r] = &self.plane;
-        let corners = b.corners();
-        if corners
-            .iter()
-            .all(|c| orient3d(p, q, r, c) != self.eye_side)
-        {
-            return true;
-        }
-        // The picture of the box holds the pictures of all it holds when every corner is in
-        // front of the eye; the two pictures must miss by more than a margin far above
-        // rounding.
-        if !corners.iter().all(|c| self.picture.in_front(c)) {
-            return false;
-        }
-        let [low, high] = bounding_box(corners.iter().map(|c| self.picture.point(c)));
-        let [f_low, f_high] = self.extent;
-        let scale = low.iter().chain(&high).chain(&f_low).chain(&f_high);
-        let margin = GRID_MARGIN * scale.fold(0.0f64, |m, v| m.max(v.abs()));
-        (0..2).any(|k| low[k] > f_high[k] + margin || high[k] < f_low[k] - margin)
-    }
-
-    /// Whether the polygon `corners` (a face of an occluder, with a triangle `g` spanning its
-    /// plane) may hide points of this face: some part of it lies strictly on the eye's side of
-    /// this face's plane, it is not seen edge-on, and some vertex of this face lies strictly
-    /// behind its plane. Exact.
-    fn may_be_hidden_by(&self, corners: &[Point3], g: &[Point3; 3]) -> bool {
-        let [p, q, r] = &self.plane;
-        if !corners
-            .iter()
-            .any(|c| orient3d(p, q, r, c) == self.eye_side)
-        {
-            return false;
-        }
-        let g_side = self.eye.orient3d(&g[0], &g[1], &g[2]);
-        g_side != Ordering::Equal
-            && self
-                .vertices
-                .iter()
-                .any(|v| orient3d(&g[0], &g[1], &g[2], v) == g_side.reverse())
-    }
-}
-
-/// The faces of one mesh listed by the cells of the picture their pictures' bounding boxes
-/// (grown by a margin of 2⁻⁴⁰ of the largest coordinate, far above rounding) cover, so that
-/// a face is tested only against the faces whose pictures may overlap its own.
-#[derive(Debug)]
-struct FaceGrid {
-    cells: Cells,
-    margin: f64,
-    lists: CellLists,
-    /// The side of its faces that its own solid hides (see [`hidden_by_own_solid`]).
-    back_side: Option<Ordering>,
-}
-
-impl FaceGrid {
-    /// The grid of the faces of `mesh` (object `id`), about one cell per face. When the view
-    /// clips (`clip`), only the vertices strictly in front of the eye are pictured: a face
-    /// with none cannot hide anything in front of the eye and is listed nowhere, one with some
-    /// but not all is listed in every cell, and the grid spans the picture's window too.
-    fn new(
-        scene: &Scene,
-        (id, mesh): (ObjectId, &Mesh),
-        view: &View,
-        picture: &Picture,
-        clip: Option<&Clip>,
-    ) -> FaceGrid {
-        let front: Vec<bool> = mesh
-            .vertices()
-            .iter()
-            .map(|v| clip.is_none_or(|c| c.in_front(v)))
-            .collect();
-        let pictures: Vec<[f64; 2]> = mesh
-            .vertices()
-            .iter()
-            .zip(&front)
-            .map(|(v, &f)| if f { picture.point(v) } else { [0.0; 2] })
-            .collect();
-        let reach = |f: &Face| {
-            let inside = f.vertices().iter().filter(|&&v| front[v as usize]).count();
-            (inside > 0, inside == f.vertices().len())
-        };
-        let boxes: Vec<[[f64; 2]; 2]> = mesh
-            .faces()
-            .iter()
-            .map(|f| match reach(f) {
-                (_, true) => bounding_box(f.vertices().iter().map(|&v| pictures[v as usize])),
-                _ => [[f64::INFINITY; 2], [f64::NEG_INFINITY; 2]],
-            })
-            .collect();
-        let window = clip.and(window(view));
-        let pictured = boxes.iter().zip(mesh.faces()).filter(|(_, f)| reach(f).1);
-        let [lo, hi] = bounding_box(pictured.map(|(b, _)| b).chain(&window).flatten().copied());
-        let side = (boxes.len().max(1) as f64).sqrt().ceil() as usize;
-        let extent = [0, 1].map(|k| (hi[k] - lo[k]).max(0.0));
-        let cells = Cells::new(lo, extent, [side, side]);
-        let margin = GRID_MARGIN * lo.iter().chain(&hi).fold(0.0f64, |m, v| m.max(v.abs()));
-        let pairs = boxes
-            .iter()
-            .zip(mesh.faces())
-            .enumerate()
-            .flat_map(|(f, ([low, high], face))| {
-                let span = match reach(face) {
-                    (_, true) => Some([*low, *high]),
-                    (true, false) => Some([lo, hi]),
-                    (false, false) => None,
-                };
-                let cells = &cells;
-                span.into_iter().flat_map(move |[low, high]| {
-                    cells
-                        .covering(low, high, margin)
-                        .map(move |c| (c as u32, f as u32))
-                })
-            })
-            .collect();
-        FaceGrid {
-            lists: CellLists::new(cells.count(), pairs),
-            cells,
-            margin,
-            back_side: hidden_by_own_solid(scene, id, mesh, view.eye()),
-        }
-    }
-
-    /// The faces listed in the cells the box `[low, high]` covers, each once, in order.
-    fn near(&self, [low, high]: [[f64; 2]; 2]) -> Vec<usize> {
-        let mut out: Vec<usize> = self
-            .cells
-            .covering(low, high, self.margin)
-            .flat_map(|c| self.lists.get(c).iter().map(|&f| f as usize))
-            .collect();
-        out.sort_unstable();
-        out.dedup();
-        out
-    }
-}
-
-/// A box holding the picture's window (the pictures of the points inside the frustum of a
-/// view that clips: `|x| ≤ aspect`, `|y| ≤ 1`), grown by a relative 2⁻²⁰ over the rounding of
-/// the picture's scale; `None` without a field of view.
-fn window(view: &View) -> Option<[[f64; 2]; 2]> {
-    let [h, v] = view.window()?;
-    let [x, y] = [h / v, 1.0].map(|s| s * (1.0 + 2f64.powi(-20)));
-    Some([[-x, -y], [x, y]])
-}
-
-/// The relative margin of the face grid: 2⁻⁴⁰.
-const GRID_MARGIN: f64 = 1.0 / (1u64 << 40) as f64;
-
-/// A face of an occluder that hides some area of F: its vertex loop, a triangle spanning its
-/// plane (see [`spanning_triangle`]) and its triangles.
-struct Occluder {
-    corners: Vec<Point3>,
-    plane: [Point3; 3],
-    /// Whether every corner lies exactly in `plane`.
-    planar: bool,
-    triangles: Vec<[Point3; 3]>,
-}
-
-/// The vertex loop of face `face` from its vertex of least index, towards the neighbour of
-/// lesser index: the same whichever vertex the face starts at and whichever way round it is
-/// given (as mirroring reverses it), so VTP(F) is built in the same order, and each of its
-/// points from the same planes.
-fn canonical_loop(mesh: &Mesh, face: usize) -> Vec<Point3> {
-    let indices = mesh.faces()[face].vertices();
-    let n = indices.len();
-    let start = (0..n).min_by_key(|&i| indices[i]).unwrap_or(0);
-    let step = if indices[(start + 1) % n] <= indices[(start + n - 1) % n] {
-        1
-    } else {
-        n - 1
-    };
-    (0..n)
-        .map(|k| mesh.vertices()[indices[(start + k * step) % n] as usize])
-        .collect()
-}
-
-/// A triangle of vertices of face `face` spanning its plane, the same whatever the face's first
-/// vertex and way round, the scene's placement or scale: the first two vertices by index and
-/// the next by index not on their line, turned like the face's first triangle as seen from
-/// `eye`; and whether the face is exactly planar. Points of the face's plane are built from the
-/// gradient of this triangle's form, so this choice keeps them the same bits when the face is
-/// reversed (as mirroring does). The face's first triangle when the face is not exactly planar
-/// or is seen edge-on.
-fn spanning_triangle(mesh: &Mesh, face: usize, eye: &Eye) -> ([Point3; 3], bool) {
-    let first = mesh.triangle(mesh.faces()[face].triangle_range().start);
-    let turn = eye.orient3d(&first[0], &first[1], &first[2]);
-    let planar = mesh.face_points(face).all(|c| {
-        first.contains(&c) || orient3d(&first[0], &first[1], &first[2], &c) == Ordering::Equal
-    });
-    if turn == Ordering::Equal || !planar {
-        return (first, planar);
-    }
-    let mut indices = mesh.faces()[face].vertices().to_vec();
-    indices.sort_unstable();
-    indices.dedup();
-    let point = |i: u32| mesh.vertices()[i as usize];
-    let [a, b] = [0, 1].map(|k| point(indices[k]));
-    let span = indices[2..]
-        .iter()
-        .find_map(|&k| {
-            let c = point(k);
-            match eye.orient3d(&a, &b, &c) {
-                Ordering::Equal => None,
-                t if t == turn => Some([a, b, c]),
-                _ => Some([a, c, b]),
-            }
-        })
-        .unwrap_or(first);
-    (span, true)
-}
-
-/// A closed ring of points as a multipolygon.
-fn ring(points: Vec<[f64; 2]>) -> MultiPolygon<f64> {
-    let coords: Vec<Coord<f64>> = points.into_iter().map(|[x, y]| Coord { x, y }).collect();
-    MultiPolygon::new(vec![Polygon::new(LineString::new(coords), Vec::new())])
-}
-
-/// VISFAC2(A, F): gathers in `occluders` the faces of `a` that hide some area of F (what they
-/// hide of F, together, is what `a` hides of it), with the hierarchy's early exits; `true`
-/// when an INBOX or a single face hides all of F.
-fn visfac2(
-    scene: &Scene,
-    a: ObjectId,
-    target: &Target,
-    own: (ObjectId, usize),
-    grids: Option<&SecondaryMap<ObjectId, FaceGrid>>,
-    occluders: &mut Vec<Occluder>,
-    exits: &mut Exits,
-) -> Result<bool> {
-    let cbox = scene.cbox(a);
-    if target.cannot_be_hidden_by(&cbox) {
-        exits.cbox_skipped += 1;
-        return Ok(false);
-    }
-    if let Some(inbox) = scene.inbox(a) {
-        let hides_all = target.vertices.iter().all(|v| {
-            let sight = Sight::to_eye(v, &target.eye);
-            sight.eye_outside(&cbox) && sight.surely_meets_open(&inbox.aabb)
-        });
-        if hides_all {
-            exits.inbox_hid += 1;
-            return Ok(true);
-        }
-    }
-    match scene[a].content() {
-        Content::Mesh(mesh) => {
-            let near = match grids.and_then(|g| g.get(a)) {
-                Some(grid) => grid.near(target.extent),
-                None => (0..mesh.faces().len()).collect(),
-            };
-            for g in near {
-                if (a, g) == own {
-                    continue;
-                }
-                exits.faces_tested += 1;
-                let corners: Vec<Point3> = mesh.face_points(g).collect();
-                let plane = mesh.triangle(mesh.faces()[g].triangle_range().start);
-                if !target.may_be_hidden_by(&corners, &plane) {
-                    continue;
-                }
-                // Only a face that hides some area of F counts (exactly): one touching F
-                // along a line would add nothing but rounding.
-                let hides_area = mesh.faces()[g].triangle_range().any(|s| {
-                    let s = mesh.triangle(s);
-                    target.triangles.iter().any(|t| {
-                        overlap::hides_area(
-                            &target.eye,
-                            &target.plane,
-                            target.eye_side,
-                            t,
-                            &s,
-                            &plane,
-                        )
-                    })
-                });
-                if !hides_area {
-                    continue;
-                }
-                exits.faces_in_front += 1;
-                if overlap::hides_all(&target.eye, &target.vertices, &corners, &plane) {
-                    exits.face_hid += 1;
-                    return Ok(true);
-                }
-                let triangles = mesh.faces()[g]
-                    .triangle_range()
-                    .map(|t| mesh.triangle(t))
-                    .collect();
-                let (plane, planar) = spanning_triangle(mesh, g, &target.eye);
-                occluders.push(Occluder {
-                    corners: canonical_loop(mesh, g),
-                    plane,
-                    planar,
-                    triangles,
-                });
-            }
-        }
-        Content::Subobjects(children) => {
-            for &c in children {
-                if visfac2(scene, c, target, own, grids, occluders, exits)? {
-                    return Ok(true);
-                }
-            }
-        }
-    }
-    Ok(false)
 }

@@ -111,6 +111,31 @@ fn reference(pass: &Pass, pieces: &[Piece]) -> Vec<Segment> {
         .filter(|&&l| pass.support(l).is_pictured(&pass.eye))
         .map(|&l| (l, pass.support(l).points().map(|p| exact.of_point(&p))))
         .collect();
+    let groups = collinear_groups(&lines, &pictured);
+    let mut out = Vec::new();
+    let mut replaced = vec![false; pieces.len()];
+    for group in groups.values().filter(|g| g.len() > 1) {
+        let ends = &pictured[&group[0]];
+        sweep_group(pass, &exact, pieces, group, ends, &mut replaced, &mut out);
+    }
+    out.extend(
+        pieces
+            .iter()
+            .zip(&replaced)
+            .filter(|(_, r)| !**r)
+            .map(|(p, _)| segment(p.class, p.visible, p.ends)),
+    );
+    out.sort_unstable_by_key(|s| (s.0 as u8, s.1, s.2));
+    out
+}
+
+/// The pictured `lines` grouped by the line of the picture they lie on (`pictured`: each
+/// one's exact picture, two distinct points), comparing every pair: each group by its least
+/// line.
+fn collinear_groups(
+    lines: &[usize],
+    pictured: &HashMap<usize, [[Q; 2]; 2]>,
+) -> HashMap<usize, Vec<usize>> {
     let mut parent: HashMap<usize, usize> = lines.iter().map(|&l| (l, l)).collect();
     fn root(parent: &mut HashMap<usize, usize>, mut l: usize) -> usize {
         while parent[&l] != l {
@@ -130,86 +155,88 @@ fn reference(pass: &Pass, pieces: &[Piece]) -> Vec<Segment> {
         }
     }
     let mut groups: HashMap<usize, Vec<usize>> = HashMap::new();
-    for &l in &lines {
+    for &l in lines {
         let r = root(&mut parent, l);
         groups.entry(r).or_default().push(l);
     }
-    let mut out = Vec::new();
-    let mut replaced = vec![false; pieces.len()];
-    for group in groups.values().filter(|g| g.len() > 1) {
-        let [p0, p1] = &pictured[&group[0]];
-        let d = [&p1[0] - &p0[0], &p1[1] - &p0[1]];
-        let position = |x: &[Q; 2]| (&x[0] - &p0[0]) * &d[0] + (&x[1] - &p0[1]) * &d[1];
-        // (position, key, picture, rank, +1 / −1, piece)
-        let mut events = Vec::new();
-        let members: Vec<usize> = (0..pieces.len())
-            .filter(|&k| group.contains(&pieces[k].line))
-            .collect();
-        for &k in &members {
-            let p = &pieces[k];
-            let at = |e: usize| {
-                let x = exact.of_point(&pass.point(p.line, p.marks[e]));
-                (position(&x), pass.key(p.line, p.marks[e]), p.ends[e])
-            };
-            let (a, b) = (at(0), at(1));
-            let (lo, hi) = if a.0 < b.0 { (a, b) } else { (b, a) };
-            events.push((lo.0, lo.1, lo.2, rank(p.class, p.visible), 1, k));
-            events.push((hi.0, hi.1, hi.2, rank(p.class, p.visible), -1, k));
-        }
-        events.sort_by(|x, y| x.0.cmp(&y.0));
-        // Runs of the line covered without a gap, each drawn once if covered twice.
-        let mut count = [0i32; 10];
-        let (mut covering, mut twice) = (0, false);
-        let mut run: Vec<usize> = Vec::new();
-        let mut swept: Vec<(usize, [[f64; 2]; 2], usize)> = Vec::new();
-        let mut from: Option<[f64; 2]> = None;
-        let (mut i, mut position) = (0, 0);
-        while i < events.len() {
-            let j = (i..events.len())
-                .find(|&j| events[j].0 != events[i].0)
-                .unwrap_or(events.len());
-            let here = events[i..j].iter().min_by_key(|e| e.1).unwrap().2;
-            if let (Some(start), Some(top)) = (from, count.iter().rposition(|&c| c > 0)) {
-                twice |= covering >= 2;
-                match swept.last_mut() {
-                    Some(last) if last.0 == top && last.2 + 1 == position => {
-                        last.1[1] = here;
-                        last.2 = position;
-                    }
-                    _ => swept.push((top, [start, here], position)),
-                }
-            }
-            for e in &events[i..j] {
-                count[e.3] += e.4;
-                covering += e.4;
-                if e.4 > 0 {
-                    run.push(e.5);
-                }
-            }
-            if covering == 0 {
-                if twice {
-                    run.iter().for_each(|&k| replaced[k] = true);
-                    out.extend(swept.drain(..).map(|(r, ends, _)| {
-                        let (class, visible) = unranked(r);
-                        segment(class, visible, ends)
-                    }));
-                }
-                (twice, run, swept) = (false, Vec::new(), Vec::new());
-            }
-            from = Some(here);
-            position += 1;
-            i = j;
-        }
+    groups
+}
+
+/// Sweeps the pieces on the lines of one `group` (one line of the picture through `ends`)
+/// along it: each run covered without a gap, when covered twice somewhere, is drawn once by
+/// the rank on top, its pieces marked `replaced`, its segments added to `out`.
+fn sweep_group(
+    pass: &Pass,
+    exact: &Exact,
+    pieces: &[Piece],
+    group: &[usize],
+    ends: &[[Q; 2]; 2],
+    replaced: &mut [bool],
+    out: &mut Vec<Segment>,
+) {
+    let [p0, p1] = ends;
+    let d = [&p1[0] - &p0[0], &p1[1] - &p0[1]];
+    let position = |x: &[Q; 2]| (&x[0] - &p0[0]) * &d[0] + (&x[1] - &p0[1]) * &d[1];
+    // (position, key, picture, rank, +1 / −1, piece)
+    let mut events = Vec::new();
+    let members: Vec<usize> = (0..pieces.len())
+        .filter(|&k| group.contains(&pieces[k].line))
+        .collect();
+    for &k in &members {
+        let p = &pieces[k];
+        let at = |e: usize| {
+            let x = exact.of_point(&pass.point(p.line, p.marks[e]));
+            (position(&x), pass.key(p.line, p.marks[e]), p.ends[e])
+        };
+        let (a, b) = (at(0), at(1));
+        let (lo, hi) = if a.0 < b.0 { (a, b) } else { (b, a) };
+        events.push((lo.0, lo.1, lo.2, rank(p.class, p.visible), 1, k));
+        events.push((hi.0, hi.1, hi.2, rank(p.class, p.visible), -1, k));
     }
-    out.extend(
-        pieces
-            .iter()
-            .zip(&replaced)
-            .filter(|(_, r)| !**r)
-            .map(|(p, _)| segment(p.class, p.visible, p.ends)),
-    );
-    out.sort_unstable_by_key(|s| (s.0 as u8, s.1, s.2));
-    out
+    events.sort_by(|x, y| x.0.cmp(&y.0));
+    // Runs of the line covered without a gap, each drawn once if covered twice.
+    let mut count = [0i32; 10];
+    let (mut covering, mut twice) = (0, false);
+    let mut run: Vec<usize> = Vec::new();
+    let mut swept: Vec<(usize, [[f64; 2]; 2], usize)> = Vec::new();
+    let mut from: Option<[f64; 2]> = None;
+    let (mut i, mut position) = (0, 0);
+    while i < events.len() {
+        let j = (i..events.len())
+            .find(|&j| events[j].0 != events[i].0)
+            .unwrap_or(events.len());
+        let here = events[i..j].iter().min_by_key(|e| e.1).unwrap().2;
+        if let (Some(start), Some(top)) = (from, count.iter().rposition(|&c| c > 0)) {
+            twice |= covering >= 2;
+            match swept.last_mut() {
+                Some(last) if last.0 == top && last.2 + 1 == position => {
+                    last.1[1] = here;
+                    last.2 = position;
+                }
+                _ => swept.push((top, [start, here], position)),
+            }
+        }
+        for e in &events[i..j] {
+            count[e.3] += e.4;
+            covering += e.4;
+            if e.4 > 0 {
+                run.push(e.5);
+            }
+        }
+        if covering == 0 {
+            if twice {
+                run.iter().for_each(|&k| replaced[k] = true);
+                out.extend(swept.drain(..).map(|(r, ends, _)| {
+                    let (class, visible) = unranked(r);
+                    segment(class, visible, ends)
+                }));
+            }
+            (twice, run, swept) = (false, Vec::new(), Vec::new());
+        }
+        from = Some(here);
+        position += 1;
+        i = j;
+    }
 }
 
 /// A small seeded generator (SplitMix64).
