@@ -50,7 +50,7 @@ pub(crate) struct PictureGrid<'a> {
 
 /// The window of a view that clips (half its width and height, grown), with the picture map:
 /// only points whose pictures lie in it are asked about.
-pub(crate) type Window<'a> = (&'a Picture, [f64; 2]);
+pub(crate) type ClipWindow<'a> = (&'a Picture, [f64; 2]);
 
 impl<'a> PictureGrid<'a> {
     /// Lists the triangles of `mesh` whose vertices' pictures are `pictures`, in cells sized
@@ -64,7 +64,7 @@ impl<'a> PictureGrid<'a> {
     pub(crate) fn new(
         mesh: &'a Mesh,
         pictures: &'a [[f64; 2]],
-        (front, window): (&'a [bool], Option<Window>),
+        (front, window): (&'a [bool], Option<ClipWindow>),
         queries: usize,
     ) -> PictureGrid<'a> {
         let in_front = |v: u32| front.get(v as usize).is_none_or(|&f| f);

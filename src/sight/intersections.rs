@@ -62,7 +62,7 @@ pub(crate) struct Segment {
 
 /// The part of a segment from one pair of triangles.
 #[derive(Debug, Clone, Copy)]
-struct Piece {
+struct PairPiece {
     keys: [PlaneKey; 2],
     meet: Meet,
     ends: [OnLine; 2],
@@ -114,7 +114,7 @@ pub(crate) fn meetings(
         (PlaneKey::Face(f), p) => (PlaneKey::Face(f), p),
         (PlaneKey::Triangle(_), _) => (PlaneKey::Triangle(t), m.triangle(t)),
     };
-    let mut pieces: Vec<Piece> = crossing
+    let mut pieces: Vec<PairPiece> = crossing
         .par_iter()
         .filter_map(|&(i, j, sides)| {
             let planes = [plane(m0, &planes0, i), plane(m1, &planes1, j)];
@@ -122,7 +122,7 @@ pub(crate) fn meetings(
         })
         .collect();
     pieces.par_sort_unstable_by(|x, y| x.keys.cmp(&y.keys).then(x.triangles.cmp(&y.triangles)));
-    let groups: Vec<&[Piece]> = pieces.chunk_by(|x, y| x.keys == y.keys).collect();
+    let groups: Vec<&[PairPiece]> = pieces.chunk_by(|x, y| x.keys == y.keys).collect();
     let segments = groups
         .par_iter()
         .flat_map_iter(|group| merged(group, eye))
@@ -176,9 +176,9 @@ fn crossing_and_contacts(m0: &Mesh, m1: &Mesh, same: bool) -> Found {
 }
 
 /// The pieces of one pair of planes, merged where they touch end to end.
-fn merged(group: &[Piece], eye: &Eye) -> Vec<Segment> {
+fn merged(group: &[PairPiece], eye: &Eye) -> Vec<Segment> {
     let meet = group[0].meet;
-    let mut order: Vec<&Piece> = group.iter().collect();
+    let mut order: Vec<&PairPiece> = group.iter().collect();
     order.sort_by(|x, y| {
         meet.compare(eye, &x.ends[0], &y.ends[0])
             .then(x.triangles.cmp(&y.triangles))
@@ -328,7 +328,7 @@ fn piece(
     [s0, s1]: Sides,
     [(k0, p0), (k1, p1)]: [(PlaneKey, [Point3; 3]); 2],
     eye: &Eye,
-) -> Option<Piece> {
+) -> Option<PairPiece> {
     let (t0, t1) = (m0.triangle(i), m1.triangle(j));
     // A triangle along the other's plane on a diagonal: only a flat face is cut there.
     let along = |s: &[Ordering; 3], key| !straddles(s) && matches!(key, PlaneKey::Triangle(_));
@@ -368,7 +368,7 @@ fn piece(
     };
     let start = pick(e0[0], e1[0], true).0;
     let end = pick(e0[1], e1[1], false).0;
-    (meet.compare(eye, &start, &end) == Ordering::Less).then_some(Piece {
+    (meet.compare(eye, &start, &end) == Ordering::Less).then_some(PairPiece {
         keys: [k0, k1],
         meet,
         ends: [start, end],

@@ -59,7 +59,7 @@ use rayon::prelude::*;
 
 mod line;
 
-use line::{Edge, Frame, Line};
+use line::{HatchFrame, HatchLine, PolygonEdge};
 
 /// The most hatch lines one face may span: more is refused as an error (a spacing far below
 /// the face's size).
@@ -138,22 +138,22 @@ impl Hatching {
 /// split wherever the line meets the polygons' outline.
 ///
 /// ```
-/// let r = kepler::surfaces::hatch::Run { line: 3, points: vec![[0.0, 3.0], [1.0, 3.0]] };
+/// let r = kepler::surfaces::hatch::HatchRun { line: 3, points: vec![[0.0, 3.0], [1.0, 3.0]] };
 /// assert_eq!(r.segments().count(), 1);
 /// ```
 #[derive(Debug, Clone, PartialEq)]
-pub struct Run {
+pub struct HatchRun {
     /// The line's index `k`: the run lies on `u = k·s`.
     pub line: i64,
     /// The points, in order along the hatch direction (at least two).
     pub points: Vec<[f64; 2]>,
 }
 
-impl Run {
+impl HatchRun {
     /// The run's segments, in order.
     ///
     /// ```
-    /// let r = kepler::surfaces::hatch::Run { line: 0, points: vec![[0.0, 0.0], [1.0, 0.0], [3.0, 0.0]] };
+    /// let r = kepler::surfaces::hatch::HatchRun { line: 0, points: vec![[0.0, 0.0], [1.0, 0.0], [3.0, 0.0]] };
     /// let s: Vec<[[f64; 2]; 2]> = r.segments().collect();
     /// assert_eq!(s, vec![[[0.0, 0.0], [1.0, 0.0]], [[1.0, 0.0], [3.0, 0.0]]]);
     /// ```
@@ -173,7 +173,7 @@ impl Run {
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Hatch {
     /// The runs.
-    pub runs: Vec<Run>,
+    pub runs: Vec<HatchRun>,
     /// Segments dropped by the final check.
     pub dropped: usize,
 }
@@ -294,14 +294,14 @@ pub fn hatch_polygons(polygons: &MultiPolygon<f64>, angle: f64, spacing: f64) ->
         .iter()
         .map(|r| r.iter().map(|p| p.map(|c| ldexp(c, shift))).collect())
         .collect();
-    let frame = Frame {
+    let frame = HatchFrame {
         normal: [-dir[1], dir[0]],
         dir,
     };
-    let edges: Vec<Edge> = rings
+    let edges: Vec<PolygonEdge> = rings
         .iter()
         .flat_map(|r| (0..r.len()).map(move |i| (r[i], r[(i + 1) % r.len()])))
-        .map(|(p, q)| Edge::new(p, q, &frame))
+        .map(|(p, q)| PolygonEdge::new(p, q, &frame))
         .collect();
     let magnitude = coordinates.iter().fold(0.0f64, |m, c| m.max(c.abs()));
     let magnitude = ldexp(magnitude, shift);
@@ -332,7 +332,7 @@ pub fn hatch_polygons(polygons: &MultiPolygon<f64>, angle: f64, spacing: f64) ->
             continue;
         }
         previous = offset;
-        let line = Line {
+        let line = HatchLine {
             frame: &frame,
             offset: ldexp(offset, shift),
             margin,
@@ -340,7 +340,7 @@ pub fn hatch_polygons(polygons: &MultiPolygon<f64>, angle: f64, spacing: f64) ->
         let (runs, dropped) = line.hatch(&edges);
         hatch.dropped += dropped;
         hatch.runs.extend(runs.into_iter().map(|points| {
-            Run {
+            HatchRun {
                 line: k,
                 points: points
                     .into_iter()

@@ -26,9 +26,9 @@ fn q(x: f64) -> Q {
 }
 
 /// A segment of a drawing: class, visibility and its ends' bits in either order.
-type Segment = (EdgeClass, bool, [[u64; 2]; 2]);
+type KeyedSegment = (EdgeClass, bool, [[u64; 2]; 2]);
 
-fn segment(class: EdgeClass, visible: bool, ends: [[f64; 2]; 2]) -> Segment {
+fn segment(class: EdgeClass, visible: bool, ends: [[f64; 2]; 2]) -> KeyedSegment {
     let bits = |p: [f64; 2]| p.map(|x| (x + 0.0).to_bits());
     let (a, b) = (bits(ends[0]), bits(ends[1]));
     (class, visible, if a <= b { [a, b] } else { [b, a] })
@@ -100,7 +100,7 @@ fn turn(a: &[Q; 2], b: &[Q; 2], c: &[Q; 2]) -> Q {
 }
 
 /// The reference: overlap removal by brute force in rationals.
-fn reference(pass: &Pass, pieces: &[Piece]) -> Vec<Segment> {
+fn reference(pass: &Pass, pieces: &[Piece]) -> Vec<KeyedSegment> {
     let exact = Exact::of(&pass.picture, &pass.eye);
     let mut lines: Vec<usize> = pieces.iter().map(|p| p.line).collect();
     lines.sort_unstable();
@@ -172,7 +172,7 @@ fn sweep_group(
     group: &[usize],
     ends: &[[Q; 2]; 2],
     replaced: &mut [bool],
-    out: &mut Vec<Segment>,
+    out: &mut Vec<KeyedSegment>,
 ) {
     let [p0, p1] = ends;
     let d = [&p1[0] - &p0[0], &p1[1] - &p0[1]];
@@ -353,7 +353,7 @@ fn the_sweep_agrees_with_rational_brute_force() {
                 let (pass, pieces) = decided(&scene, view, None, &options, &|_, _| {}).unwrap();
                 let expected = reference(&pass, &pieces);
                 let (once, report) = drawn_once(&pass, pieces);
-                let mut got: Vec<Segment> = once
+                let mut got: Vec<KeyedSegment> = once
                     .iter()
                     .map(|p| segment(p.class, p.visible, p.ends))
                     .collect();

@@ -250,11 +250,11 @@ impl From<&ErrorFigures> for Figures {
 /// One variant on one case.
 ///
 /// ```
-/// let r = kepler::lab::report::Run { variant: "float".into(), kind: "float".into(), seconds: Some(0.5), figures: None, failure: Some("panicked".into()) };
+/// let r = kepler::lab::report::VariantRun { variant: "float".into(), kind: "float".into(), seconds: Some(0.5), figures: None, failure: Some("panicked".into()) };
 /// assert!(r.failure.is_some());
 /// ```
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Run {
+pub struct VariantRun {
     /// The variant's name ([`Variant::name`]).
     pub variant: String,
     /// Its kind ([`Variant::kind`]).
@@ -293,7 +293,7 @@ pub struct CaseReport {
     /// And their disagreements.
     pub disagreements: usize,
     /// Every variant's run, the exact one first.
-    pub runs: Vec<Run>,
+    pub runs: Vec<VariantRun>,
 }
 
 impl CaseReport {
@@ -309,8 +309,8 @@ impl CaseReport {
     /// The exact variant's time, in seconds.
     ///
     /// ```
-    /// use kepler::lab::report::{CaseReport, Run};
-    /// let run = Run { variant: "exact".into(), kind: "exact".into(), seconds: Some(0.25), figures: None, failure: None };
+    /// use kepler::lab::report::{CaseReport, VariantRun};
+    /// let run = VariantRun { variant: "exact".into(), kind: "exact".into(), seconds: Some(0.25), figures: None, failure: None };
     /// let c = CaseReport { name: "c".into(), family: "f".into(), parameter: None, triangles: 1, filter_calls: 0, exact_path: 0, checks: 0, disagreements: 0, runs: vec![run] };
     /// assert_eq!(c.exact_seconds(), Some(0.25));
     /// ```
@@ -477,8 +477,8 @@ impl Report {
 }
 
 /// A run of `variant` that was not made, and why.
-fn not_run(variant: &Variant, why: &str) -> Run {
-    Run {
+fn not_run(variant: &Variant, why: &str) -> VariantRun {
+    VariantRun {
         variant: variant.name(),
         kind: variant.kind().to_string(),
         seconds: None,
@@ -614,7 +614,7 @@ fn run_case(case: Arc<Case>, settings: &Settings, stuck: &mut bool) -> CaseRepor
         }
         let (times, drawing, failure) = timed_runs(&case, variant, settings, stuck);
         let figures = figures_of(&case, settings, triangles, variant, &drawing, &mut exact);
-        report.runs.push(Run {
+        report.runs.push(VariantRun {
             variant: variant.name(),
             kind: variant.kind().to_string(),
             seconds: failure.is_none().then(|| median(times)),

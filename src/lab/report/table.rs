@@ -2,7 +2,7 @@
 //! [`Report`]'s data alone, so the table rebuilt from `report.json` is the same table.
 
 use super::chart::{self, ChartError, Series};
-use super::{CaseReport, Report, Run};
+use super::{CaseReport, Report, VariantRun};
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -94,7 +94,7 @@ fn variant_names(cases: &[&CaseReport]) -> Vec<(String, String)> {
 
 /// A run's error as a number for charts (a failure counts as the whole drawing), or none for
 /// an exact run without a reference.
-fn error_of(run: &Run) -> Option<f64> {
+fn error_of(run: &VariantRun) -> Option<f64> {
     if run.failure.is_some() {
         return Some(FAILED);
     }
@@ -103,7 +103,7 @@ fn error_of(run: &Run) -> Option<f64> {
 
 /// Whether a run went wrong; the exact variant when the engine's checks disagree or its
 /// lengths differ from the rational reference's.
-fn is_wrong(case: &CaseReport, run: &Run) -> bool {
+fn is_wrong(case: &CaseReport, run: &VariantRun) -> bool {
     if run.kind == "exact" {
         return run.failure.is_some()
             || case.disagreements > 0
@@ -123,7 +123,7 @@ fn time_series(report: &Report) -> Vec<Series> {
     let cases: Vec<&CaseReport> = report.cases.iter().collect();
     let mut series: Vec<Series> = Vec::new();
     for (name, kind) in variant_names(&cases) {
-        let runs: Vec<&Run> = cases
+        let runs: Vec<&VariantRun> = cases
             .iter()
             .flat_map(|c| &c.runs)
             .filter(|r| r.variant == name)

@@ -94,7 +94,7 @@ pub(crate) struct Cell {
 
 /// Which children a parent's vertex goes to.
 #[derive(Clone, Copy, PartialEq, Debug)]
-enum Side {
+enum Children {
     Below,
     Above,
     Both,
@@ -269,15 +269,15 @@ impl Cell {
 
     /// The side of the plane `d · x = h` that a vertex is on, decided exactly for its whole
     /// error box: `Both` when the box meets the plane.
-    fn side(v: &CellVertex, d: usize, h: f64) -> Side {
+    fn side(v: &CellVertex, d: usize, h: f64) -> Children {
         let n = TriboxBounds::DIRECTIONS[d];
         // reach is a sum of at most two errors, each with slack enough for its rounding.
         let reach: f64 = (0..3).map(|k| n[k].abs() * v.err[k]).sum();
         if reach == 0.0 {
             return match plane_sign(2 * d + 1, h, &v.p) {
-                Ordering::Less => Side::Below,
-                Ordering::Greater => Side::Above,
-                Ordering::Equal => Side::Both,
+                Ordering::Less => Children::Below,
+                Ordering::Greater => Children::Above,
+                Ordering::Equal => Children::Both,
             };
         }
         let (t, len) = plane_terms(2 * d + 1, h, &v.p);
@@ -288,11 +288,11 @@ impl Cell {
         terms[len] = -reach;
         let lower = sum_sign(&terms[..=len]);
         if upper == Ordering::Less {
-            Side::Below
+            Children::Below
         } else if lower == Ordering::Greater {
-            Side::Above
+            Children::Above
         } else {
-            Side::Both
+            Children::Both
         }
     }
 
@@ -301,14 +301,14 @@ impl Cell {
     /// regions are solid; a plane at the cell's extreme (inside the tribox only by its
     /// outward rounding) or just beyond it would leave a flat region or an empty cell.
     pub fn split(&self, mesh: &Mesh, tree: &TriangleTree, d: usize, h: f64) -> Option<[Cell; 2]> {
-        let sides: Vec<Side> = self.vertices.iter().map(|v| Cell::side(v, d, h)).collect();
-        let strictly = |want: Side| {
+        let sides: Vec<Children> = self.vertices.iter().map(|v| Cell::side(v, d, h)).collect();
+        let strictly = |want: Children| {
             self.vertices
                 .iter()
                 .zip(&sides)
                 .any(|(v, &side)| v.sure && side == want)
         };
-        if !(strictly(Side::Below) && strictly(Side::Above)) {
+        if !(strictly(Children::Below) && strictly(Children::Above)) {
             return None;
         }
         let [below_region, above_region] = self.region.split(d, h);
@@ -399,7 +399,7 @@ impl Cell {
     /// point is within its err of h), each followed by the vertices the cut made.
     fn vertices_by_side(
         &self,
-        sides: &[Side],
+        sides: &[Children],
         new_vertices: &[CellVertex],
     ) -> (Vec<CellVertex>, Vec<CellVertex>) {
         let mut below_vertices = Vec::with_capacity(self.vertices.len() + new_vertices.len());
@@ -407,13 +407,13 @@ impl Cell {
         for (v, side) in self.vertices.iter().zip(sides) {
             // A built point on both sides by its error box may be in either cell only.
             let kept = CellVertex {
-                sure: v.sure && (*side != Side::Both || v.err == [0.0; 3]),
+                sure: v.sure && (*side != Children::Both || v.err == [0.0; 3]),
                 ..*v
             };
-            if *side != Side::Above {
+            if *side != Children::Above {
                 below_vertices.push(kept);
             }
-            if *side != Side::Below {
+            if *side != Children::Below {
                 above_vertices.push(kept);
             }
         }

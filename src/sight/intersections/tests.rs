@@ -3,6 +3,7 @@
 use super::candidates::{FEW_PAIRS, Pairing, candidate_pairs, few_pairs};
 use super::*;
 use crate::geometry::Aabb;
+use crate::random::SplitMix64;
 use crate::solids::uv_sphere;
 use nalgebra::{Matrix4, Vector3};
 
@@ -66,13 +67,8 @@ fn moved(m: &Mesh, by: [f64; 3], scale: f64) -> Mesh {
 
 /// Random triangles, some large and some slivers, crossing each other everywhere.
 fn soup(n: usize, seed: u64) -> Mesh {
-    let mut s = seed;
-    let mut next = || {
-        s = s
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (s >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = SplitMix64(seed);
+    let mut next = || rng.unit();
     let mut vertices = Vec::new();
     let mut faces = Vec::new();
     for k in 0..n {

@@ -10,23 +10,23 @@ use crate::geometry::{Point3, Vector3};
 use std::cmp::Ordering;
 
 /// The hatch direction `d` and the normal `n` across it (`d` turned a quarter to the left).
-pub(super) struct Frame {
+pub(super) struct HatchFrame {
     pub(super) normal: [f64; 2],
     pub(super) dir: [f64; 2],
 }
 
 /// An edge of a ring, with its rounded extent `[min u, max u]` across the lines.
-pub(super) struct Edge {
+pub(super) struct PolygonEdge {
     p: [f64; 2],
     q: [f64; 2],
     pub(super) u: [f64; 2],
 }
 
-impl Edge {
-    pub(super) fn new(p: [f64; 2], q: [f64; 2], frame: &Frame) -> Edge {
+impl PolygonEdge {
+    pub(super) fn new(p: [f64; 2], q: [f64; 2], frame: &HatchFrame) -> PolygonEdge {
         let u = |x: [f64; 2]| frame.normal[0] * x[0] + frame.normal[1] * x[1];
         let (a, b) = (u(p), u(q));
-        Edge {
+        PolygonEdge {
             p,
             q,
             u: [a.min(b), a.max(b)],
@@ -45,8 +45,8 @@ fn form(w: [f64; 2], offset: f64, x: [f64; 2]) -> Side {
 }
 
 /// One hatch line `n·x = offset` (in the scaled picture).
-pub(super) struct Line<'a> {
-    pub(super) frame: &'a Frame,
+pub(super) struct HatchLine<'a> {
+    pub(super) frame: &'a HatchFrame,
     pub(super) offset: f64,
     pub(super) margin: f64,
 }
@@ -56,7 +56,7 @@ pub(super) struct Line<'a> {
 /// `vertex` is that point when it is a vertex (on the line); `above` and `below` say whether
 /// the edge crosses the line moved infinitesimally towards `+n` or `−n`.
 #[derive(Clone, Copy)]
-struct Meeting {
+struct EdgeHit {
     low: [f64; 2],
     high: [f64; 2],
     vertex: Option<[f64; 2]>,
@@ -74,7 +74,7 @@ struct RunPoint {
     through: std::ops::Range<usize>,
 }
 
-impl Line<'_> {
+impl HatchLine<'_> {
     /// The exact side of `x`: the sign of `n·x − offset`.
     fn side(&self, x: [f64; 2]) -> Ordering {
         form(self.frame.normal, self.offset, x).sign()
@@ -82,8 +82,8 @@ impl Line<'_> {
 
     /// The runs of the line through the polygons with `edges`, and the number of segments
     /// dropped by the final check.
-    pub(super) fn hatch(&self, edges: &[Edge]) -> (Vec<Vec<[f64; 2]>>, usize) {
-        let near: Vec<&Edge> = edges
+    pub(super) fn hatch(&self, edges: &[PolygonEdge]) -> (Vec<Vec<[f64; 2]>>, usize) {
+        let near: Vec<&PolygonEdge> = edges
             .iter()
             .filter(|e| e.u[0] - self.margin <= self.offset && self.offset <= e.u[1] + self.margin)
             .collect();
@@ -137,7 +137,7 @@ impl Line<'_> {
         for run in runs {
             let mut kept: Vec<[f64; 2]> = Vec::new();
             for w in run.windows(2) {
-                let through: Vec<&Meeting> = w
+                let through: Vec<&EdgeHit> = w
                     .iter()
                     .flat_map(|p| &meetings[p.through.clone()])
                     .collect();
@@ -167,7 +167,7 @@ impl Line<'_> {
     /// vertex on the line meets it once per ring through it, as the start of its edge; its
     /// position is read against a vertex of the polygons off the line (`None`: all lie on the
     /// line, which then meets no area).
-    fn meetings(&self, near: &[&Edge], edges: &[Edge]) -> Vec<Meeting> {
+    fn meetings(&self, near: &[&PolygonEdge], edges: &[PolygonEdge]) -> Vec<EdgeHit> {
         let Some(pivot) = edges
             .iter()
             .map(|e| e.p)
@@ -194,7 +194,7 @@ impl Line<'_> {
                 } else {
                     (other, e.p)
                 };
-                meetings.push(Meeting {
+                meetings.push(EdgeHit {
                     low,
                     high,
                     vertex: Some(e.p),
@@ -209,7 +209,7 @@ impl Line<'_> {
                 } else {
                     (e.p, e.q)
                 };
-                meetings.push(Meeting {
+                meetings.push(EdgeHit {
                     low,
                     high,
                     vertex: Some(e.q),
@@ -222,7 +222,7 @@ impl Line<'_> {
                 } else {
                     (e.q, e.p)
                 };
-                meetings.push(Meeting {
+                meetings.push(EdgeHit {
                     low,
                     high,
                     vertex: None,
@@ -238,7 +238,7 @@ impl Line<'_> {
     /// The exact order along the hatch direction of the points where two meetings' segments
     /// meet the line. With `a = n·low − c ≤ 0 ≤ b = n·high − c` (not both zero), the point is
     /// `(b·low − a·high)/(b − a)` and its position `(b·(d·low) − a·(d·high))/(b − a)`.
-    fn order(&self, x: &Meeting, y: &Meeting) -> Ordering {
+    fn order(&self, x: &EdgeHit, y: &EdgeHit) -> Ordering {
         if let (Some(v), Some(w)) = (x.vertex, y.vertex) {
             // `d·(v − w)`.
             return Side {
@@ -249,7 +249,7 @@ impl Line<'_> {
             }
             .sign();
         }
-        let numerator = |m: &Meeting| {
+        let numerator = |m: &EdgeHit| {
             let a = form(self.frame.normal, self.offset, m.low);
             let b = form(self.frame.normal, self.offset, m.high);
             let e = form(self.frame.dir, 0.0, m.low);
@@ -264,7 +264,7 @@ impl Line<'_> {
 
     /// The point of a group of meetings at one place: the vertex if one is there, else the
     /// crossing of the segment first in the order of its ends' coordinates, constructed once.
-    fn point(&self, group: &[Meeting]) -> RunPoint {
+    fn point(&self, group: &[EdgeHit]) -> RunPoint {
         if let Some(v) = group.iter().find_map(|m| m.vertex) {
             return RunPoint {
                 at: v,
@@ -272,8 +272,8 @@ impl Line<'_> {
                 through: 0..0,
             };
         }
-        let ends = |m: &Meeting| [m.low[0], m.low[1], m.high[0], m.high[1]];
-        let mut sorted: Vec<&Meeting> = group.iter().collect();
+        let ends = |m: &EdgeHit| [m.low[0], m.low[1], m.high[0], m.high[1]];
+        let mut sorted: Vec<&EdgeHit> = group.iter().collect();
         sorted.sort_by(|m, n| {
             let (a, b) = (ends(m), ends(n));
             (0..4)
@@ -300,7 +300,7 @@ impl Line<'_> {
     /// coordinate interpolated between its ends at the ratio of their offsets from the line
     /// (each exact offset rounded once); the coordinate across an axis-parallel line is the
     /// line's, exactly.
-    fn crossing(&self, m: &Meeting) -> [f64; 2] {
+    fn crossing(&self, m: &EdgeHit) -> [f64; 2] {
         let a = value_within(&form(self.frame.normal, self.offset, m.low), f64::EPSILON);
         let b = value_within(&form(self.frame.normal, self.offset, m.high), f64::EPSILON);
         let t = (a / (a - b)).clamp(0.0, 1.0);
@@ -322,15 +322,15 @@ impl Line<'_> {
         &self,
         x: [f64; 2],
         y: [f64; 2],
-        near: &[&Edge],
-        through: &[&Meeting],
+        near: &[&PolygonEdge],
+        through: &[&EdgeHit],
     ) -> bool {
-        let passed = |e: &Edge| {
+        let passed = |e: &PolygonEdge| {
             through
                 .iter()
                 .any(|m| (m.low, m.high) == (e.p, e.q) || (m.low, m.high) == (e.q, e.p))
         };
-        let crosses = |e: &Edge| {
+        let crosses = |e: &PolygonEdge| {
             let opposite = |s: Ordering, t: Ordering| s != Ordering::Equal && s == t.reverse();
             opposite(orient2d(x, y, e.p), orient2d(x, y, e.q))
                 && opposite(orient2d(e.p, e.q, x), orient2d(e.p, e.q, y))
@@ -344,7 +344,7 @@ impl Line<'_> {
 /// on the side of it `towards` points to: by a unit in the last place of the largest
 /// coordinate of it and the segments' ends, then twice that, and so on, at most 32 times (the final check judges the
 /// result).
-fn inward(x: [f64; 2], group: &[Meeting], towards: [f64; 2]) -> [f64; 2] {
+fn inward(x: [f64; 2], group: &[EdgeHit], towards: [f64; 2]) -> [f64; 2] {
     let inside = |x: [f64; 2]| {
         group.iter().all(|m| {
             let s = orient2d(m.low, m.high, x);
@@ -372,7 +372,7 @@ fn inward(x: [f64; 2], group: &[Meeting], towards: [f64; 2]) -> [f64; 2] {
 /// line through `m` along `dir` (`near`): on an edge, or crossing an odd number of them along
 /// the ray from `m` towards `dir` (half-open at vertices). Exact: every sign is of a sum of
 /// exact products of the doubles.
-fn midpoint_inside(x: [f64; 2], y: [f64; 2], dir: [f64; 2], near: &[&Edge]) -> bool {
+fn midpoint_inside(x: [f64; 2], y: [f64; 2], dir: [f64; 2], near: &[&PolygonEdge]) -> bool {
     // Twice the cross product `dir × (p − m)`: which side of the ray's line `p` lies on.
     let side = |p: [f64; 2]| {
         let mut terms = Vec::with_capacity(12);

@@ -8,7 +8,7 @@ use rstar::{AABB, RTree};
 /// One segment of a drawing, from `a` to `b`: `a + t d` for `t` in `[0, 1]`, `d = b - a`.
 /// Both ends are kept as drawn (not recomputed from `d`), so that a segment covers itself,
 /// and its reversal, on exactly `[0, 1]`.
-pub(super) struct Segment {
+pub(super) struct DrawnSegment {
     pub(super) a: [f64; 2],
     pub(super) b: [f64; 2],
     pub(super) d: [f64; 2],
@@ -17,7 +17,7 @@ pub(super) struct Segment {
     pub(super) finite: bool,
 }
 
-impl Segment {
+impl DrawnSegment {
     pub(super) fn length(&self) -> f64 {
         if self.finite {
             self.d[0].hypot(self.d[1])
@@ -27,14 +27,14 @@ impl Segment {
     }
 }
 
-pub(super) fn segments(drawing: &Drawing) -> Vec<Segment> {
+pub(super) fn segments(drawing: &Drawing) -> Vec<DrawnSegment> {
     drawing
         .polylines
         .iter()
         .flat_map(|line| {
             line.points.windows(2).map(move |w| {
                 let (a, b) = (w[0], w[1]);
-                Segment {
+                DrawnSegment {
                     a,
                     b,
                     d: [b[0] - a[0], b[1] - a[1]],
@@ -50,7 +50,7 @@ pub(super) type Envelope = GeomWithData<Rectangle<[f64; 2]>, usize>;
 
 /// The finite segments' envelopes widened by the tolerance, a little more so that rounding
 /// the widened bounds never leaves out a segment within the tolerance.
-pub(super) fn segment_tree(segments: &[Segment], tolerance: f64) -> RTree<Envelope> {
+pub(super) fn segment_tree(segments: &[DrawnSegment], tolerance: f64) -> RTree<Envelope> {
     let widen = |x: f64, by: f64| (x + by).clamp(-f64::MAX, f64::MAX);
     RTree::bulk_load(
         segments
@@ -76,8 +76,8 @@ pub(super) struct Cover {
 
 impl Cover {
     pub(super) fn of(
-        s: &Segment,
-        others: &[Segment],
+        s: &DrawnSegment,
+        others: &[DrawnSegment],
         tree: &RTree<Envelope>,
         tolerance: f64,
     ) -> Cover {
@@ -155,7 +155,7 @@ pub(super) fn gaps(lo: f64, hi: f64, covered: &[(f64, f64)]) -> f64 {
 /// line's intersection with the capsule of `ab`, the union of its intersections with the
 /// rectangle of half-width `r` along `ab` and with the discs of radius `r` at `a` and `b`
 /// (an interval, since the capsule is convex). `None` if the line misses it.
-pub(super) fn capsule(s: &Segment, a: [f64; 2], b: [f64; 2], r: f64) -> Option<(f64, f64)> {
+pub(super) fn capsule(s: &DrawnSegment, a: [f64; 2], b: [f64; 2], r: f64) -> Option<(f64, f64)> {
     let e = [b[0] - a[0], b[1] - a[1]];
     let ee = dot(e, e);
     let mut pieces = [disc(s, a, r), disc(s, b, r), None];
@@ -190,7 +190,7 @@ pub(super) fn slab(t: (f64, f64), f0: f64, f1: f64, lo: f64, hi: f64) -> Option<
 
 /// The parameters `t` with `|s.a + t s.d - c| <= r`: the roots of
 /// `|d|^2 t^2 + 2 (d.w) t + |w|^2 - r^2` for `w = a - c`, computed without cancellation.
-pub(super) fn disc(s: &Segment, c: [f64; 2], r: f64) -> Option<(f64, f64)> {
+pub(super) fn disc(s: &DrawnSegment, c: [f64; 2], r: f64) -> Option<(f64, f64)> {
     let w = [s.a[0] - c[0], s.a[1] - c[1]];
     let a = dot(s.d, s.d);
     let b = dot(s.d, w);
