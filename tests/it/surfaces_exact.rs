@@ -1364,7 +1364,7 @@ fn visobj_agrees_with_the_exact_answer() {
 
 #[test]
 fn the_comparison_rejects_wrong_answers() {
-    let (scene, ids) = scene_and_ids(&two_boxes());
+    let (scene, ids) = scene_and_ids(two_boxes());
     let view = ortho([-1.0, -2.0, -3.0]);
     let want = reference(&scene, &ids, &view);
     let good = visible_surfaces(&scene, &view).unwrap();
