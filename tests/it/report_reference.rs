@@ -184,7 +184,7 @@ fn perspective_needs_the_scene_in_front() {
     )
     .unwrap();
     let e = reference(&scene, &inside, &options()).unwrap_err();
-    assert!(e.to_string().starts_with("object 'solid0': vertex"), "{e}");
+    assert!(e.to_string().starts_with("object 'm0': vertex"), "{e}");
     assert!(draw(&scene, &inside, &options()).is_ok());
 }
 
