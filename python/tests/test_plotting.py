@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import kepler
-from conftest import ROOT, SCENES
+from conftest import ROOT, SCENES_QUICK
 
 LAYERS = [
     f"{v}-{c}"
@@ -16,7 +16,7 @@ LAYERS = [
 ]
 
 
-@pytest.mark.parametrize("scene", SCENES, ids=[s.stem for s in SCENES])
+@pytest.mark.parametrize("scene", SCENES_QUICK)
 def test_vpype_reads_one_layer_per_class_and_visibility(cli, scene, tmp_path):
     vp = pytest.importorskip("vpype")
     svg = tmp_path / "out.svg"
@@ -57,7 +57,7 @@ def test_the_vpype_plugin_adds_visible_and_hidden_layers():
     assert len(merged.layers[1]) <= len(document.layers[1])
 
 
-@pytest.mark.parametrize("scene", SCENES, ids=[s.stem for s in SCENES])
+@pytest.mark.parametrize("scene", SCENES_QUICK)
 @pytest.mark.parametrize("encoding", ["text", "binary"])
 def test_ezdxf_reads_the_dxf(cli, scene, encoding, tmp_path):
     ezdxf = pytest.importorskip("ezdxf")
