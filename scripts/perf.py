@@ -133,21 +133,32 @@ array = {{ count = {0}, step = {1} }}
 """.format(*spec)
 
 
+def cached_obj(d, name, make):
+    """The OBJ file `name` in folder `d`, written from `make()` (vertices, faces) unless it
+    is there already."""
+    path = os.path.join(d, name)
+    if not os.path.exists(path):
+        write_obj(path + ".tmp", *make())
+        os.replace(path + ".tmp", path)
+    return path
+
+
+def written(d, name, text):
+    """The file `name` in folder `d`, written with `text`."""
+    path = os.path.join(d, name)
+    write(path, text)
+    return path
+
+
 def scenes(d):
     """(name, command arguments, triangles) for every job, generating missing files."""
     os.makedirs(d, exist_ok=True)
 
     def obj(name, make):
-        path = os.path.join(d, name)
-        if not os.path.exists(path):
-            write_obj(path + ".tmp", *make())
-            os.replace(path + ".tmp", path)
-        return path
+        return cached_obj(d, name, make)
 
     def toml(name, text):
-        path = os.path.join(d, name)
-        write(path, text)
-        return path
+        return written(d, name, text)
 
     scan = obj("scan.obj", lambda: cube_sphere(299, 40, 1))          # 1,073,388 triangles
     blob = obj("blob.obj", lambda: cube_sphere(76, 25, 2))           # 69,312 triangles

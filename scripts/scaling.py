@@ -23,7 +23,8 @@ import statistics
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from perf import CAMERA, KEPLER, ROOT, cube_sphere, cubes, flat_grid, run, write, write_obj  # noqa: E402
+from perf import (CAMERA, KEPLER, ROOT, cached_obj, cube_sphere, cubes, flat_grid,  # noqa: E402
+                  run, written)
 
 STAGE = re.compile(r"^(\S+)\s+(\d+\.\d+)\s\s")
 
@@ -50,16 +51,10 @@ def families(d, count):
     out = os.path.join(d, "out.svg")
 
     def obj(name, make):
-        path = os.path.join(d, name)
-        if not os.path.exists(path):
-            write_obj(path + ".tmp", *make())
-            os.replace(path + ".tmp", path)
-        return path
+        return cached_obj(d, name, make)
 
     def toml(name, text):
-        path = os.path.join(d, name)
-        write(path, text)
-        return path
+        return written(d, name, text)
 
     def sizes(first, factor):
         return [int(round(first * factor ** i)) for i in range(count)]
