@@ -82,6 +82,24 @@ def cube_sphere(n, bumps, seed):
     return verts, faces
 
 
+def parts(count, n, seed):
+    """A model of `count` overlapping parts in one mesh, as a game character exported to one
+    OBJ is: blobs of 12 n^2 triangles (`cube_sphere`), of random sizes and ellipsoidal
+    stretches, along a random walk so that each part passes through its neighbours; the mesh
+    intersects itself wherever two parts meet."""
+    rng = random.Random(seed)
+    verts, faces = [], []
+    centre = [0.0, 0.0, 0.0]
+    for k in range(count):
+        v, f = cube_sphere(n, 6, seed * 1000 + k)
+        scale = [rng.uniform(0.3, 1.0) for _ in range(3)]
+        centre = [c + rng.uniform(-0.6, 0.6) for c in centre]
+        base = len(verts)
+        verts += [tuple(centre[i] + scale[i] * p[i] for i in range(3)) for p in v]
+        faces += [(a + base, b + base, c + base) for a, b, c in f]
+    return verts, faces
+
+
 def flat_grid(n):
     """n x n squares in the plane z = 0, two triangles each (2 n^2 coplanar triangles)."""
     verts = [(i / n, j / n, 0.0) for i in range(n + 1) for j in range(n + 1)]
@@ -163,6 +181,7 @@ def scenes(d):
     scan = obj("scan.obj", lambda: cube_sphere(299, 40, 1))          # 1,073,388 triangles
     blob = obj("blob.obj", lambda: cube_sphere(76, 25, 2))           # 69,312 triangles
     flat = obj("flat.obj", lambda: flat_grid(224))                   # 100,352 triangles
+    character = obj("parts.obj", lambda: parts(44, 15, 5))            # 118,800 triangles
     def uv_sphere(name, segments, rings):
         camera = CAMERA.format(ex=3, ey=-4, ez=2, tx=0, ty=0, tz=0, fov=40)
         return toml(name + ".toml", camera + """
@@ -196,6 +215,9 @@ rings = 2
         ("scan 1.07M tris, all", ["render", scan, "--edges", "all", "-o", out], 1073388),
         ("blob 69k tris, feature", ["render", blob, "-o", out], 69312),
         ("blob 69k tris, all", ["render", blob, "--edges", "all", "-o", out], 69312),
+        ("44 parts in one mesh, 119k tris, all",
+         ["render", character, "--edges", "all", "-o", out], 118800),
+        ("surfaces, blob 69k tris", ["surfaces", blob, "-o", out], 69312),
         ("sphere 1M tris", ["render", sphere, "-o", out], 998000),
         ("fan 10,000 edges at a point", ["render", fan, "-o", out], 20000),
         ("flat 100k tris, oblique", ["render", flat, "--view-dir", "1,2,-3", "-o", out], 100352),
@@ -205,6 +227,7 @@ rings = 2
          ["render", cone, "--edges", "all", "--view-dir", "0,0,-1", "--up", "0,1,0", "-o", out],
          20000),
         ("metropolis", ["render", metropolis, "-o", out], 0),  # 22,789 objects
+        ("surfaces, metropolis", ["surfaces", metropolis, "-o", out], 0),
         ("metropolis, keep overlaps", ["render", metropolis, "--keep-overlaps", "-o", out], 0),
     ]
     for n in (1000, 3000, 10000, 30000, 100000):

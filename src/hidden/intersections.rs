@@ -62,7 +62,12 @@ impl Pass<'_> {
             }
             for (k, s) in found.into_iter().enumerate() {
                 segments += 1;
-                if self.meet_line((i, j), (id0, id1), (k, s), &mut found_partners) && i == j {
+                if self.meet_line((i, j), (id0, id1), (k, s), &mut found_partners)
+                    && i == j
+                    && self_intersecting.last() != Some(&i)
+                {
+                    // Once per mesh (its segments come together): clearing its lines' `back`
+                    // for each of its segments would cost segments × edges.
                     self_intersecting.push(i);
                 }
             }
