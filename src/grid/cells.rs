@@ -109,6 +109,21 @@ impl Cells {
         }
     }
 
+    /// The rectangle of cell `c` (row-major), as its lowest and highest corners.
+    ///
+    /// ```
+    /// let cells = kepler::grid::Cells::new([1.0, 0.0], [2.0, 1.0], [4, 2]);
+    /// assert_eq!(cells.region(5), [[1.5, 0.5], [2.0, 1.0]]);
+    /// ```
+    pub fn region(&self, c: usize) -> [[f64; 2]; 2] {
+        let [columns, _] = self.shape;
+        let (col, row) = ((c % columns) as f64, (c / columns) as f64);
+        [
+            [self.coordinate(0, col), self.coordinate(1, row)],
+            [self.coordinate(0, col + 1.0), self.coordinate(1, row + 1.0)],
+        ]
+    }
+
     /// The row-major indices of the cells the box `[low, high]`, grown by `margin` on every
     /// side, covers (by the monotone [`Cells::index`], so a point in the box falls in one of
     /// them however it rounds).

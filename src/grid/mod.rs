@@ -27,6 +27,7 @@
 //! assert_eq!(intersecting_pairs(&segments), vec![(0, 1), (0, 2)]);
 //! ```
 
+mod candidates;
 mod cells;
 mod voxels;
 
@@ -263,7 +264,9 @@ impl SegmentGrid {
             .par_iter()
             .enumerate()
             .fold(Vec::new, |mut out, (i, s)| {
-                grid.walk(s, |cell| out.push((u64::from(cell) << 32) | i as u64));
+                walk(&grid.cells, grid.margin, s, |cell| {
+                    out.push((u64::from(cell) << 32) | i as u64)
+                });
                 out
             })
             .reduce(Vec::new, |mut x, mut y| {
@@ -333,46 +336,6 @@ impl SegmentGrid {
         self.gather(|c| self.pairs_in(c))
     }
 
-    /// Every pair `(i, j)`, `i < j`, listed together in some cell whose bounding boxes, grown
-    /// by the grid's margin (2⁻⁴⁶ of the largest coordinate), meet and for which `keep(i, j)`
-    /// holds; each once, in increasing order. For callers whose segments stand for exact ones
-    /// within a few units in the last place (pictures of 3-D edges, say): the grid then still
-    /// lists every pair whose exact segments meet, and `keep` decides exactly.
-    ///
-    /// ```
-    /// use geo::{Line, coord};
-    /// use kepler::grid::SegmentGrid;
-    /// let s = [
-    ///     Line::new(coord! { x: 0.0, y: 0.0 }, coord! { x: 1.0, y: 1.0 }),
-    ///     Line::new(coord! { x: 0.0, y: 1.0 }, coord! { x: 1.0, y: 0.0 }),
-    ///     Line::new(coord! { x: 0.0, y: 2.0 }, coord! { x: 1.0, y: 2.0 }),
-    /// ];
-    /// let grid = SegmentGrid::new(&s);
-    /// assert_eq!(grid.candidates(|_, _| true), vec![(0, 1)]);
-    /// assert!(grid.candidates(|i, _| i > 0).is_empty());
-    /// ```
-    pub fn candidates<F>(&self, keep: F) -> Vec<(usize, usize)>
-    where
-        F: Fn(usize, usize) -> bool + Sync,
-    {
-        let m = self.margin;
-        let keep = &keep;
-        self.gather(|c| {
-            let here = &self.items[self.start[c] as usize..self.start[c + 1] as usize];
-            here.iter().enumerate().flat_map(move |(n, a)| {
-                let right = a.b[0] + m;
-                here[n + 1..]
-                    .iter()
-                    .take_while(move |b| b.a[0] - m <= right)
-                    .filter_map(move |b| {
-                        let (i, j) = (a.segment.min(b.segment), a.segment.max(b.segment));
-                        (i != j && a.boxes_meet_within(b, m) && keep(i as usize, j as usize))
-                            .then_some((u64::from(i) << 32) | u64::from(j))
-                    })
-            })
-        })
-    }
-
     /// The pairs every cell yields (each `(i, j)` as the integer `i·2³² + j`), gathered in
     /// parallel; a pair listed together in several cells is found in each, so they are sorted
     /// and deduplicated.
@@ -415,42 +378,48 @@ impl SegmentGrid {
         })
     }
 
-    /// Calls `visit` with each cell segment `s` passes through, once: column by column, the
-    /// rows its part in the (widened) column spans, widened again by the margin.
-    fn walk(&self, s: &Line<f64>, mut visit: impl FnMut(u32)) {
-        let m = self.margin;
-        let (a, b) = if s.start.x <= s.end.x {
-            (s.start, s.end)
+}
+
+/// Calls `visit` with each cell of `cells` segment `s` passes through, once: column by column,
+/// the rows its part in the (widened) column spans, widened again by the margin `m`. The first
+/// and last columns reach out without bound (the indices clamp to the grid there), so that in
+/// a grid over part of the plane (a crowded cell split, see `candidates.rs`) a point of `s`
+/// outside the grid is listed in the border cell its clamped indices name.
+fn walk(cells: &Cells, m: f64, s: &Line<f64>, mut visit: impl FnMut(u32)) {
+    let (a, b) = if s.start.x <= s.end.x {
+        (s.start, s.end)
+    } else {
+        (s.end, s.start)
+    };
+    let [columns, _] = cells.shape();
+    let (y_min, y_max) = (a.y.min(b.y) - m, a.y.max(b.y) + m);
+    let (c0, c1) = (cells.index(0, a.x - m), cells.index(0, b.x + m));
+    for col in c0..=c1 {
+        let (mut x0, mut x1) = (a.x, b.x);
+        if col > 0 {
+            x0 = x0.max(cells.coordinate(0, col as f64) - m);
+        }
+        if col + 1 < columns {
+            x1 = x1.min(cells.coordinate(0, (col + 1) as f64) + m);
+        }
+        if x0 > x1 {
+            continue;
+        }
+        // The segment's heights at the column's ends; a slope too steep for a double (a
+        // nearly vertical segment) spans the whole height.
+        let slope = (b.y - a.y) / (b.x - a.x);
+        let (lo, hi) = if b.x > a.x && slope.is_finite() {
+            let (y0, y1) = (a.y + (x0 - a.x) * slope, a.y + (x1 - a.x) * slope);
+            (y0.min(y1) - m, y0.max(y1) + m)
         } else {
-            (s.end, s.start)
+            (y_min, y_max)
         };
-        let (y_min, y_max) = (a.y.min(b.y) - m, a.y.max(b.y) + m);
-        let (c0, c1) = (self.cells.index(0, a.x - m), self.cells.index(0, b.x + m));
-        for col in c0..=c1 {
-            let (mut x0, mut x1) = (a.x, b.x);
-            if self.cells.shape()[0] > 1 {
-                x0 = x0.max(self.cells.coordinate(0, col as f64) - m);
-                x1 = x1.min(self.cells.coordinate(0, (col + 1) as f64) + m);
-            }
-            if x0 > x1 {
-                continue;
-            }
-            // The segment's heights at the column's ends; a slope too steep for a double (a
-            // nearly vertical segment) spans the whole height.
-            let slope = (b.y - a.y) / (b.x - a.x);
-            let (lo, hi) = if b.x > a.x && slope.is_finite() {
-                let (y0, y1) = (a.y + (x0 - a.x) * slope, a.y + (x1 - a.x) * slope);
-                (y0.min(y1) - m, y0.max(y1) + m)
-            } else {
-                (y_min, y_max)
-            };
-            let (r0, r1) = (
-                self.cells.index(1, lo.max(y_min)),
-                self.cells.index(1, hi.min(y_max)),
-            );
-            for row in r0..=r1 {
-                visit((row * self.cells.shape()[0] + col) as u32);
-            }
+        let (r0, r1) = (
+            cells.index(1, lo.max(y_min)),
+            cells.index(1, hi.min(y_max)),
+        );
+        for row in r0..=r1 {
+            visit((row * columns + col) as u32);
         }
     }
 }

@@ -138,7 +138,11 @@ impl Pass<'_> {
             relevant,
         } = self.gridded();
         let grid = SegmentGrid::new(&segments);
-        let candidates = grid.candidates(|i, j| self.cuts_needed(gridded[i], gridded[j]));
+        // Only pairs with a contour can cut (see `cuts_needed`): the grid enumerates those alone.
+        let candidates = grid.candidates(
+            |i| lines[gridded[i]].is_contour(),
+            |i, j| self.cuts_needed(gridded[i], gridded[j]),
+        );
         let is_untamed = |j: usize| untamed.binary_search(&j).is_ok();
         let (relevant, is_untamed) = (&relevant, &is_untamed);
         let with_untamed: Vec<(usize, usize)> = untamed

@@ -1094,3 +1094,93 @@ fn the_floating_point_speed_up_of_the_reference_is_right() {
     }
     assert!(answered > 10_000, "{answered}");
 }
+
+// ---------------------------------------------------------------------------------------------
+// Candidates with keys (stage 3's pairs with a contour), crowded cells split.
+
+/// Checks `SegmentGrid::candidates` with the keys `key` against the brute force: every pair
+/// with a key whose exact segments meet is listed, every listed pair has a key, passes `keep`
+/// and has bounding boxes that meet within 2⁻⁴⁰ of the largest coordinate, each once in
+/// increasing order. Returns how many were listed.
+fn check_candidates(segments: &[Line<f64>], key: &[bool], what: &str) -> usize {
+    let grid = SegmentGrid::new(segments);
+    let keep = |i: usize, j: usize| (i + j) % 7 != 3;
+    let found = grid.candidates(|i| key[i], keep);
+    assert!(found.windows(2).all(|w| w[0] < w[1]), "{what}: not increasing");
+    let e: Vec<[[f64; 2]; 2]> = segments.iter().map(ends).collect();
+    let scale = e.iter().flatten().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+    let slack = scale / (1u64 << 40) as f64;
+    let near = |s: &[[f64; 2]; 2], t: &[[f64; 2]; 2]| {
+        (0..2).all(|k| {
+            s[0][k].min(s[1][k]) - slack <= t[0][k].max(t[1][k])
+                && t[0][k].min(t[1][k]) - slack <= s[0][k].max(s[1][k])
+        })
+    };
+    for &(i, j) in &found {
+        assert!(i < j && (key[i] || key[j]) && keep(i, j), "{what}: ({i}, {j}) listed");
+        assert!(near(&e[i], &e[j]), "{what}: ({i}, {j}) listed, boxes apart");
+    }
+    for (i, j) in brute(segments) {
+        if (key[i] || key[j]) && keep(i, j) {
+            assert!(found.binary_search(&(i, j)).is_ok(), "{what}: ({i}, {j}) missed");
+        }
+    }
+    found.len()
+}
+
+/// A cone's edges seen head-on: `n` spokes from `centre` to a circle of radius `r`, and the
+/// circle's `n` short sides; the sides are the keys (contours), the spokes not.
+fn cone(n: usize, centre: [f64; 2], r: f64) -> (Vec<Line<f64>>, Vec<bool>) {
+    let rim = |i: usize| {
+        let a = std::f64::consts::TAU * (i % n) as f64 / n as f64;
+        [centre[0] + r * a.cos(), centre[1] + r * a.sin()]
+    };
+    let mut segments = Vec::new();
+    let mut key = Vec::new();
+    for i in 0..n {
+        let (p, q) = (rim(i), rim(i + 1));
+        segments.push(seg(centre[0], centre[1], p[0], p[1]));
+        key.push(false);
+        segments.push(seg(p[0], p[1], q[0], q[1]));
+        key.push(true);
+    }
+    (segments, key)
+}
+
+#[test]
+fn candidates_with_keys_equal_brute_force_on_random_and_lattice_inputs() {
+    for seed in 0..12 {
+        let mut rng = SplitMix64(1000 + seed);
+        let n = rng.pick(&[20, 80, 300, 700]);
+        let segments = if seed % 2 == 0 {
+            mixed(&mut rng, n)
+        } else {
+            let (k, step) = (rng.pick(&[3, 8, 20]), rng.pick(&[1.0, 0.125, 3.0]));
+            lattice(&mut rng, n, k, step)
+        };
+        let share = rng.pick(&[0, 1, 2, 8]);
+        let key: Vec<bool> = (0..n).map(|_| share > 0 && rng.below(share) == 0).collect();
+        check_candidates(&segments, &key, &format!("seed {seed}"));
+        // Far from the origin and tiny: the same pairs.
+        let far = shifted(&segments, 1e8, -3e8);
+        check_candidates(&far, &key, &format!("seed {seed}, far"));
+        check_candidates(&scaled(&segments, 1e-300), &key, &format!("seed {seed}, tiny"));
+    }
+}
+
+#[test]
+fn candidates_in_a_cone_seen_head_on_equal_brute_force_through_split_cells() {
+    for (n, centre, r) in [(500, [0.0, 0.0], 1.0), (2000, [0.3, -7.0], 0.5), (1500, [1e8, 1e8], 3.0)] {
+        let (segments, key) = cone(n, centre, r);
+        let found = check_candidates(&segments, &key, &format!("cone of {n}"));
+        // Each side meets its two neighbours and its two spokes (3 n pairs, all listed, as
+        // checked). The cells round the rim are crowded with sides, and split.
+        assert!(found <= 12 * n, "cone of {n}: {found} pairs");
+    }
+    // All segments keys, through one point: every pair meets, and every pair is listed.
+    let (mut segments, _) = cone(300, [0.5, 0.5], 1.0);
+    segments.retain(|s| s.start == Coord { x: 0.5, y: 0.5 });
+    let key = vec![true; segments.len()];
+    let m = segments.len();
+    assert_eq!(check_candidates(&segments, &key, "spokes"), m * (m - 1) / 2 - (0..m).flat_map(|i| (i + 1..m).map(move |j| (i, j))).filter(|&(i, j)| (i + j) % 7 == 3).count());
+}
