@@ -15,6 +15,7 @@
 //! near it) is looked up in every cell within the reach of its picture's error
 //! ([`Picture::reach`]): nearly always the one cell.
 
+use super::hubs::{Hub, hubs};
 use crate::geometry::polygon::{bounding_box, surely_farther};
 use crate::geometry::{Aabb, Point3};
 use crate::grid::{CellLists, Cells};
@@ -46,6 +47,9 @@ pub(crate) struct PictureGrid<'a> {
     front: &'a [bool],
     /// The margin the triangles were listed with (more than the rounding of any picture).
     margin: f64,
+    /// The triangles round crowded vertices, listed by angle instead of in the cells (see
+    /// [`hubs`](super::hubs)).
+    hubs: Vec<Hub>,
 }
 
 /// The window of a view that clips (half its width and height, grown), with the picture map:
@@ -76,13 +80,26 @@ impl<'a> PictureGrid<'a> {
                 Some((picture, w)) => framed_box(mesh, tri, pictures, &in_front, picture, w),
             })
             .collect();
+        let whole = |tri: &[u32; 3]| window.is_none() || tri.iter().all(|&v| in_front(v));
+        // More than the rounding of any triangle's picture, those at hubs included.
+        let [lo, hi] = bounding_box(boxes.iter().flatten().flatten().copied());
+        let margin = MARGIN * lo.iter().chain(&hi).fold(0.0f64, |m, v| m.max(v.abs()));
+        // The triangles round a crowded vertex go to its hub, found by angle, the others to
+        // the cells (sized for them alone).
+        let (hubs, at_hub) = hubs(mesh.triangles(), pictures, |t| {
+            boxes[t].is_some() && whole(&mesh.triangles()[t])
+        });
+        let boxes: Vec<Option<[[f64; 2]; 2]>> = boxes
+            .into_iter()
+            .zip(&at_hub)
+            .map(|(b, &h)| b.filter(|_| !h))
+            .collect();
         let [lo, hi] = bounding_box(boxes.iter().flatten().flatten().copied());
         let n = boxes.iter().flatten().count().max(1);
         let extent = [0, 1].map(|k| (hi[k] - lo[k]).max(0.0));
         // Cells about the size of a triangle's picture times the factor (the size of a sliver
         // is its width, not its length: it is listed along itself), no smaller than one per
         // triangle would give, nor than a sixteenth of the mean picture box.
-        let whole = |tri: &[u32; 3]| window.is_none() || tri.iter().all(|&v| in_front(v));
         let size = mesh
             .triangles()
             .par_iter()
@@ -109,7 +126,6 @@ impl<'a> PictureGrid<'a> {
             .max(mean / 16.0)
             .max((extent[0] * extent[1] / 4.0 / n as f64).sqrt());
         let cells = Cells::new(lo, extent, cell_shape(side, extent, n));
-        let margin = MARGIN * lo.iter().chain(&hi).fold(0.0f64, |m, v| m.max(v.abs()));
         let pairs = listed_pairs(mesh, pictures, &boxes, (&cells, margin), whole);
         PictureGrid {
             lists: CellLists::new(cells.count(), pairs),
@@ -118,6 +134,7 @@ impl<'a> PictureGrid<'a> {
             pictures,
             front,
             margin,
+            hubs,
         }
     }
 
@@ -133,9 +150,11 @@ impl<'a> PictureGrid<'a> {
     /// never filtered.
     pub(crate) fn near(&self, p: [f64; 2], reach: f64) -> impl Iterator<Item = &u32> {
         let slack = reach + self.margin + MARGIN * p[0].abs().max(p[1].abs());
+        let at_hubs = self.hubs.iter().flat_map(move |h| h.near(p, slack));
         self.cells
             .covering(p, p, reach)
             .flat_map(|c| self.lists.get(c))
+            .chain(at_hubs)
             .filter(move |&&t| {
                 let tri = &self.triangles[t as usize];
                 let whole = tri
@@ -147,7 +166,7 @@ impl<'a> PictureGrid<'a> {
 
     /// The number of (cell, triangle) entries.
     pub(crate) fn entries(&self) -> usize {
-        self.lists.entries()
+        self.lists.entries() + self.hubs.iter().map(Hub::entries).sum::<usize>()
     }
 }
 

@@ -74,6 +74,7 @@ mod cuts;
 mod drawing;
 mod edges;
 mod finish;
+mod hubs;
 pub mod ideographs;
 mod intersections;
 mod line;
