@@ -24,7 +24,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from perf import (CAMERA, KEPLER, ROOT, cached_obj, cube_sphere, cubes, flat_grid,  # noqa: E402
-                  run, written)
+                  parts, run, written)
 
 STAGE = re.compile(r"^(\S+)\s+(\d+\.\d+)\s\s")
 
@@ -77,6 +77,11 @@ def families(d, count):
     fams.append(("overlapping parts", [
         (k, 2 * 24 * 11 * k, ["render", toml("overlap-%d.toml" % k, sphere_toml(24, 12, 0.5, k))]
          + out_all)
+        for k in sizes(4, 3)]))
+    # k overlapping blobs of 2,700 triangles in one mesh (a model exported as one OBJ): the
+    # mesh intersects itself wherever two parts meet.
+    fams.append(("parts in one mesh", [
+        (k, 2700 * k, ["render", obj("parts-%d.obj" % k, lambda k=k: parts(k, 15, 5))] + out_all)
         for k in sizes(4, 3)]))
     # k unit cubes face to face in a row: their edges coincide in space and in the picture.
     fams.append(("coincident lines", [

@@ -57,18 +57,18 @@ use crate::sight::range::in_working_range;
 use crate::views::{Picture, View, ViewError};
 use geo::{Coord, MapCoords, MultiPolygon};
 use rayon::prelude::*;
-use slotmap::SecondaryMap;
 use std::cmp::Ordering;
 
 mod face_grid;
 pub mod hatch;
+mod index;
 mod lines;
 mod occluders;
 mod overlap;
 mod target;
 mod vtp;
 
-use face_grid::FaceGrid;
+use index::Index;
 use occluders::{Occluder, visfac2};
 use target::{Framing, Target, ring, spanning_triangle};
 use vtp::Vtp;
@@ -357,12 +357,7 @@ fn visible_surfaces_in_range(scene: &Scene, view: &View) -> Result<Vec<FaceRepor
     let picture = Picture::of(view);
     let (meshes, clip) = pictured(scene, view)?;
     let clip = clip.as_ref();
-    let built: Vec<(ObjectId, FaceGrid)> = meshes
-        .par_iter()
-        .map(|&(id, mesh)| (id, FaceGrid::new(scene, (id, mesh), view, &picture, clip)))
-        .collect();
-    let mut grids = SecondaryMap::new();
-    grids.extend(built);
+    let index = Index::new(scene, &meshes, view, &picture, clip);
     let faces: Vec<(ObjectId, &Mesh, usize)> = meshes
         .iter()
         .flat_map(|&(id, mesh)| (0..mesh.faces().len()).map(move |f| (id, mesh, f)))
@@ -371,7 +366,7 @@ fn visible_surfaces_in_range(scene: &Scene, view: &View) -> Result<Vec<FaceRepor
         .par_iter()
         .map(|&(id, _, f)| {
             let (visible, texture) =
-                visfac_among(scene, scene.roots(), view, id, f, Some(&grids), clip)?;
+                visfac_among(scene, scene.roots(), view, id, f, Some(&index), clip)?;
             Ok(FaceReport {
                 object: id,
                 face: f,
@@ -422,7 +417,7 @@ fn visfac_among(
     view: &View,
     owner: ObjectId,
     face: usize,
-    grids: Option<&SecondaryMap<ObjectId, FaceGrid>>,
+    index: Option<&Index>,
     clip: Option<&Clip>,
 ) -> Result<(VisibleFace, MultiPolygon<f64>)> {
     let mesh = face_mesh(scene, owner, face)?;
@@ -438,7 +433,7 @@ fn visfac_among(
         return Ok((seen, nothing));
     }
     let mut exits = Exits::default();
-    let back_side = match grids.and_then(|g| g.get(owner)) {
+    let back_side = match index.and_then(|i| i.grids.get(owner)) {
         Some(grid) => grid.back_side,
         None if within(scene, owner, objects) => {
             hidden_by_own_solid(scene, owner, mesh, view.eye())
@@ -457,7 +452,7 @@ fn visfac_among(
             a,
             &target,
             (owner, face),
-            grids,
+            index,
             &mut occluders,
             &mut exits,
         )? {

@@ -1,7 +1,7 @@
 //! VISFAC2: the walk of an object's hierarchy that gathers the faces hiding some area of F (the
 //! occluders), with the paper's early exits.
 
-use super::face_grid::FaceGrid;
+use super::index::Index;
 use super::overlap;
 use super::target::{Target, canonical_loop, spanning_triangle};
 use super::{Exits, Result};
@@ -10,7 +10,6 @@ use crate::mesh::Mesh;
 use crate::scene::{Content, ObjectId, Scene};
 use crate::sight::line::Sight;
 use crate::views::Eye;
-use slotmap::SecondaryMap;
 
 /// A face of an occluder that hides some area of F: its vertex loop, a triangle spanning its
 /// plane (see [`spanning_triangle`]) and its triangles.
@@ -47,12 +46,13 @@ pub(super) fn visfac2(
     a: ObjectId,
     target: &Target,
     own: (ObjectId, usize),
-    grids: Option<&SecondaryMap<ObjectId, FaceGrid>>,
+    index: Option<&Index>,
     occluders: &mut Vec<Occluder>,
     exits: &mut Exits,
 ) -> Result<bool> {
     let cbox = scene.cbox(a);
-    if target.cannot_be_hidden_by(&cbox) {
+    let pictured = index.map(|i| i.cbox_pictures.get(a).copied().flatten());
+    if target.cannot_be_hidden_by(&cbox, pictured) {
         exits.cbox_skipped += 1;
         return Ok(false);
     }
@@ -68,7 +68,7 @@ pub(super) fn visfac2(
     }
     match scene[a].content() {
         Content::Mesh(mesh) => {
-            let near = match grids.and_then(|g| g.get(a)) {
+            let near = match index.and_then(|i| i.grids.get(a)) {
                 Some(grid) => grid.near(target.extent),
                 None => (0..mesh.faces().len()).collect(),
             };
@@ -97,7 +97,7 @@ pub(super) fn visfac2(
         }
         Content::Subobjects(children) => {
             for &c in children {
-                if visfac2(scene, c, target, own, grids, occluders, exits)? {
+                if visfac2(scene, c, target, own, index, occluders, exits)? {
                     return Ok(true);
                 }
             }

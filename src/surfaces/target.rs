@@ -102,11 +102,16 @@ impl Target {
 
     /// Whether nothing in the closed box can hide the face: no point of it lies strictly on the
     /// eye's side of the face's plane (decided exactly at its corners), or its picture misses
-    /// the face's.
-    pub(super) fn cannot_be_hidden_by(&self, b: &Aabb) -> bool {
+    /// the face's. `pictured` is the box's [`cbox_picture`] when the caller holds it (computed
+    /// here otherwise).
+    pub(super) fn cannot_be_hidden_by(
+        &self,
+        b: &Aabb,
+        pictured: Option<Option<[[f64; 2]; 2]>>,
+    ) -> bool {
         let [p, q, r] = &self.plane;
-        let corners = b.corners();
-        if corners
+        if b
+            .corners()
             .iter()
             .all(|c| orient3d(p, q, r, c) != self.eye_side)
         {
@@ -115,10 +120,9 @@ impl Target {
         // The picture of the box holds the pictures of all it holds when every corner is in
         // front of the eye; the two pictures must miss by more than a margin far above
         // rounding.
-        if !corners.iter().all(|c| self.picture.in_front(c)) {
+        let Some([low, high]) = pictured.unwrap_or_else(|| cbox_picture(&self.picture, b)) else {
             return false;
-        }
-        let [low, high] = bounding_box(corners.iter().map(|c| self.picture.point(c)));
+        };
         let [f_low, f_high] = self.extent;
         let scale = low.iter().chain(&high).chain(&f_low).chain(&f_high);
         let margin = GRID_MARGIN * scale.fold(0.0f64, |m, v| m.max(v.abs()));
@@ -144,6 +148,16 @@ impl Target {
                 .iter()
                 .any(|v| orient3d(&g[0], &g[1], &g[2], v) == g_side.reverse())
     }
+}
+
+/// The box of the pictures of the corners of `b`, or `None` when a corner is not in front of
+/// the eye (the picture of the box is then unbounded).
+pub(super) fn cbox_picture(picture: &Picture, b: &Aabb) -> Option<[[f64; 2]; 2]> {
+    let corners = b.corners();
+    corners
+        .iter()
+        .all(|c| picture.in_front(c))
+        .then(|| bounding_box(corners.iter().map(|c| picture.point(c))))
 }
 
 /// The vertex loop of face `face` from its vertex of least index, towards the neighbour of
