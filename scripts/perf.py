@@ -203,6 +203,14 @@ radius = 1
 segments = 10000
 rings = 2
 """)                                                               # the same, seen down its axis
+    cone100k = toml("cone100k.toml", """
+[[object]]
+name = "cone"
+solid = "sphere"
+radius = 1
+segments = 100000
+rings = 2
+""")
     metropolis = os.path.join(ROOT, "scenes", "metropolis.toml")
     points = os.path.join(d, "points.txt")
     if not os.path.exists(points):
@@ -223,6 +231,9 @@ rings = 2
         ("flat 100k tris, oblique", ["render", flat, "--view-dir", "1,2,-3", "-o", out], 100352),
         ("flat 100k tris, edge-on", ["render", flat, "--view-dir", "1,2,0", "-o", out], 100352),
         ("include 100k points, 1M sphere", ["include", "--points", points, sphere], 998000),
+        ("cone of 100,000 edges head-on, all edges",
+         ["render", cone100k, "--edges", "all", "--view-dir", "0,0,-1", "--up", "0,1,0", "-o", out],
+         200000),
         ("cone of 10,000 edges head-on, all edges",
          ["render", cone, "--edges", "all", "--view-dir", "0,0,-1", "--up", "0,1,0", "-o", out],
          20000),

@@ -167,7 +167,7 @@ const CROWD: usize = 24;
 const CROWD_OF_ONE: usize = 64;
 
 /// A cell is split at most this many times over.
-const SPLITS: usize = 3;
+const SPLITS: usize = 6;
 
 impl Pairing<'_> {
     /// The mesh and index of an item.
