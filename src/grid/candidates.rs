@@ -78,11 +78,16 @@ impl SegmentGrid {
         };
         let mut pairs: Vec<u64> = (0..self.cells.count())
             .into_par_iter()
-            .fold(Vec::new, |mut out, c| {
-                let here = &self.items[self.start[c] as usize..self.start[c + 1] as usize];
-                sweep.cell(here, self.cells.region(c), 0, &mut out);
-                out
-            })
+            .fold(
+                || (Vec::new(), Vec::new()),
+                |(mut out, mut keys), c| {
+                    // One buffer of key positions per thread, not one per cell.
+                    let here = &self.items[self.start[c] as usize..self.start[c + 1] as usize];
+                    sweep.cell(here, self.cells.region(c), 0, (&mut out, &mut keys));
+                    (out, keys)
+                },
+            )
+            .map(|(out, _)| out)
             .reduce(Vec::new, |mut x, mut y| {
                 x.append(&mut y);
                 x
@@ -108,24 +113,30 @@ impl<F: Fn(usize, usize) -> bool + Sync> Sweep<'_, F> {
     /// Appends to `out` the key pairs of one cell's items (by increasing left end's x), the
     /// cell spanning `region`, split `depth` times already: from smaller cells when it is
     /// crowded and splitting lessens its pairs.
-    fn cell(&self, here: &[Item], region: [[f64; 2]; 2], depth: usize, out: &mut Vec<u64>) {
-        let keys = here.iter().filter(|x| self.is_key(x)).count();
-        if keys == 0 {
+    fn cell(
+        &self,
+        here: &[Item],
+        region: [[f64; 2]; 2],
+        depth: usize,
+        (out, keys): (&mut Vec<u64>, &mut Vec<usize>),
+    ) {
+        let key_items = here.iter().filter(|x| self.is_key(x)).count();
+        if key_items == 0 {
             return;
         }
-        let load = keys * here.len();
+        let load = key_items * here.len();
         let narrow = (0..2).any(|k| region[1][k] - region[0][k] < NARROWEST * self.margin);
         if depth < SPLITS && here.len() >= CROWD && load > CROWDED * here.len() && !narrow {
             let (cells, subcells) = self.split(here, region);
             let loads: usize = subcells.iter().map(|(_, sub)| self.load(sub)).sum();
             if loads < load {
                 for (c, sub) in &subcells {
-                    self.cell(sub, cells.region(*c), depth + 1, out);
+                    self.cell(sub, cells.region(*c), depth + 1, (&mut *out, &mut *keys));
                 }
                 return;
             }
         }
-        self.pairs(here, out);
+        self.pairs(here, out, keys);
     }
 
     fn is_key(&self, x: &Item) -> bool {
@@ -157,9 +168,10 @@ impl<F: Fn(usize, usize) -> bool + Sync> Sweep<'_, F> {
 
     /// Appends the key pairs of one cell: each item against the later items (a key item) or
     /// the later key items (another) whose left ends lie within its x-range.
-    fn pairs(&self, here: &[Item], out: &mut Vec<u64>) {
+    fn pairs(&self, here: &[Item], out: &mut Vec<u64>, keys: &mut Vec<usize>) {
         let m = self.margin;
-        let keys: Vec<usize> = (0..here.len()).filter(|&n| self.is_key(&here[n])).collect();
+        keys.clear();
+        keys.extend((0..here.len()).filter(|&n| self.is_key(&here[n])));
         for (n, a) in here.iter().enumerate() {
             let right = a.b[0] + m;
             let mut test = |b: &Item| {

@@ -22,6 +22,7 @@
 //! (a fan round the hub covers the circle a few times over: a few entries per triangle); a
 //! query reads the buckets of its window.
 
+use crate::geometry::polygon::bounding_box;
 use std::f64::consts::{PI, TAU};
 
 /// A vertex is a hub when at least this many listed triangles share it.
@@ -39,6 +40,8 @@ const WIDEST: f64 = PI - 1e-6;
 #[derive(Debug)]
 pub(super) struct Hub {
     centre: [f64; 2],
+    /// The box of the pictures of the hub's triangles.
+    bounds: [[f64; 2]; 2],
     /// Bucket `k` (of angles from `-π + k·TAU/n`) lists `listed[start[k]..start[k + 1]]`.
     start: Vec<u32>,
     listed: Vec<u32>,
@@ -77,7 +80,9 @@ impl Hub {
         for k in 0..n {
             start[k + 1] += start[k];
         }
+        let corners = triangles.iter().flat_map(|(_, c)| c.iter().copied());
         Hub {
+            bounds: bounding_box(corners.chain([centre])),
             centre,
             start,
             listed: pairs.into_iter().map(|(_, t)| t).collect(),
@@ -89,6 +94,11 @@ impl Hub {
     /// The hub's triangles whose pictures may come within `slack` of `p` (some more than
     /// once), a superset of those that do.
     pub(super) fn near(&self, p: [f64; 2], slack: f64) -> Box<dyn Iterator<Item = &u32> + '_> {
+        let [low, high] = self.bounds;
+        if (0..2).any(|k| p[k] + slack < low[k] || p[k] - slack > high[k]) {
+            // Beyond every triangle's picture (compared with the slack: the box holds them).
+            return Box::new(std::iter::empty());
+        }
         let (dx, dy) = (p[0] - self.centre[0], p[1] - self.centre[1]);
         let d = dx.hypot(dy);
         if !(d > 4.0 * slack && d.is_finite()) {
