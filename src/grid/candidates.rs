@@ -155,8 +155,13 @@ impl<F: Fn(usize, usize) -> bool + Sync> Sweep<'_, F> {
         let cells = Cells::new(low, [high[0] - low[0], high[1] - low[1]], [SPLIT; 2]);
         let mut listed: Vec<(u32, Item)> = Vec::new();
         for x in here {
-            let s = Line::new(coord! { x: x.a[0], y: x.a[1] }, coord! { x: x.b[0], y: x.b[1] });
-            walk(&cells, self.margin, &s, |c| listed.push((c, Item { cell: c, ..*x })));
+            let s = Line::new(
+                coord! { x: x.a[0], y: x.a[1] },
+                coord! { x: x.b[0], y: x.b[1] },
+            );
+            walk(&cells, self.margin, &s, |c| {
+                listed.push((c, Item { cell: c, ..*x }))
+            });
         }
         listed.sort_by(|x, y| x.0.cmp(&y.0).then(x.1.a[0].total_cmp(&y.1.a[0])));
         let subcells = listed
@@ -188,7 +193,10 @@ impl<F: Fn(usize, usize) -> bool + Sync> Sweep<'_, F> {
                 here[n + 1..].iter().take_while(|b| test(b)).for_each(drop);
             } else {
                 let later = keys.partition_point(|&p| p <= n);
-                keys[later..].iter().take_while(|&&p| test(&here[p])).for_each(drop);
+                keys[later..]
+                    .iter()
+                    .take_while(|&&p| test(&here[p]))
+                    .for_each(drop);
             }
         }
     }

@@ -377,7 +377,6 @@ impl SegmentGrid {
                 })
         })
     }
-
 }
 
 /// Calls `visit` with each cell of `cells` segment `s` passes through, once: column by column,
@@ -414,10 +413,7 @@ fn walk(cells: &Cells, m: f64, s: &Line<f64>, mut visit: impl FnMut(u32)) {
         } else {
             (y_min, y_max)
         };
-        let (r0, r1) = (
-            cells.index(1, lo.max(y_min)),
-            cells.index(1, hi.min(y_max)),
-        );
+        let (r0, r1) = (cells.index(1, lo.max(y_min)), cells.index(1, hi.min(y_max)));
         for row in r0..=r1 {
             visit((row * columns + col) as u32);
         }

@@ -148,9 +148,10 @@ pub(super) fn hubs(
         if !listed(t) {
             continue;
         }
-        let hub = tri.iter().copied().max_by(|&x, &y| {
-            degree[x as usize].cmp(&degree[y as usize]).then(y.cmp(&x))
-        });
+        let hub = tri
+            .iter()
+            .copied()
+            .max_by(|&x, &y| degree[x as usize].cmp(&degree[y as usize]).then(y.cmp(&x)));
         if let Some(h) = hub.filter(|&h| degree[h as usize] as usize >= HUB) {
             members.push((h, t as u32));
             at_hub[t] = true;
@@ -165,7 +166,10 @@ pub(super) fn hubs(
                 .iter()
                 .map(|&(_, t)| {
                     let tri = triangles[t as usize];
-                    let mut others = tri.iter().filter(|&&v| v != h).map(|&v| pictures[v as usize]);
+                    let mut others = tri
+                        .iter()
+                        .filter(|&&v| v != h)
+                        .map(|&v| pictures[v as usize]);
                     let first = others.next().unwrap_or(pictures[h as usize]);
                     (t, [first, others.next().unwrap_or(first)])
                 })
@@ -189,7 +193,11 @@ fn sector(centre: [f64; 2], corners: [[f64; 2]; 2]) -> Option<[f64; 2]> {
         return None;
     };
     let (lo, hi) = (a.min(b), a.max(b));
-    let (lo, hi) = if hi - lo > PI { (hi, lo + TAU) } else { (lo, hi) };
+    let (lo, hi) = if hi - lo > PI {
+        (hi, lo + TAU)
+    } else {
+        (lo, hi)
+    };
     if hi - lo >= WIDEST {
         return None;
     }
@@ -255,7 +263,10 @@ mod tests {
                             let (a, r) = (rng.range(-PI, PI), rng.range(0.1, 2.0));
                             let q = [centre[0] + r * a.cos(), centre[1] + r * a.sin()];
                             let b = a + rng.range(-0.01, 0.01);
-                            [q, [centre[0] + 2.0 * r * b.cos(), centre[1] + 2.0 * r * b.sin()]]
+                            [
+                                q,
+                                [centre[0] + 2.0 * r * b.cos(), centre[1] + 2.0 * r * b.sin()],
+                            ]
                         }
                         _ => [corner(&mut rng), corner(&mut rng)],
                     };
@@ -283,7 +294,10 @@ mod tests {
         let triangles: Vec<(u32, [[f64; 2]; 2])> = (0..n)
             .map(|t| {
                 let a = |k: usize| TAU * (k % n) as f64 / n as f64;
-                (t as u32, [[a(t).cos(), a(t).sin()], [a(t + 1).cos(), a(t + 1).sin()]])
+                (
+                    t as u32,
+                    [[a(t).cos(), a(t).sin()], [a(t + 1).cos(), a(t + 1).sin()]],
+                )
             })
             .collect();
         let hub = Hub::new([0.0, 0.0], &triangles);

@@ -110,8 +110,7 @@ impl Target {
         pictured: Option<Option<[[f64; 2]; 2]>>,
     ) -> bool {
         let [p, q, r] = &self.plane;
-        if b
-            .corners()
+        if b.corners()
             .iter()
             .all(|c| orient3d(p, q, r, c) != self.eye_side)
         {

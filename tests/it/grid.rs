@@ -1106,9 +1106,16 @@ fn check_candidates(segments: &[Line<f64>], key: &[bool], what: &str) -> usize {
     let grid = SegmentGrid::new(segments);
     let keep = |i: usize, j: usize| (i + j) % 7 != 3;
     let found = grid.candidates(|i| key[i], keep);
-    assert!(found.windows(2).all(|w| w[0] < w[1]), "{what}: not increasing");
+    assert!(
+        found.windows(2).all(|w| w[0] < w[1]),
+        "{what}: not increasing"
+    );
     let e: Vec<[[f64; 2]; 2]> = segments.iter().map(ends).collect();
-    let scale = e.iter().flatten().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+    let scale = e
+        .iter()
+        .flatten()
+        .flatten()
+        .fold(0.0f64, |m, v| m.max(v.abs()));
     let slack = scale / (1u64 << 40) as f64;
     let near = |s: &[[f64; 2]; 2], t: &[[f64; 2]; 2]| {
         (0..2).all(|k| {
@@ -1117,12 +1124,18 @@ fn check_candidates(segments: &[Line<f64>], key: &[bool], what: &str) -> usize {
         })
     };
     for &(i, j) in &found {
-        assert!(i < j && (key[i] || key[j]) && keep(i, j), "{what}: ({i}, {j}) listed");
+        assert!(
+            i < j && (key[i] || key[j]) && keep(i, j),
+            "{what}: ({i}, {j}) listed"
+        );
         assert!(near(&e[i], &e[j]), "{what}: ({i}, {j}) listed, boxes apart");
     }
     for (i, j) in brute(segments) {
         if (key[i] || key[j]) && keep(i, j) {
-            assert!(found.binary_search(&(i, j)).is_ok(), "{what}: ({i}, {j}) missed");
+            assert!(
+                found.binary_search(&(i, j)).is_ok(),
+                "{what}: ({i}, {j}) missed"
+            );
         }
     }
     found.len()
@@ -1164,13 +1177,21 @@ fn candidates_with_keys_equal_brute_force_on_random_and_lattice_inputs() {
         // Far from the origin and tiny: the same pairs.
         let far = shifted(&segments, 1e8, -3e8);
         check_candidates(&far, &key, &format!("seed {seed}, far"));
-        check_candidates(&scaled(&segments, 1e-300), &key, &format!("seed {seed}, tiny"));
+        check_candidates(
+            &scaled(&segments, 1e-300),
+            &key,
+            &format!("seed {seed}, tiny"),
+        );
     }
 }
 
 #[test]
 fn candidates_in_a_cone_seen_head_on_equal_brute_force_through_split_cells() {
-    for (n, centre, r) in [(500, [0.0, 0.0], 1.0), (2000, [0.3, -7.0], 0.5), (1500, [1e8, 1e8], 3.0)] {
+    for (n, centre, r) in [
+        (500, [0.0, 0.0], 1.0),
+        (2000, [0.3, -7.0], 0.5),
+        (1500, [1e8, 1e8], 3.0),
+    ] {
         let (segments, key) = cone(n, centre, r);
         let found = check_candidates(&segments, &key, &format!("cone of {n}"));
         // Each side meets its two neighbours and its two spokes (3 n pairs, all listed, as
@@ -1182,5 +1203,12 @@ fn candidates_in_a_cone_seen_head_on_equal_brute_force_through_split_cells() {
     segments.retain(|s| s.start == Coord { x: 0.5, y: 0.5 });
     let key = vec![true; segments.len()];
     let m = segments.len();
-    assert_eq!(check_candidates(&segments, &key, "spokes"), m * (m - 1) / 2 - (0..m).flat_map(|i| (i + 1..m).map(move |j| (i, j))).filter(|&(i, j)| (i + j) % 7 == 3).count());
+    assert_eq!(
+        check_candidates(&segments, &key, "spokes"),
+        m * (m - 1) / 2
+            - (0..m)
+                .flat_map(|i| (i + 1..m).map(move |j| (i, j)))
+                .filter(|&(i, j)| (i + j) % 7 == 3)
+                .count()
+    );
 }
