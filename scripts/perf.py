@@ -195,22 +195,19 @@ rings = %d
 
     sphere = uv_sphere("sphere", 1000, 501)                          # 998,000 triangles
     fan = uv_sphere("fan", 10000, 2)                                 # two cones of 10,000
-    cone = toml("cone.toml", """
+    def cones(name, segments):
+        """Two cones of `segments` slivers base to base, to be seen down their axis."""
+        return toml(name, """
 [[object]]
 name = "cone"
 solid = "sphere"
 radius = 1
-segments = 10000
+segments = %d
 rings = 2
-""")                                                               # the same, seen down its axis
-    cone100k = toml("cone100k.toml", """
-[[object]]
-name = "cone"
-solid = "sphere"
-radius = 1
-segments = 100000
-rings = 2
-""")
+""" % segments)
+
+    cone = cones("cone.toml", 10000)                                 # the fan, seen head-on
+    cone100k = cones("cone100k.toml", 100000)
     metropolis = os.path.join(ROOT, "scenes", "metropolis.toml")
     points = os.path.join(d, "points.txt")
     if not os.path.exists(points):

@@ -23,7 +23,7 @@
 //! Cost: a pass over each cell's items, plus, per key item, the items whose x-ranges meet its
 //! own in its (split) cells; each split lists its items in a few smaller cells.
 
-use super::{Cells, Item, SegmentGrid, walk};
+use super::{Cells, Item, SegmentGrid, unpacked, walk};
 use geo::{Line, coord};
 use rayon::prelude::*;
 
@@ -76,7 +76,7 @@ impl SegmentGrid {
             keep: &keep,
             margin: self.margin,
         };
-        let mut pairs: Vec<u64> = (0..self.cells.count())
+        let pairs: Vec<u64> = (0..self.cells.count())
             .into_par_iter()
             .fold(
                 || (Vec::new(), Vec::new()),
@@ -92,12 +92,7 @@ impl SegmentGrid {
                 x.append(&mut y);
                 x
             });
-        pairs.par_sort_unstable();
-        pairs.dedup();
-        pairs
-            .into_iter()
-            .map(|p| ((p >> 32) as usize, (p & 0xffff_ffff) as usize))
-            .collect()
+        unpacked(pairs)
     }
 }
 

@@ -343,16 +343,11 @@ impl SegmentGrid {
     where
         I: Iterator<Item = u64> + 'a,
     {
-        let mut pairs: Vec<u64> = (0..self.cells.count())
+        let pairs: Vec<u64> = (0..self.cells.count())
             .into_par_iter()
             .flat_map_iter(in_cell)
             .collect();
-        pairs.par_sort_unstable();
-        pairs.dedup();
-        pairs
-            .into_iter()
-            .map(|p| ((p >> 32) as usize, (p & 0xffff_ffff) as usize))
-            .collect()
+        unpacked(pairs)
     }
 
     /// The pairs of cell `c` that meet.
@@ -377,6 +372,17 @@ impl SegmentGrid {
                 })
         })
     }
+}
+
+/// The pairs `i·2³² + j` as `(i, j)`, sorted, each once (a pair listed together in several
+/// cells is found in each).
+fn unpacked(mut pairs: Vec<u64>) -> Vec<(usize, usize)> {
+    pairs.par_sort_unstable();
+    pairs.dedup();
+    pairs
+        .into_iter()
+        .map(|p| ((p >> 32) as usize, (p & 0xffff_ffff) as usize))
+        .collect()
 }
 
 /// Calls `visit` with each cell of `cells` segment `s` passes through, once: column by column,
