@@ -40,7 +40,7 @@ use std::cmp::Ordering;
 
 mod formula;
 
-pub(crate) use formula::{Filtered, Formula, exact_sign_rational};
+pub(crate) use formula::{Expanded, Filtered, Formula, exact_sign_rational};
 
 /// An affine function of a point whose zero set is a plane, evaluated exactly.
 #[derive(Debug, Clone, Copy, PartialEq)]

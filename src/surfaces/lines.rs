@@ -25,17 +25,16 @@
 //! Written by hand because these are VISFAC's own predicates (no crate decides signs of points
 //! built from three planes of the input exactly).
 
-use crate::geometry::exact::{estimate, expansion_product, expansion_sum, negated};
+use crate::geometry::exact::estimate;
 use crate::geometry::kernel::{Difference, Estimate, Exponents, Polynomial, Ring};
 use crate::geometry::predicates::{Orient3d, Orientation};
 use crate::geometry::{Point3, Vector3};
 use crate::mesh::TextureFrame;
-use crate::sight::along::Form;
+use crate::sight::along::{Expanded, Filtered, Form};
 use crate::views::{Eye, Picture};
 use num_rational::BigRational;
 use num_traits::{ToPrimitive, Zero};
 use std::cmp::Ordering;
-use std::ops::{Add, Mul, Neg, Sub};
 
 /// A plane of the input whose trace in F's plane is a line of the arrangement.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -101,7 +100,7 @@ pub(super) struct Frame {
     /// F's plane as a line kind (its own trace is all of F's plane).
     kind: Kind,
     /// The estimate of `g_F`.
-    g: [Est; 3],
+    g: [Filtered; 3],
     /// The exponents of F's triangle and the eye.
     exponents: Exponents,
 }
@@ -133,11 +132,11 @@ impl Frame {
 pub(super) struct ArrangementLine {
     pub(super) kind: Kind,
     /// `g_L`.
-    g: [Est; 3],
+    g: [Filtered; 3],
     /// `c_L = s_L(O)`.
-    c: Est,
+    c: Filtered,
     /// `q_L = g_F × g_L`.
-    q: [Est; 3],
+    q: [Filtered; 3],
     exponents: Exponents,
 }
 
@@ -147,7 +146,7 @@ impl ArrangementLine {
         ArrangementLine {
             kind,
             g,
-            c: Est(kind.at(&frame.eye, frame.origin()).estimate()),
+            c: Filtered(kind.at(&frame.eye, frame.origin()).estimate()),
             q: cross(&frame.g, &g),
             exponents: kind.exponents(),
         }
@@ -205,7 +204,7 @@ impl Polynomial for Turn<'_> {
     }
 
     fn expansion(&self) -> Vec<f64> {
-        self.evaluate::<Exp>().0
+        self.evaluate::<Expanded>().0
     }
 
     fn evaluate<R: Ring>(&self) -> R {
@@ -226,8 +225,8 @@ impl Polynomial for Turn<'_> {
 /// kept with the vertex so that each side test costs one dot product.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Crossing {
-    w: Est,
-    n: [Est; 3],
+    w: Filtered,
+    n: [Filtered; 3],
 }
 
 impl Crossing {
@@ -257,7 +256,7 @@ impl Polynomial for SideAtVertex<'_> {
     }
 
     fn expansion(&self) -> Vec<f64> {
-        self.evaluate::<Exp>().0
+        self.evaluate::<Expanded>().0
     }
 
     fn evaluate<R: Ring>(&self) -> R {
@@ -293,7 +292,7 @@ impl Polynomial for Numerator<'_> {
     }
 
     fn expansion(&self) -> Vec<f64> {
-        self.evaluate::<Exp>().0
+        self.evaluate::<Expanded>().0
     }
 
     fn evaluate<R: Ring>(&self) -> R {
@@ -325,7 +324,7 @@ impl Polynomial for Alignment<'_> {
     }
 
     fn expansion(&self) -> Vec<f64> {
-        self.evaluate::<Exp>().0
+        self.evaluate::<Expanded>().0
     }
 
     fn evaluate<R: Ring>(&self) -> R {
@@ -385,7 +384,7 @@ pub(super) fn construct(
     texture: &TextureFrame,
 ) -> ([f64; 2], [f64; 2]) {
     if exponents(frame, &[a, b]).exact_for(8) {
-        construct_in::<Exp>(frame, a, b, picture, texture, |x| estimate(&x.0))
+        construct_in::<Expanded>(frame, a, b, picture, texture, |x| estimate(&x.0))
     } else {
         construct_in::<BigRational>(frame, a, b, picture, texture, |x| {
             x.to_f64().unwrap_or(f64::NAN)
@@ -429,8 +428,9 @@ fn construct_in<R: Ring>(
 /// The texture coordinates of an input point of F's plane: `axis·(p − origin)`, exact, rounded
 /// once.
 pub(super) fn texture_of(texture: &TextureFrame, p: &Point3) -> [f64; 2] {
-    let d = difference::<Exp>(p, &texture.origin());
-    [texture.x_axis(), texture.y_axis()].map(|axis| estimate(&dot(&vector::<Exp>(&axis), &d).0))
+    let d = difference::<Expanded>(p, &texture.origin());
+    [texture.x_axis(), texture.y_axis()]
+        .map(|axis| estimate(&dot(&vector::<Expanded>(&axis), &d).0))
 }
 
 /// The texture coordinates of the point of F's plane on the line of sight through the input
@@ -442,12 +442,12 @@ pub(super) fn texture_on_sight_line(texture: &TextureFrame, frame: &Frame, p: &P
         Eye::Point(e) => texture_of_cut(texture, &frame.eye, &frame.kind, e, p),
         Eye::Infinity(u) => {
             let [f0, f1, f2] = &frame.plane;
-            let towards = Exp(frame.eye.determinant(f0, f1, f2).expansion());
-            let sp = Exp(frame.kind.at(&frame.eye, p).expansion());
-            let d = difference::<Exp>(p, &texture.origin());
+            let towards = Expanded(frame.eye.determinant(f0, f1, f2).expansion());
+            let sp = Expanded(frame.kind.at(&frame.eye, p).expansion());
+            let d = difference::<Expanded>(p, &texture.origin());
             let denominator = estimate(&towards.0);
             [texture.x_axis(), texture.y_axis()].map(|axis| {
-                let axis = vector::<Exp>(&axis);
+                let axis = vector::<Expanded>(&axis);
                 let numerator =
                     towards.clone() * dot(&axis, &d) - sp.clone() * dot(&axis, &vector(u));
                 estimate(&numerator.0) / denominator
@@ -466,14 +466,17 @@ pub(super) fn texture_of_cut(
     a: &Point3,
     b: &Point3,
 ) -> [f64; 2] {
-    let (ma, mb) = (Exp(m.at(eye, a).expansion()), Exp(m.at(eye, b).expansion()));
+    let (ma, mb) = (
+        Expanded(m.at(eye, a).expansion()),
+        Expanded(m.at(eye, b).expansion()),
+    );
     let (da, db) = (
-        difference::<Exp>(a, &texture.origin()),
-        difference::<Exp>(b, &texture.origin()),
+        difference::<Expanded>(a, &texture.origin()),
+        difference::<Expanded>(b, &texture.origin()),
     );
     let denominator = estimate(&(ma.clone() - mb.clone()).0);
     [texture.x_axis(), texture.y_axis()].map(|axis| {
-        let axis = vector::<Exp>(&axis);
+        let axis = vector::<Expanded>(&axis);
         let numerator = ma.clone() * dot(&axis, &db) - mb.clone() * dot(&axis, &da);
         estimate(&numerator.0) / denominator
     })
@@ -503,91 +506,6 @@ fn points_exponents(points: &[Point3]) -> Exponents {
     points.iter().fold(Exponents::NONE, |e, p| {
         e.union(Exponents::of(p.coords.as_slice()))
     })
-}
-
-// ---------------------------------------------------------------------------------------------
-// The two rings of the kernel's model: estimates with certified bounds, and exact expansions.
-
-/// An [`Estimate`] as a ring element: every operation rounds once and widens the bound as
-/// [`Estimate::product`] and [`Estimate::difference`] derive it, so a value composed of them
-/// carries a certified bound.
-#[derive(Debug, Clone, Copy)]
-pub(super) struct Est(Estimate);
-
-impl Add for Est {
-    type Output = Est;
-    fn add(self, other: Est) -> Est {
-        self - (-other)
-    }
-}
-
-impl Sub for Est {
-    type Output = Est;
-    fn sub(self, other: Est) -> Est {
-        Est(self.0.difference(&other.0))
-    }
-}
-
-impl Mul for Est {
-    type Output = Est;
-    fn mul(self, other: Est) -> Est {
-        Est(self.0.product(&other.0))
-    }
-}
-
-impl Neg for Est {
-    type Output = Est;
-    fn neg(self) -> Est {
-        Est(Estimate {
-            value: -self.0.value,
-            bound: self.0.bound,
-        })
-    }
-}
-
-impl Ring for Est {
-    fn from_f64(x: f64) -> Est {
-        Est(Estimate::exact(x))
-    }
-}
-
-/// An exact expansion as a ring element (exact while no product overflows or underflows; see
-/// [`Exponents::exact_for`]).
-#[derive(Debug, Clone)]
-pub(super) struct Exp(Vec<f64>);
-
-impl Add for Exp {
-    type Output = Exp;
-    fn add(self, other: Exp) -> Exp {
-        Exp(expansion_sum(&self.0, &other.0))
-    }
-}
-
-impl Sub for Exp {
-    type Output = Exp;
-    fn sub(self, other: Exp) -> Exp {
-        Exp(expansion_sum(&self.0, &negated(&other.0)))
-    }
-}
-
-impl Mul for Exp {
-    type Output = Exp;
-    fn mul(self, other: Exp) -> Exp {
-        Exp(expansion_product(&self.0, &other.0))
-    }
-}
-
-impl Neg for Exp {
-    type Output = Exp;
-    fn neg(self) -> Exp {
-        Exp(negated(&self.0))
-    }
-}
-
-impl Ring for Exp {
-    fn from_f64(x: f64) -> Exp {
-        Exp(if x == 0.0 { Vec::new() } else { vec![x] })
-    }
 }
 
 #[cfg(test)]

@@ -181,55 +181,30 @@ impl HatchLine<'_> {
             let (sp, sq) = (self.side(e.p), self.side(e.q));
             let above = (sp == Ordering::Greater) != (sq == Ordering::Greater);
             let below = (sp == Ordering::Less) != (sq == Ordering::Less);
-            if sp == Ordering::Equal {
+            // The edge's ends (or, for an edge along the line, its start and a vertex off
+            // the line) with their sides; the one on the lower side is `low`.
+            let (vertex, ends) = match (sp, sq) {
                 // The vertex `p`, with whatever toggles its edge makes there.
-                let other = if sq == Ordering::Equal { pivot } else { e.q };
-                let other_side = if sq == Ordering::Equal {
-                    pivot_side
-                } else {
-                    sq
-                };
-                let (low, high) = if other_side == Ordering::Greater {
-                    (e.p, other)
-                } else {
-                    (other, e.p)
-                };
-                meetings.push(EdgeHit {
-                    low,
-                    high,
-                    vertex: Some(e.p),
-                    above,
-                    below,
-                });
-            } else if sq == Ordering::Equal {
+                (Ordering::Equal, Ordering::Equal) => (Some(e.p), [(e.p, sp), (pivot, pivot_side)]),
+                (Ordering::Equal, _) => (Some(e.p), [(e.p, sp), (e.q, sq)]),
                 // Its toggles at `q`; the vertex `q` itself is met as the start of the next
                 // edge.
-                let (low, high) = if sp == Ordering::Greater {
-                    (e.q, e.p)
-                } else {
-                    (e.p, e.q)
-                };
-                meetings.push(EdgeHit {
-                    low,
-                    high,
-                    vertex: Some(e.q),
-                    above,
-                    below,
-                });
-            } else if sp != sq {
-                let (low, high) = if sp == Ordering::Less {
-                    (e.p, e.q)
-                } else {
-                    (e.q, e.p)
-                };
-                meetings.push(EdgeHit {
-                    low,
-                    high,
-                    vertex: None,
-                    above,
-                    below,
-                });
-            }
+                (_, Ordering::Equal) => (Some(e.q), [(e.p, sp), (e.q, sq)]),
+                _ if sp != sq => (None, [(e.p, sp), (e.q, sq)]),
+                _ => continue,
+            };
+            let [(low, _), (high, _)] = if ends[0].1 < ends[1].1 {
+                ends
+            } else {
+                [ends[1], ends[0]]
+            };
+            meetings.push(EdgeHit {
+                low,
+                high,
+                vertex,
+                above,
+                below,
+            });
         }
         meetings.sort_by(|a, b| self.order(a, b));
         meetings
