@@ -34,6 +34,7 @@ use std::cmp::Ordering;
 use std::collections::HashMap;
 
 mod candidates;
+mod patches;
 
 /// Which plane stands for a face in a segment: the face's own (its vertices lie exactly on one
 /// plane), or one triangle's.

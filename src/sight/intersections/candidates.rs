@@ -1,6 +1,7 @@
 //! Candidate pairs of triangles for the intersection lines: a uniform 3-D grid over the region
 //! where two meshes' boxes overlap, crowded cells split into smaller ones.
 
+use super::patches::{self, NONE};
 use crate::geometry::{Aabb, Point3};
 use crate::grid::Voxels;
 use crate::mesh::{Mesh, by_bucket};
@@ -14,10 +15,12 @@ use rayon::prelude::*;
 /// triangles share one vertex (a fan's apex, a pole of a UV sphere) those are not paired with
 /// each other at all: only with the rest, so ten thousand edges at one point cost no more
 /// than ten thousand elsewhere. A crowded cell is split into smaller ones ([`Pairing::cell`]).
+/// In one mesh, two triangles of one certified patch ([`patches`]) are proved apart and not
+/// paired, and a triangle whose box meets no other patch is not listed at all.
 pub(super) fn candidate_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32)> {
-    let (b0, s0) = triangle_boxes(m0);
-    let (b1, s1) = if same {
-        (Vec::new(), 0.0)
+    let (b0, s0, classes) = triangle_boxes(m0);
+    let (b1, s1, _) = if same {
+        (Vec::new(), 0.0, Vec::new())
     } else {
         triangle_boxes(m1)
     };
@@ -35,9 +38,25 @@ pub(super) fn candidate_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32
         return Vec::new();
     }
     let grid = Voxels::new(region, cell_side(&[&b0, &b1], s0 + s1));
-    let mut items = cell_items(&grid, &region, m0, &b0, 0);
+    // In one mesh, the certified pieces, and which triangles the grid must list.
+    let (patch, listed) = if same {
+        let side = patches::PATCH_CELL * s0 / b0.len() as f64;
+        let piece = patches::certified(m0, &b0, &classes, w0, side);
+        let listed = patches::listed(&piece, &b0);
+        (piece, listed)
+    } else {
+        (Vec::new(), vec![true; b0.len()])
+    };
+    let mut items = cell_items(&grid, &region, m0, &b0, &listed, 0);
     if !same {
-        items.extend(cell_items(&grid, &region, m1, &b1, 1));
+        items.extend(cell_items(
+            &grid,
+            &region,
+            m1,
+            &b1,
+            &vec![true; b1.len()],
+            1,
+        ));
     }
     // By cell, then mesh, then triangle, sorted in place (a counting pass would need a second
     // array of the entries at once, the largest of this stage).
@@ -47,6 +66,7 @@ pub(super) fn candidate_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32
         meshes: [m0, m1],
         boxes: [&b0, second],
         same,
+        patch: &patch,
     };
     let mut pairs = cell_pairs(&runs, &grid, &pairing);
     // A pair meeting in several cells was found in each.
@@ -55,32 +75,43 @@ pub(super) fn candidate_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32
     pairs
 }
 
-/// Each triangle of `m` read once for its box and its size (the square root of twice its
-/// area): the boxes, and the sum of the sizes.
-fn triangle_boxes(m: &Mesh) -> (Vec<Aabb>, f64) {
-    let (boxes, sizes): (Vec<Aabb>, Vec<f64>) = (0..m.triangles().len())
+/// Each triangle of `m` read once for its box, its size (the square root of twice its
+/// area) and its class ([`patches::class`]): the boxes, the sum of the sizes, and the
+/// classes.
+fn triangle_boxes(m: &Mesh) -> (Vec<Aabb>, f64, Vec<u32>) {
+    let (boxes, (sizes, classes)): (Vec<Aabb>, (Vec<f64>, Vec<u32>)) = (0..m.triangles().len())
         .into_par_iter()
         .map(|t| {
             let [a, b, c] = m.triangle(t);
+            let normal = (b - a).cross(&(c - a));
             (
                 Aabb::from_points(&[a, b, c]),
-                (b - a).cross(&(c - a)).norm().sqrt(),
+                (normal.norm().sqrt(), patches::class(&[a, b, c], &normal)),
             )
         })
         .unzip();
-    (boxes, sizes.iter().sum())
+    (boxes, sizes.iter().sum(), classes)
 }
 
 /// The cells of `grid` each triangle of `m` (with the boxes `b`) is listed in, as `(cell,
 /// item)` with `mesh` in the item's top bit: the cells of its box when they are few, else
-/// those it meets; none for a triangle whose box misses `region`.
-fn cell_items(grid: &Voxels, region: &Aabb, m: &Mesh, b: &[Aabb], mesh: u32) -> Vec<(u64, u32)> {
+/// those it meets; none for a triangle whose box misses `region` or that is not `listed`.
+fn cell_items(
+    grid: &Voxels,
+    region: &Aabb,
+    m: &Mesh,
+    b: &[Aabb],
+    listed: &[bool],
+    mesh: u32,
+) -> Vec<(u64, u32)> {
     b.par_iter()
         .enumerate()
         .fold(
             || (Vec::new(), Vec::new()),
             |(mut out, mut cells): (Vec<(u64, u32)>, Vec<u64>), (t, bx)| {
-                if (0..3).any(|k| bx.max[k] < region.min[k] || bx.min[k] > region.max[k]) {
+                if !listed[t]
+                    || (0..3).any(|k| bx.max[k] < region.min[k] || bx.min[k] > region.max[k])
+                {
                     return (out, cells);
                 }
                 cells.clear();
@@ -147,6 +178,9 @@ pub(super) struct Pairing<'a> {
     pub(super) meshes: [&'a Mesh; 2],
     pub(super) boxes: [&'a [Aabb]; 2],
     pub(super) same: bool,
+    /// In one mesh, the certified piece of each triangle ([`patches::certified`], [`NONE`]
+    /// for none); may be empty.
+    pub(super) patch: &'a [u32],
 }
 
 /// A crowded cell is split into this many cells along each axis.
@@ -176,6 +210,14 @@ impl Pairing<'_> {
             self.meshes[(item >> 31) as usize],
             (item & 0x7fff_ffff) as usize,
         )
+    }
+
+    /// Whether two triangles of one mesh lie in one certified patch.
+    fn proved_apart(&self, x: u32, y: u32) -> bool {
+        !self.patch.is_empty() && {
+            let p = patches::patch_of(self.patch[x as usize]);
+            p != NONE && p == patches::patch_of(self.patch[y as usize])
+        }
     }
 
     /// The box of an item's triangle.
@@ -242,6 +284,7 @@ impl Pairing<'_> {
         let m = self.meshes[0];
         let test = |x: &CellTriangle, y: &CellTriangle, out: &mut Vec<(u32, u32)>| {
             if x.2.intersects(&y.2)
+                && !self.proved_apart(x.0, y.0)
                 && !shares_vertex(&x.1, &y.1)
                 && m.face_of(x.0 as usize) != m.face_of(y.0 as usize)
             {

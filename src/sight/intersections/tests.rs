@@ -136,6 +136,7 @@ fn split_rim_cell_misses_no_pair(fan: &Mesh, turned: &Mesh) {
         meshes: [fan, turned],
         boxes: [&b0, &b1],
         same: false,
+        patch: &[],
     };
     let region = Aabb::new(
         Point3::new(0.95, -0.05, -0.05),
@@ -182,7 +183,7 @@ fn split_rim_cell_misses_no_pair(fan: &Mesh, turned: &Mesh) {
 }
 
 /// The meshes `a` and `b` as one mesh (`b`'s vertices after `a`'s).
-fn joined(a: &Mesh, b: &Mesh) -> Mesh {
+pub(super) fn joined(a: &Mesh, b: &Mesh) -> Mesh {
     Mesh::from_polygons(
         a.vertices().iter().chain(b.vertices()).copied().collect(),
         a.triangles()
