@@ -38,12 +38,12 @@ pub(super) fn candidate_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32
         return Vec::new();
     }
     let grid = Voxels::new(region, cell_side(&[&b0, &b1], s0 + s1));
-    // In one mesh, the certified pieces, and which triangles the grid must list.
+    // In one mesh, the certified patches, and which triangles the grid must list.
     let (patch, listed) = if same {
         let side = patches::PATCH_CELL * s0 / b0.len() as f64;
-        let piece = patches::certified(m0, &b0, &classes, w0, side);
-        let listed = patches::listed(&piece, &b0);
-        (piece, listed)
+        let certified = patches::certified(m0, &b0, &classes, w0, side);
+        let listed = patches::listed(&certified, &b0);
+        (certified.patch, listed)
     } else {
         (Vec::new(), vec![true; b0.len()])
     };
@@ -178,7 +178,7 @@ pub(super) struct Pairing<'a> {
     pub(super) meshes: [&'a Mesh; 2],
     pub(super) boxes: [&'a [Aabb]; 2],
     pub(super) same: bool,
-    /// In one mesh, the certified piece of each triangle ([`patches::certified`], [`NONE`]
+    /// In one mesh, the certified patch of each triangle ([`patches::certified`], [`NONE`]
     /// for none); may be empty.
     pub(super) patch: &'a [u32],
 }
@@ -215,8 +215,8 @@ impl Pairing<'_> {
     /// Whether two triangles of one mesh lie in one certified patch.
     fn proved_apart(&self, x: u32, y: u32) -> bool {
         !self.patch.is_empty() && {
-            let p = patches::patch_of(self.patch[x as usize]);
-            p != NONE && p == patches::patch_of(self.patch[y as usize])
+            let p = self.patch[x as usize];
+            p != NONE && p == self.patch[y as usize]
         }
     }
 

@@ -1,21 +1,24 @@
 //! Which triangles the pair search still lists: those a certified patch does not cover.
 
-use super::{NONE, patch_of};
+use super::{NONE, Patches};
 use crate::geometry::Aabb;
 use rayon::prelude::*;
 use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::{AABB, RTree};
 
-/// Which triangles a pair search must list, given their certified `piece`s ([`certified`])
-/// and `boxes`: those in no certified patch, and those whose box meets the box of a piece
-/// of another patch or of a triangle in none. Any other triangle can meet only triangles
-/// of its own patch, which the certificate proves apart.
-pub(in crate::sight::intersections) fn listed(piece: &[u32], boxes: &[Aabb]) -> Vec<bool> {
-    let pieces = piece
-        .iter()
-        .filter(|&&p| p != NONE)
-        .max()
-        .map_or(0, |&p| p as usize + 1);
+/// Which triangles a pair search must list, given their certified `patches`
+/// ([`super::certified`]) and `boxes`: those in no certified patch, and those whose box
+/// meets the box of a piece of another patch or of a triangle in none. Any other triangle
+/// can meet only triangles of its own patch, which the certificate proves apart.
+pub(in crate::sight::intersections) fn listed(patches: &Patches, boxes: &[Aabb]) -> Vec<bool> {
+    let (piece, pieces) = (&patches.piece, patches.piece_patch.len());
+    let patch_of = |p: u32| {
+        if p == NONE {
+            NONE
+        } else {
+            patches.piece_patch[p as usize]
+        }
+    };
     let uncertified = piece.iter().filter(|&&p| p == NONE).count();
     if pieces == 0 || uncertified > piece.len() / 4 {
         // Most triangles are listed anyway: not worth a tree of their boxes.

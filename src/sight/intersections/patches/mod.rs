@@ -95,29 +95,30 @@ pub(super) fn class(t: &[Point3; 3], n: &Vector3) -> u32 {
     }
 }
 
-/// A certified triangle's piece: its patch times [`PIECES`] plus the piece of its cell its
-/// box's least corner lies in (one of 4 × 4 × 4), so that [`listed`] can tell where in a
-/// patch other patches come near.
-pub(super) const PIECES: u32 = 64;
-
-/// The patch of a piece (`NONE` stays `NONE`).
-pub(super) fn patch_of(piece: u32) -> u32 {
-    if piece == NONE { NONE } else { piece / PIECES }
+/// The certified patches of a mesh's triangles ([`certified`]), and their *pieces*: each
+/// patch cut by the 4 × 4 × 4 parts of its cell that its triangles' boxes' least corners lie
+/// in, so that [`listed`] can tell where in a patch other patches come near.
+pub(super) struct Patches {
+    /// Each triangle's patch, or [`NONE`].
+    pub patch: Vec<u32>,
+    /// Each triangle's piece, or [`NONE`]; pieces are numbered from 0.
+    pub piece: Vec<u32>,
+    /// Each piece's patch.
+    pub piece_patch: Vec<u32>,
 }
 
-/// The certified piece ([`PIECES`]) of every triangle of `m` (patches numbered from 0 in the
-/// order of their cells), or [`NONE`]. A patch is a set of triangles of one class
-/// (`classes`, from [`class`]) whose boxes' least corners lie in one cell of a grid of side
-/// about `side` over `region`, joined across the edges two of them share in opposite
-/// directions (any partition would do for the argument; this one keeps apart the parts of
-/// a mesh that cross each other).
+/// The certified patches (numbered from 0 in the order of their cells) of the triangles of
+/// `m`. A patch is a set of triangles of one class (`classes`, from [`class`]) whose boxes'
+/// least corners lie in one cell of a grid of side about `side` over `region`, joined
+/// across the edges two of them share in opposite directions (any partition would do for
+/// the argument; this one keeps apart the parts of a mesh that cross each other).
 pub(super) fn certified(
     m: &Mesh,
     boxes: &[Aabb],
     classes: &[u32],
     region: Aabb,
     side: f64,
-) -> Vec<u32> {
+) -> Patches {
     let n = m.triangles().len();
     // No more cells than triangles (a mesh of slivers in a large box would have many).
     let mut grid = Voxels::new(region, side);
@@ -133,43 +134,59 @@ pub(super) fn certified(
         cells,
         &classed,
         |&t| cell_of(t as usize) as usize,
-        |&t| (t, classes[t as usize], m.triangles()[t as usize]),
+        |&t| {
+            let (t, c) = (t as usize, cell_of(t as usize));
+            let part = part_of_cell(&grid.cell_box(c), &boxes[t]);
+            (t as u32, classes[t], m.triangles()[t], part)
+        },
     );
-    // Per cell, the local patch of each of its triangles, and how many there are.
-    let local: Vec<(Vec<u32>, u32)> = start
+    let local: Vec<CellPatches> = start
         .par_windows(2)
         .map(|w| certify_cell(m, &placed[w[0]..w[1]]))
         .collect();
-    let mut first = Vec::with_capacity(cells);
-    let mut next = 0u64;
-    for (_, count) in &local {
-        first.push(next);
-        next += u64::from(*count);
-    }
-    let mut piece = vec![NONE; n];
-    for (c, w) in start.windows(2).enumerate() {
-        let cell = grid.cell_box(c as u64);
-        for (&(t, _, _), &p) in placed[w[0]..w[1]].iter().zip(&local[c].0) {
-            let number = (first[c] + u64::from(p)) * u64::from(PIECES);
-            // (Numbers beyond a `u32`, for more than 2²⁶ patches, are left uncertified.)
-            if p != NONE && number < u64::from(NONE) {
-                piece[t as usize] = number as u32 + piece_of_cell(&cell, &boxes[t as usize]);
+    let mut out = Patches {
+        patch: vec![NONE; n],
+        piece: vec![NONE; n],
+        piece_patch: Vec::new(),
+    };
+    let mut patches = 0;
+    for (w, cell) in start.windows(2).zip(&local) {
+        let pieces = out.piece_patch.len() as u32;
+        for (&(t, ..), (&p, &q)) in placed[w[0]..w[1]]
+            .iter()
+            .zip(cell.patch.iter().zip(&cell.piece))
+        {
+            if p != NONE {
+                out.patch[t as usize] = patches + p;
+                out.piece[t as usize] = pieces + q;
             }
         }
+        out.piece_patch
+            .extend(cell.piece_patch.iter().map(|&p| patches + p));
+        patches += cell.patches;
     }
-    piece
+    out
 }
 
-/// Which of the 4 × 4 × 4 pieces of `cell` the least corner of `b` lies in (clamped).
-fn piece_of_cell(cell: &Aabb, b: &Aabb) -> u32 {
+/// One cell's certified patches: each triangle's patch and piece (numbered from 0 in the
+/// cell, [`NONE`] where not certified), how many patches, and each piece's patch.
+struct CellPatches {
+    patch: Vec<u32>,
+    piece: Vec<u32>,
+    patches: u32,
+    piece_patch: Vec<u32>,
+}
+
+/// Which of the 4 × 4 × 4 parts of `cell` the least corner of `b` lies in (clamped).
+fn part_of_cell(cell: &Aabb, b: &Aabb) -> u8 {
     let size = cell.size();
     (0..3).rev().fold(0, |index, k| {
         let at = if size[k] > 0.0 {
-            ((b.min[k] - cell.min[k]) / size[k] * 4.0).clamp(0.0, 3.0) as u32
+            ((b.min[k] - cell.min[k]) / size[k] * 4.0).clamp(0.0, 3.0) as u8
         } else {
             0
         };
-        index * 4 + at
+        index * 4 + at as u8
     })
 }
 
@@ -179,14 +196,13 @@ fn grid_side(grid: &Voxels, region: &Aabb) -> f64 {
     (0..3).fold(0.0, |m: f64, k| m.max(size[k] / grid.shape()[k] as f64))
 }
 
-/// The patch of each of one cell's triangles `(triangle, class, vertices)` (numbered from 0
-/// in the cell, [`NONE`] where not certified), and how many patches are certified. A patch
-/// of fewer than [`FEWEST`] triangles is not worth a number.
-fn certify_cell(m: &Mesh, tris: &[(u32, u32, [u32; 3])]) -> (Vec<u32>, u32) {
+/// The certified patches of one cell's triangles `(triangle, class, vertices, part of the
+/// cell)`. A patch of fewer than [`FEWEST`] triangles is not worth a number.
+fn certify_cell(m: &Mesh, tris: &[(u32, u32, [u32; 3], u8)]) -> CellPatches {
     // Each use of an edge: its key, and its triangle (in `tris`) and direction as
     // `triangle << 1 | forward`. Sorted by key alone: a group's order does not matter.
     let mut uses: Vec<(u64, u32)> = Vec::with_capacity(3 * tris.len());
-    for (i, &(_, _, tri)) in tris.iter().enumerate() {
+    for (i, &(_, _, tri, _)) in tris.iter().enumerate() {
         for k in 0..3 {
             let (a, b) = (tri[k], tri[(k + 1) % 3]);
             let key = u64::from(a.min(b)) << 32 | u64::from(a.max(b));
@@ -208,17 +224,43 @@ fn certify_cell(m: &Mesh, tris: &[(u32, u32, [u32; 3])]) -> (Vec<u32>, u32) {
     }
     let (boundaries, unsure) = boundaries(&uses, &root);
     let mut number = vec![NONE; tris.len()];
-    let mut count = 0;
+    let mut patches = 0;
     for (r, boundary) in boundaries {
         if size[r as usize] >= FEWEST
             && unsure.binary_search(&r).is_err()
             && certify(m, tris[r as usize].1, boundary)
         {
-            number[r as usize] = count;
-            count += 1;
+            number[r as usize] = patches;
+            patches += 1;
         }
     }
-    (root.iter().map(|&r| number[r as usize]).collect(), count)
+    // The pieces: each patch's triangles by part of the cell.
+    let mut piece_of = vec![NONE; 64 * patches as usize];
+    let mut piece_patch = Vec::new();
+    let (mut patch, mut piece) = (
+        Vec::with_capacity(tris.len()),
+        Vec::with_capacity(tris.len()),
+    );
+    for (i, &r) in root.iter().enumerate() {
+        let p = number[r as usize];
+        patch.push(p);
+        piece.push(if p == NONE {
+            NONE
+        } else {
+            let slot = &mut piece_of[64 * p as usize + tris[i].3 as usize];
+            if *slot == NONE {
+                *slot = piece_patch.len() as u32;
+                piece_patch.push(p);
+            }
+            *slot
+        });
+    }
+    CellPatches {
+        patch,
+        piece,
+        patches,
+        piece_patch,
+    }
 }
 
 /// The fewest triangles of a certified patch.

@@ -2,7 +2,7 @@
 //! the pair search with them against every pair.
 
 use super::super::candidates::{FEW_PAIRS, candidate_pairs, few_pairs};
-use super::{self as patches, NONE, patch_of};
+use super::{self as patches, NONE};
 use crate::geometry::{Aabb, Point3};
 use crate::mesh::Mesh;
 use crate::random::SplitMix64;
@@ -86,7 +86,7 @@ fn check_certificate(m: &Mesh, cell: f64) -> (f64, usize) {
     let (boxes, sizes, classes) = classified(m);
     let whole = boxes.iter().fold(Aabb::EMPTY, |u, b| u.union(b));
     let n = boxes.len();
-    let piece = patches::certified(m, &boxes, &classes, whole, cell * sizes / n as f64);
+    let patch = patches::certified(m, &boxes, &classes, whole, cell * sizes / n as f64).patch;
     let tri = m.triangles();
     let mut meeting = 0;
     for i in 0..n {
@@ -96,9 +96,9 @@ fn check_certificate(m: &Mesh, cell: f64) -> (f64, usize) {
             }
             if meet_exactly(&m.triangle(i), &m.triangle(j)) {
                 meeting += 1;
-                let p = patch_of(piece[i]);
+                let p = patch[i];
                 assert!(
-                    p == NONE || p != patch_of(piece[j]),
+                    p == NONE || p != patch[j],
                     "{i} and {j} meet in one certified patch: {:?} {:?}",
                     m.triangle(i),
                     m.triangle(j)
@@ -106,7 +106,7 @@ fn check_certificate(m: &Mesh, cell: f64) -> (f64, usize) {
             }
         }
     }
-    let certified = piece.iter().filter(|&&p| p != NONE).count();
+    let certified = patch.iter().filter(|&&p| p != NONE).count();
     (certified as f64 / n as f64, meeting)
 }
 
@@ -191,15 +191,11 @@ fn sheets_that_cross_or_cover_each_other_are_not_certified_together() {
     let m = sheets(12, &[flat, above]);
     let (boxes, sizes, classes) = classified(&m);
     let whole = boxes.iter().fold(Aabb::EMPTY, |u, b| u.union(b));
-    let piece = patches::certified(&m, &boxes, &classes, whole, 1e9 * sizes);
+    let patch = patches::certified(&m, &boxes, &classes, whole, 1e9 * sizes).patch;
     let half = m.triangles().len() / 2;
-    assert_ne!(patch_of(piece[0]), patch_of(piece[half]));
-    assert!(
-        piece[..half]
-            .iter()
-            .all(|&p| patch_of(p) == patch_of(piece[0]))
-    );
-    assert!(piece.iter().all(|&p| p != NONE));
+    assert_ne!(patch[0], patch[half]);
+    assert!(patch[..half].iter().all(|&p| p == patch[0]));
+    assert!(patch.iter().all(|&p| p != NONE));
 }
 
 /// Whether the pair `(i, j)` of `m`'s triangles meets, sharing no vertex and no face.
