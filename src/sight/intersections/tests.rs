@@ -1,6 +1,7 @@
 //! The candidate pairs against every pair, and the exact filters against the exact tests.
 
 use super::candidates::{FEW_PAIRS, Pairing, candidate_pairs, few_pairs};
+use super::patches::tests::{bumpy, meet_exactly};
 use super::*;
 use crate::geometry::Aabb;
 use crate::random::SplitMix64;
@@ -242,5 +243,55 @@ fn the_grid_misses_no_pair_of_a_fan_or_a_soup() {
         let a = moved(&sphere, by, scale);
         let b = moved(&sphere, [by[0] + 0.7 * scale, by[1], by[2]], scale);
         assert!(check(&a, &b, false) > 0);
+    }
+}
+
+/// Whether the pair `(i, j)` of `m`'s triangles meets, sharing no vertex and no face.
+fn apart_neighbours(m: &Mesh, i: usize, j: usize) -> bool {
+    let tri = m.triangles();
+    tri[i].iter().any(|v| tri[j].contains(v)) || m.face_of(i) == m.face_of(j)
+}
+
+#[test]
+fn the_pair_search_with_patches_misses_no_meeting_pair() {
+    // Every pair of one mesh that meets (exactly) and shares no vertex or face is among the
+    // candidates: clean, crumpled, and two spheres in one mesh cutting each other, also far
+    // from the origin and tiny.
+    let two = |by: [f64; 3], scale: f64| {
+        let a = bumpy(24, 12, 0.02, 7);
+        let b = a
+            .transformed(&nalgebra::Matrix4::new_translation(&Vector3::new(
+                0.6, 0.2, 0.1,
+            )))
+            .unwrap();
+        let both = joined(&a, &b);
+        let t = nalgebra::Matrix4::new_translation(&Vector3::from(by))
+            * nalgebra::Matrix4::new_scaling(scale);
+        both.transformed(&t).unwrap()
+    };
+    let meshes = [
+        bumpy(40, 20, 0.01, 3),
+        bumpy(30, 15, 0.3, 4),
+        two([0.0; 3], 1.0),
+        two([1e8, 0.0, 0.0], 1e-7),
+        two([0.0; 3], 1e-90),
+    ];
+    for m in &meshes {
+        let n = m.triangles().len();
+        assert!(n * n > FEW_PAIRS);
+        let boxes: Vec<Aabb> = (0..n).map(|t| Aabb::from_points(&m.triangle(t))).collect();
+        let found = candidate_pairs(m, m, true);
+        let mut meeting = 0;
+        for (i, j) in few_pairs(m, &boxes, &boxes, true) {
+            let (i, j) = (i as usize, j as usize);
+            if !apart_neighbours(m, i, j) && meet_exactly(&m.triangle(i), &m.triangle(j)) {
+                meeting += 1;
+                assert!(
+                    found.binary_search(&(i as u32, j as u32)).is_ok(),
+                    "({i}, {j}) missed"
+                );
+            }
+        }
+        assert!(meeting > 0 || n == meshes[0].triangles().len());
     }
 }

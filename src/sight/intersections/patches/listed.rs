@@ -31,7 +31,7 @@ pub(in crate::sight::intersections) fn listed(patches: &Patches, boxes: &[Aabb])
         }
     }
     // Every box that may block: each piece's, and each triangle's in no patch.
-    let rectangle = |b: &Aabb| Rectangle::from_corners(b.min.into(), b.max.into());
+    let rectangle = |b: &Aabb| Rectangle::from_corners(b.min, b.max);
     let blockers: Vec<GeomWithData<Rectangle<[f64; 3]>, u32>> = piece_boxes
         .iter()
         .enumerate()
@@ -54,7 +54,7 @@ pub(in crate::sight::intersections) fn listed(patches: &Patches, boxes: &[Aabb])
             if b.is_empty() {
                 return Some(found);
             }
-            let envelope = AABB::from_corners(b.min.into(), b.max.into());
+            let envelope = AABB::from_corners(b.min, b.max);
             for x in tree.locate_in_envelope_intersecting(&envelope) {
                 if patch_of(x.data) != patch_of(p as u32) {
                     if found.len() == NEAR {

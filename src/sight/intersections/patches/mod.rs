@@ -63,7 +63,7 @@ use std::cmp::Ordering;
 mod listed;
 mod loops;
 #[cfg(test)]
-mod tests;
+pub(super) mod tests;
 
 pub(super) use listed::listed;
 #[cfg(test)]
@@ -186,7 +186,7 @@ fn part_of_cell(cell: &Aabb, b: &Aabb) -> u8 {
         } else {
             0
         };
-        index * 4 + at as u8
+        index * 4 + at
     })
 }
 
@@ -266,11 +266,14 @@ fn certify_cell(m: &Mesh, tris: &[(u32, u32, [u32; 3], u8)]) -> CellPatches {
 /// The fewest triangles of a certified patch.
 const FEWEST: u32 = 8;
 
+/// A patch (named by its root triangle) and its boundary half-edges `(from, to)`.
+type Boundary = (u32, Vec<(u32, u32)>);
+
 /// The boundary half-edges `(from, to)` of each patch (named by its `root` triangle), from
 /// the cell's edge uses sorted by key ([`certify_cell`]): per edge and patch, the uses
 /// forward less those backward; by patch. Also the patches where an edge is used twice the
 /// same way more than the other (not certified), sorted.
-fn boundaries(uses: &[(u64, u32)], root: &[u32]) -> (Vec<(u32, Vec<(u32, u32)>)>, Vec<u32>) {
+fn boundaries(uses: &[(u64, u32)], root: &[u32]) -> (Vec<Boundary>, Vec<u32>) {
     let mut half_edges: Vec<(u32, u32, u32)> = Vec::new();
     let mut unsure = Vec::new();
     let mut net: Vec<(u32, i32)> = Vec::new();
@@ -311,7 +314,7 @@ fn boundaries(uses: &[(u64, u32)], root: &[u32]) -> (Vec<(u32, Vec<(u32, u32)>)>
 /// Whether the patch of class `class` with these boundary half-edges is certified.
 fn certify(m: &Mesh, class: u32, boundary: Vec<(u32, u32)>) -> bool {
     let at = |v: u32| project(&m.vertices()[v as usize], (class / 2) as usize);
-    boundary_certified(boundary, &at, if class % 2 == 0 { 1 } else { -1 })
+    boundary_certified(boundary, &at, if class.is_multiple_of(2) { 1 } else { -1 })
 }
 
 /// Whether a patch of sign `s` whose boundary half-edges `(from, to)` have the pictures

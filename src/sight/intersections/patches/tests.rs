@@ -1,14 +1,12 @@
-//! The certified patches against an exact rational test of every pair they leave out, and
-//! the pair search with them against every pair.
+//! The certified patches against an exact rational test of every pair they leave out (the
+//! pair search with them is tested against every pair in `intersections/tests.rs`).
 
-use super::super::candidates::{FEW_PAIRS, candidate_pairs, few_pairs};
 use super::{self as patches, NONE};
 use crate::geometry::{Aabb, Point3};
 use crate::mesh::Mesh;
 use crate::random::SplitMix64;
 use crate::sight::intersections::surely_apart;
 use crate::solids::{torus, uv_sphere};
-use nalgebra::Vector3;
 use num_rational::BigRational;
 use num_traits::Zero;
 
@@ -37,7 +35,7 @@ fn dot(a: &[Q; 3], b: &[Q; 3]) -> Q {
 /// filter [`surely_apart`], itself tested against exact tests): they do unless one
 /// of the separating axes of two flat convex polygons (both normals, the nine cross
 /// products of their sides, and each normal crossed with the other's sides) separates them.
-fn meet_exactly(t: &[Point3; 3], u: &[Point3; 3]) -> bool {
+pub(in crate::sight::intersections) fn meet_exactly(t: &[Point3; 3], u: &[Point3; 3]) -> bool {
     if surely_apart(t, u) {
         return false;
     }
@@ -47,9 +45,7 @@ fn meet_exactly(t: &[Point3; 3], u: &[Point3; 3]) -> bool {
     let (n, m) = (cross(&e[0], &e[1]), cross(&f[0], &f[1]));
     let mut axes = vec![n.clone(), m.clone()];
     for i in 0..3 {
-        for j in 0..3 {
-            axes.push(cross(&e[i], &f[j]));
-        }
+        axes.extend(f.iter().map(|fj| cross(&e[i], fj)));
         axes.push(cross(&n, &e[i]));
         axes.push(cross(&m, &f[i]));
     }
@@ -112,7 +108,12 @@ fn check_certificate(m: &Mesh, cell: f64) -> (f64, usize) {
 
 /// A UV sphere whose vertices are moved by up to `bump` along each axis (seeded): clean for
 /// small bumps, piercing itself for large ones.
-fn bumpy(segments: u32, rings: u32, bump: f64, seed: u64) -> Mesh {
+pub(in crate::sight::intersections) fn bumpy(
+    segments: u32,
+    rings: u32,
+    bump: f64,
+    seed: u64,
+) -> Mesh {
     let s = uv_sphere(1.0, segments, rings).unwrap();
     let mut rng = SplitMix64(seed);
     let vertices = s.vertices().iter().map(|p| p + rng.vector(bump)).collect();
@@ -196,56 +197,6 @@ fn sheets_that_cross_or_cover_each_other_are_not_certified_together() {
     assert_ne!(patch[0], patch[half]);
     assert!(patch[..half].iter().all(|&p| p == patch[0]));
     assert!(patch.iter().all(|&p| p != NONE));
-}
-
-/// Whether the pair `(i, j)` of `m`'s triangles meets, sharing no vertex and no face.
-fn apart_neighbours(m: &Mesh, i: usize, j: usize) -> bool {
-    let tri = m.triangles();
-    tri[i].iter().any(|v| tri[j].contains(v)) || m.face_of(i) == m.face_of(j)
-}
-
-#[test]
-fn the_pair_search_with_patches_misses_no_meeting_pair() {
-    // Every pair of one mesh that meets (exactly) and shares no vertex or face is among the
-    // candidates: clean, crumpled, and two spheres in one mesh cutting each other, also far
-    // from the origin and tiny.
-    let two = |by: [f64; 3], scale: f64| {
-        let a = bumpy(24, 12, 0.02, 7);
-        let b = a
-            .transformed(&nalgebra::Matrix4::new_translation(&Vector3::new(
-                0.6, 0.2, 0.1,
-            )))
-            .unwrap();
-        let both = crate::sight::intersections::tests::joined(&a, &b);
-        let t = nalgebra::Matrix4::new_translation(&Vector3::from(by))
-            * nalgebra::Matrix4::new_scaling(scale);
-        both.transformed(&t).unwrap()
-    };
-    let meshes = [
-        bumpy(40, 20, 0.01, 3),
-        bumpy(30, 15, 0.3, 4),
-        two([0.0; 3], 1.0),
-        two([1e8, 0.0, 0.0], 1e-7),
-        two([0.0; 3], 1e-90),
-    ];
-    for m in &meshes {
-        let n = m.triangles().len();
-        assert!(n * n > FEW_PAIRS);
-        let boxes: Vec<Aabb> = (0..n).map(|t| Aabb::from_points(&m.triangle(t))).collect();
-        let found = candidate_pairs(m, m, true);
-        let mut meeting = 0;
-        for (i, j) in few_pairs(m, &boxes, &boxes, true) {
-            let (i, j) = (i as usize, j as usize);
-            if !apart_neighbours(m, i, j) && meet_exactly(&m.triangle(i), &m.triangle(j)) {
-                meeting += 1;
-                assert!(
-                    found.binary_search(&(i as u32, j as u32)).is_ok(),
-                    "({i}, {j}) missed"
-                );
-            }
-        }
-        assert!(meeting > 0 || n == meshes[0].triangles().len());
-    }
 }
 
 /// The boundary of loops of points `(x, y)`, each loop's points in order, numbered in
