@@ -18,11 +18,11 @@ use rayon::prelude::*;
 /// In one mesh, two triangles of one certified patch ([`patches`]) are proved apart and not
 /// paired, and a triangle whose box meets no other patch is not listed at all.
 pub(super) fn candidate_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32)> {
-    let (b0, s0, classes) = triangle_boxes(m0);
+    let (b0, s0, classes) = triangle_boxes(m0, same);
     let (b1, s1, _) = if same {
         (Vec::new(), 0.0, Vec::new())
     } else {
-        triangle_boxes(m1)
+        triangle_boxes(m1, false)
     };
     if b0.len() * if same { b0.len() } else { b1.len() } <= FEW_PAIRS {
         return few_pairs(m0, &b0, if same { &b0 } else { &b1 }, same);
@@ -43,20 +43,13 @@ pub(super) fn candidate_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32
         let side = patches::PATCH_CELL * s0 / b0.len() as f64;
         let certified = patches::certified(m0, &b0, &classes, w0, side);
         let listed = patches::listed(&certified, &b0);
-        (certified.patch, listed)
+        (certified.patch, Some(listed))
     } else {
-        (Vec::new(), vec![true; b0.len()])
+        (Vec::new(), None)
     };
-    let mut items = cell_items(&grid, &region, m0, &b0, &listed, 0);
+    let mut items = cell_items(&grid, &region, m0, &b0, listed.as_deref(), 0);
     if !same {
-        items.extend(cell_items(
-            &grid,
-            &region,
-            m1,
-            &b1,
-            &vec![true; b1.len()],
-            1,
-        ));
+        items.extend(cell_items(&grid, &region, m1, &b1, None, 1));
     }
     // By cell, then mesh, then triangle, sorted in place (a counting pass would need a second
     // array of the entries at once, the largest of this stage).
@@ -76,18 +69,20 @@ pub(super) fn candidate_pairs(m0: &Mesh, m1: &Mesh, same: bool) -> Vec<(u32, u32
 }
 
 /// Each triangle of `m` read once for its box, its size (the square root of twice its
-/// area) and its class ([`patches::class`]): the boxes, the sum of the sizes, and the
-/// classes.
-fn triangle_boxes(m: &Mesh) -> (Vec<Aabb>, f64, Vec<u32>) {
+/// area) and, when `classify`, its class ([`patches::class`], else [`NONE`]): the boxes, the
+/// sum of the sizes, and the classes.
+fn triangle_boxes(m: &Mesh, classify: bool) -> (Vec<Aabb>, f64, Vec<u32>) {
     let (boxes, (sizes, classes)): (Vec<Aabb>, (Vec<f64>, Vec<u32>)) = (0..m.triangles().len())
         .into_par_iter()
         .map(|t| {
             let [a, b, c] = m.triangle(t);
             let normal = (b - a).cross(&(c - a));
-            (
-                Aabb::from_points(&[a, b, c]),
-                (normal.norm().sqrt(), patches::class(&[a, b, c], &normal)),
-            )
+            let class = if classify {
+                patches::class(&[a, b, c], &normal)
+            } else {
+                NONE
+            };
+            (Aabb::from_points(&[a, b, c]), (normal.norm().sqrt(), class))
         })
         .unzip();
     (boxes, sizes.iter().sum(), classes)
@@ -95,13 +90,14 @@ fn triangle_boxes(m: &Mesh) -> (Vec<Aabb>, f64, Vec<u32>) {
 
 /// The cells of `grid` each triangle of `m` (with the boxes `b`) is listed in, as `(cell,
 /// item)` with `mesh` in the item's top bit: the cells of its box when they are few, else
-/// those it meets; none for a triangle whose box misses `region` or that is not `listed`.
+/// those it meets; none for a triangle whose box misses `region` or that is not `listed`
+/// (when some are not).
 fn cell_items(
     grid: &Voxels,
     region: &Aabb,
     m: &Mesh,
     b: &[Aabb],
-    listed: &[bool],
+    listed: Option<&[bool]>,
     mesh: u32,
 ) -> Vec<(u64, u32)> {
     b.par_iter()
@@ -109,7 +105,7 @@ fn cell_items(
         .fold(
             || (Vec::new(), Vec::new()),
             |(mut out, mut cells): (Vec<(u64, u32)>, Vec<u64>), (t, bx)| {
-                if !listed[t]
+                if listed.is_some_and(|l| !l[t])
                     || (0..3).any(|k| bx.max[k] < region.min[k] || bx.min[k] > region.max[k])
                 {
                     return (out, cells);

@@ -113,16 +113,7 @@ pub(super) fn touch_without_crossing(
     through.sort_unstable();
     through.chunk_by(|x, y| x.0 == y.0).all(|here| {
         let c = at(here[0].0);
-        // Strictly between `a` and `b`, counterclockwise from `a`.
-        let inside = |a: u32, x: u32, b: u32| {
-            let (a, x, b) = (at(a), at(x), at(b));
-            let after = |y: [f64; 2], z: [f64; 2]| ccw(c, y, z) == Ordering::Less;
-            if after(a, b) {
-                after(a, x) && after(x, b)
-            } else {
-                after(a, x) || after(x, b)
-            }
-        };
+        let inside = |a: u32, x: u32, b: u32| between_ccw(c, at(a), at(x), at(b));
         here.iter().enumerate().all(|(i, &(_, a, b))| {
             here[i + 1..]
                 .iter()
@@ -174,6 +165,17 @@ fn pair_at_pinches(
 fn ccw(c: [f64; 2], p: [f64; 2], q: [f64; 2]) -> Ordering {
     let half = |p: [f64; 2]| !(p[1] > c[1] || (p[1] == c[1] && p[0] > c[0]));
     half(p).cmp(&half(q)).then_with(|| orient2d(c, q, p))
+}
+
+/// Whether the direction from `c` to `x` lies strictly inside the sector that turns
+/// counterclockwise from the direction to `a` to the direction to `b` (exact, [`ccw`]).
+fn between_ccw(c: [f64; 2], a: [f64; 2], x: [f64; 2], b: [f64; 2]) -> bool {
+    let after = |y: [f64; 2], z: [f64; 2]| ccw(c, y, z) == Ordering::Less;
+    if after(a, b) {
+        after(a, x) && after(x, b)
+    } else {
+        after(a, x) || after(x, b)
+    }
 }
 
 /// Condition (B): the pictures of two boundary half-edges that meet share an end vertex
@@ -236,14 +238,8 @@ fn around(l: &BoundaryLoop, o: &BoundaryLoop, turn: i32, at: &impl Fn(u32) -> [f
     let n = o.vertices.len();
     let (from, to) = (o.vertices[(i + n - 1) % n], o.vertices[(i + 1) % n]);
     // The sector on `o`'s left at `v`: counterclockwise from where it leaves to where it came.
-    let (c, d) = (at(v), at(l.vertices[1 % l.vertices.len()]));
-    let (a, b) = (at(to), at(from));
-    let after = |x: [f64; 2], y: [f64; 2]| ccw(c, x, y) == Ordering::Less;
-    let left = if after(a, b) {
-        after(a, d) && after(d, b)
-    } else {
-        after(a, d) || after(d, b)
-    };
+    let d = at(l.vertices[1 % l.vertices.len()]);
+    let left = between_ccw(at(v), at(to), d, at(from));
     match (left, turn) {
         (true, 1) | (false, -1) => turn,
         _ => 0,
