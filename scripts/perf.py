@@ -235,6 +235,7 @@ rings = 2
          ["render", cone, "--edges", "all", "--view-dir", "0,0,-1", "--up", "0,1,0", "-o", out],
          20000),
         ("metropolis", ["render", metropolis, "-o", out], 0),  # 22,789 objects
+        ("metropolis, all edges", ["render", metropolis, "--edges", "all", "-o", out], 0),
         ("surfaces, metropolis", ["surfaces", metropolis, "-o", out], 0),
         ("metropolis, keep overlaps", ["render", metropolis, "--keep-overlaps", "-o", out], 0),
     ]

@@ -9,9 +9,11 @@ overlapping parts, coincident lines, an edge-on sheet, many small objects), gene
 several sizes (plain Python, cached in DIR, default target/scaling). Each size is drawn by
 the release binary as a new user would, with `--stats`; the script prints, per family, the
 whole process's time and each stage's time per element (microseconds per triangle), and the
-exponent fitted to time ∝ size^k by least squares on the logarithms. A stage whose exponent
-is well above 1 grows faster than its input: that is a bug (the guide's words), and the
-number names the stage. Times are medians of R runs (default 1); stages under a millisecond
+exponent fitted to time ∝ size^k by least squares on the logarithms, and the exponent between
+the two largest sizes (where a family's own growth has settled). A stage whose exponent is
+well above 1 grows faster than its input: that is a bug (the guide's words), and the number
+names the stage, unless what it makes grows so too: the intersections stage is output-
+sensitive, so the script also prints its time per segment found and the segments' exponent. Times are medians of R runs (default 1); stages under a millisecond
 at the largest size are left out of the fit, where the clock's resolution dominates.
 """
 
@@ -27,6 +29,7 @@ from perf import (CAMERA, KEPLER, ROOT, cached_obj, cube_sphere, cubes, flat_gri
                   parts, run, written)
 
 STAGE = re.compile(r"^(\S+)\s+(\d+\.\d+)\s\s")
+SEGMENTS = re.compile(r"^intersections\s+\d+\.\d+\s+(\d+) segments")
 
 
 def sphere_toml(segments, rings, step=None, count=1):
@@ -110,9 +113,15 @@ def slope(points):
     return sum((x - mx) * (y - my) for x, y in pts) / sxx if sxx else None
 
 
+def large_end(points):
+    """The exponent between the last two points, as text ('-' when either time is 0)."""
+    k = slope(points[-2:]) if len(points) >= 2 else None
+    return "-" if k is None else "%.2f" % k
+
+
 def measure(args, runs, binary):
     """Median whole time, peak memory and the stages' median times of `runs` runs."""
-    wholes, peaks, stages = [], [], {}
+    wholes, peaks, stages, segments = [], [], {}, 0
     for _ in range(runs):
         seconds, peak, code, err = run(args + ["--stats"], binary)
         if code != 0:
@@ -122,11 +131,14 @@ def measure(args, runs, binary):
         for line in err.splitlines():
             if line.startswith("class "):
                 break  # the lengths per class follow the stages
+            found = SEGMENTS.match(line)
+            if found:
+                segments = int(found.group(1))
             m = STAGE.match(line)
             if m:
                 stages.setdefault(m.group(1), []).append(float(m.group(2)))
     return (statistics.median(wholes), max(peaks),
-            {k: statistics.median(v) for k, v in stages.items()})
+            {k: statistics.median(v) for k, v in stages.items()}, segments)
 
 
 def main():
@@ -145,14 +157,21 @@ def main():
         print("## %s" % family)
         rows = []
         for size, triangles, args in cases:
-            whole, peak, stages = measure(args, a.runs, a.binary)
-            rows.append((size, triangles, whole, peak, stages))
+            whole, peak, stages, segments = measure(args, a.runs, a.binary)
+            rows.append((size, triangles, whole, peak, stages, segments))
             print("  size %8d  %8d triangles  %7.3f s  %6.2f µs/triangle  %5.0f MB  %s" % (
                 size, triangles, whole, 1e6 * whole / triangles, peak / 1e6,
                 "  ".join("%s %.3f" % kv for kv in sorted(stages.items(), key=lambda kv: -kv[1])[:3])))
             sys.stdout.flush()
         k = slope([(r[1], r[2]) for r in rows])
-        print("  exponent, whole process: %.2f" % k)
+        print("  exponent, whole process: %.2f  (%s between the two largest sizes)" % (
+            k, large_end([(r[1], r[2]) for r in rows])))
+        if rows[-1][5] > 0:
+            found = [(r[1], r[5]) for r in rows if r[5] > 0]
+            print("  segments found: %s (exponent %.2f); intersections %s µs per segment" % (
+                ", ".join(str(r[5]) for r in rows), slope(found),
+                ", ".join("%.1f" % (1e6 * r[4].get("intersections", 0.0) / r[5])
+                          for r in rows if r[5] > 0)))
         names = sorted({s for r in rows for s in r[4]})
         for name in names:
             pts = [(r[1], r[4].get(name, 0.0)) for r in rows]
@@ -160,7 +179,8 @@ def main():
                 continue
             ks = slope(pts)
             if ks is not None:
-                print("  exponent, %-14s %.2f  (%.3f s at the largest size)" % (name + ":", ks, pts[-1][1]))
+                print("  exponent, %-14s %.2f  (%.3f s at the largest size; %s between the two largest)" % (
+                    name + ":", ks, pts[-1][1], large_end(pts)))
                 worst.append((ks, family, name))
     if worst:
         k, family, name = max(worst)

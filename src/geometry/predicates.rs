@@ -57,6 +57,16 @@ pub fn orient3d(a: &Point3, b: &Point3, c: &Point3, d: &Point3) -> Ordering {
 #[cold]
 #[inline(never)]
 fn orient3d_exact(a: &Point3, b: &Point3, c: &Point3, d: &Point3) -> Ordering {
+    // Two equal points make two rows of the determinant equal (or one zero): exactly zero,
+    // and the common case of a shared vertex, which no filter can certify.
+    if a == d || b == d || c == d || a == b || b == c || a == c {
+        return Ordering::Equal;
+    }
+    // Four points with one coordinate the same lie in a plane normal to that axis: exactly
+    // zero, and common (the axis-aligned faces of buildings and parts).
+    if (0..3).any(|k| a[k] == d[k] && b[k] == d[k] && c[k] == d[k]) {
+        return Ordering::Equal;
+    }
     let det = Orient3d([*a, *b, *c, *d]);
     if !det.exponents().exact_for(3) {
         return exact_sign(&det);
@@ -382,6 +392,10 @@ pub fn orient2d(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Ordering {
 #[cold]
 #[inline(never)]
 fn orient2d_exact(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Ordering {
+    // Two equal points: exactly zero (see `orient3d_exact`).
+    if a == b || b == c || a == c {
+        return Ordering::Equal;
+    }
     let det = Orient2d([a, b, c]);
     if !det.exponents().exact_for(2) {
         return exact_sign(&det);

@@ -38,6 +38,7 @@ mod buckets;
 mod build;
 mod containment;
 mod face;
+mod locality;
 mod measure;
 mod topology;
 mod transform;
@@ -50,6 +51,7 @@ pub use containment::{
 };
 pub(crate) use face::Loop;
 pub use face::{Face, Plane, TextureFrame};
+pub(crate) use locality::faces_in_space_order;
 pub use topology::Topology;
 pub(crate) use topology::sort_by_edge;
 pub use tree::TriangleTree;

@@ -49,7 +49,7 @@
 //! ```
 
 use crate::geometry::exact::ldexp;
-use crate::mesh::{Mesh, TextureFrame};
+use crate::mesh::{Mesh, TextureFrame, faces_in_space_order};
 use crate::scene::{Content, ObjectId, Scene, SceneError};
 use crate::sight::frustum::{self, Clip};
 use crate::sight::own_solid::hidden_by_own_solid;
@@ -358,23 +358,33 @@ fn visible_surfaces_in_range(scene: &Scene, view: &View) -> Result<Vec<FaceRepor
     let (meshes, clip) = pictured(scene, view)?;
     let clip = clip.as_ref();
     let index = Index::new(scene, &meshes, view, &picture, clip);
-    let faces: Vec<(ObjectId, &Mesh, usize)> = meshes
-        .iter()
-        .flat_map(|&(id, mesh)| (0..mesh.faces().len()).map(move |f| (id, mesh, f)))
-        .collect();
-    faces
+    // Faces are decided in an order near in space (each face's occluders are then mostly
+    // in the cache, from its neighbours' turns); each report goes to its face's place.
+    let mut faces: Vec<(ObjectId, usize, usize)> = Vec::new();
+    for &(id, mesh) in &meshes {
+        let first = faces.len();
+        faces.extend(
+            faces_in_space_order(mesh)
+                .into_iter()
+                .map(|f| (id, f as usize, first + f as usize)),
+        );
+    }
+    let mut decided: Vec<(usize, FaceReport)> = faces
         .par_iter()
-        .map(|&(id, _, f)| {
+        .map(|&(id, f, place)| {
             let (visible, texture) =
                 visfac_among(scene, scene.roots(), view, id, f, Some(&index), clip)?;
-            Ok(FaceReport {
+            let report = FaceReport {
                 object: id,
                 face: f,
                 visible,
                 texture,
-            })
+            };
+            Ok((place, report))
         })
-        .collect()
+        .collect::<Result<_>>()?;
+    decided.sort_unstable_by_key(|&(place, _)| place);
+    Ok(decided.into_iter().map(|(_, report)| report).collect())
 }
 
 /// Polygons scaled by `2^exponent` (exactly, unless a coordinate leaves the normal range).

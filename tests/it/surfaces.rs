@@ -580,3 +580,35 @@ fn the_city_block() {
             .all(|f| f.visible.status == Status::Hidden || f.visible.edge_on)
     );
 }
+
+/// The whole-scene pass decides faces in an order near in space, not face order: its reports
+/// still come object by object, face by face, each the answer of VISFAC against the whole
+/// scene for that face alone, on a mesh whose faces are listed in a shuffled order.
+#[test]
+fn whole_scene_reports_come_in_face_order() {
+    use kepler::surfaces::{visfac_scene, visible_surfaces};
+    let mut scene = random_boxes(11);
+    let sphere = solids::uv_sphere(1.2, 16, 9).unwrap();
+    let mut faces = sphere.polygons();
+    let mut rng = SplitMix64(3);
+    for k in (1..faces.len()).rev() {
+        faces.swap(k, (rng.next_u64() % (k as u64 + 1)) as usize);
+    }
+    let shuffled = Mesh::from_polygons(sphere.vertices().to_vec(), faces).unwrap();
+    scene.add_mesh(None, "shuffled", shuffled).unwrap();
+    let view = View::orthographic(Vector3::new(-1.0, -2.0, -3.0), Vector3::z()).unwrap();
+    let reports = visible_surfaces(&scene, &view).unwrap();
+    let expected: Vec<(ObjectId, usize)> = scene
+        .roots()
+        .iter()
+        .flat_map(|&id| (0..scene[id].mesh().unwrap().faces().len()).map(move |f| (id, f)))
+        .collect();
+    let got: Vec<(ObjectId, usize)> = reports.iter().map(|r| (r.object, r.face)).collect();
+    assert_eq!(got, expected);
+    for r in &reports {
+        let alone = visfac_scene(&scene, &view, r.object, r.face).unwrap();
+        assert_eq!(r.visible.status, alone.status);
+        assert_eq!(r.visible.polygons, alone.polygons);
+    }
+    assert!(reports.iter().any(|r| r.visible.status == Status::Mixed));
+}
