@@ -89,21 +89,43 @@ pub(crate) fn classify(
 ) -> (Vec<MeshEdge>, EdgeCounts) {
     let mut sides = face_sides(mesh);
     crate::mesh::sort_by_edge(&mut sides, |s| s.key);
-    let groups: Vec<&[FaceSide]> = sides.chunk_by(|x, y| x.key == y.key).collect();
     let vertices = mesh.vertices();
+    let same_edge = |x: &FaceSide, y: &FaceSide| x.key == y.key;
+    if mesh.t_junctions() == 0 {
+        // Each edge decided on its own: only the drawn ones are kept (for feature edges, a
+        // few thousandths of a scan's), the others only counted.
+        return sides
+            .par_chunk_by(same_edge)
+            .fold(
+                || (Vec::new(), EdgeCounts::default()),
+                |(mut edges, mut counts), group| {
+                    let decided = decide(group, vertices, eye, crease_cos, selection);
+                    counts.count(&decided);
+                    edges.extend(decided.ok());
+                    (edges, counts)
+                },
+            )
+            .reduce(
+                || (Vec::new(), EdgeCounts::default()),
+                |(mut edges, counts), (more, other)| {
+                    edges.extend(more);
+                    (edges, counts.plus(&other))
+                },
+            );
+    }
+    let groups: Vec<&[FaceSide]> = sides.chunk_by(same_edge).collect();
     let mut decided: Vec<Result<MeshEdge, Left>> = groups
         .par_iter()
         .map(|group| decide(group, vertices, eye, crease_cos, selection))
         .collect();
-    if mesh.t_junctions() > 0 {
-        join_pieces(mesh, eye, &groups, &mut decided);
+    join_pieces(mesh, eye, &groups, &mut decided);
+    let mut counts = EdgeCounts::default();
+    for d in &decided {
+        counts.count(d);
     }
-    let counts = counted(&decided);
     let mut edges: Vec<MeshEdge> = decided.into_iter().filter_map(Result::ok).collect();
-    if mesh.t_junctions() > 0 {
-        // In the order of their ends, as the edges of the mesh without the junctions are.
-        edges.sort_unstable_by_key(|e| key(e.a, e.b));
-    }
+    // In the order of their ends, as the edges of the mesh without the junctions are.
+    edges.sort_unstable_by_key(|e| key(e.a, e.b));
     (edges, counts)
 }
 
@@ -199,22 +221,30 @@ fn decide(
     }
 }
 
-/// The counts of the edges decided: drawn and left out by class, flat and end-on.
-fn counted(decided: &[Result<MeshEdge, Left>]) -> EdgeCounts {
-    let mut counts = EdgeCounts::default();
-    for d in decided {
-        match d {
-            Ok(e) => counts.by_class[e.class as usize] += 1,
+impl EdgeCounts {
+    /// Counts an edge decided: drawn or left out by class, flat or end-on.
+    fn count(&mut self, decided: &Result<MeshEdge, Left>) {
+        match decided {
+            Ok(e) => self.by_class[e.class as usize] += 1,
             Err(Left::NotAsked(class)) => {
-                counts.by_class[*class as usize] += 1;
-                counts.left_out += 1;
+                self.by_class[*class as usize] += 1;
+                self.left_out += 1;
             }
-            Err(Left::Flat) => counts.flat += 1,
-            Err(Left::EndOn) => counts.end_on += 1,
+            Err(Left::Flat) => self.flat += 1,
+            Err(Left::EndOn) => self.end_on += 1,
             Err(Left::Joined) => {}
         }
     }
-    counts
+
+    /// The counts of both.
+    fn plus(&self, other: &EdgeCounts) -> EdgeCounts {
+        EdgeCounts {
+            flat: self.flat + other.flat,
+            end_on: self.end_on + other.end_on,
+            left_out: self.left_out + other.left_out,
+            by_class: std::array::from_fn(|k| self.by_class[k] + other.by_class[k]),
+        }
+    }
 }
 
 /// Why an edge is not part of the drawing.

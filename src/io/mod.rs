@@ -169,7 +169,13 @@ pub fn read_mesh_with(path: &Path, validation: Validation) -> Result<Mesh> {
     let mesh = match format {
         "stl" => stl::parse_with(&bytes, &name, validation),
         "ply" => ply::parse_with(&bytes, &name, validation),
-        "obj" => obj::parse_with(&String::from_utf8_lossy(&bytes), &name, validation),
+        "obj" => {
+            // The file's bytes are let go before the mesh is built (they would otherwise be
+            // held through its peak).
+            let read = obj::read(&String::from_utf8_lossy(&bytes), &name)?;
+            drop(bytes);
+            read.into_mesh(&name, validation)
+        }
         _ => off::parse_with(&String::from_utf8_lossy(&bytes), &name, validation),
     }?;
     // A file whose faces were all dropped as degenerate (zero area, after rounding to doubles)

@@ -57,11 +57,40 @@ pub fn parse(text: &str, path: &str) -> Result<Mesh> {
 /// assert!(err.to_string().starts_with("q.obj:5: face 1 is not planar"));
 /// ```
 pub fn parse_with(text: &str, path: &str, validation: Validation) -> Result<Mesh> {
-    parse_in_pieces(text, path, validation, PIECE)
+    read_in_pieces(text, path, PIECE)?.into_mesh(path, validation)
 }
 
-/// [`parse_with`], reading the text in pieces of about `piece` bytes.
-fn parse_in_pieces(text: &str, path: &str, validation: Validation, piece: usize) -> Result<Mesh> {
+/// The vertices and faces of an OBJ file, read but not yet made into a mesh, with the lines
+/// that define them (for the mesh's errors): the text need not be held while the mesh is
+/// built.
+pub(crate) struct Read {
+    vertices: Vec<Point3>,
+    vertex_lines: Vec<usize>,
+    faces: Vec<Loop>,
+    face_lines: Vec<usize>,
+}
+
+impl Read {
+    /// The mesh of what was read, its errors located at lines of the file `path`.
+    pub(crate) fn into_mesh(self, path: &str, validation: Validation) -> Result<Mesh> {
+        let Read {
+            vertices,
+            vertex_lines,
+            faces,
+            face_lines,
+        } = self;
+        Mesh::from_loops_with(vertices, faces, validation)
+            .map_err(|e| located_at_lines(path, e, &vertex_lines, &face_lines))
+    }
+}
+
+/// Reads the text of an OBJ file (see [`parse`]) without building the mesh.
+pub(crate) fn read(text: &str, path: &str) -> Result<Read> {
+    read_in_pieces(text, path, PIECE)
+}
+
+/// [`read`], reading the text in pieces of about `piece` bytes.
+fn read_in_pieces(text: &str, path: &str, piece: usize) -> Result<Read> {
     use rayon::prelude::*;
     // Two passes over pieces of the text that start at statements, each piece in parallel:
     // the first counts the lines and the elements each defines, the second parses it knowing
@@ -111,8 +140,12 @@ fn parse_in_pieces(text: &str, path: &str, validation: Validation, piece: usize)
             .collect()
     };
     results.into_iter().collect::<Result<()>>()?;
-    Mesh::from_loops_with(vertices, faces, validation)
-        .map_err(|e| located_at_lines(path, e, &vertex_lines, &face_lines))
+    Ok(Read {
+        vertices,
+        vertex_lines,
+        faces,
+        face_lines,
+    })
 }
 
 /// Texts of at least this many bytes are read in pieces of about this size, in parallel.
@@ -449,6 +482,16 @@ mod tests {
             }
         }
         text
+    }
+
+    /// The mesh of the text read in pieces of about `piece` bytes.
+    fn parse_in_pieces(
+        text: &str,
+        path: &str,
+        validation: Validation,
+        piece: usize,
+    ) -> Result<Mesh> {
+        read_in_pieces(text, path, piece)?.into_mesh(path, validation)
     }
 
     #[test]

@@ -233,6 +233,8 @@ impl Mesh {
                 }
             }
         }
+        // The input polygons' buffer is not held through the topology's sort of the sides.
+        drop(polygons);
         let (junctions, topology) = topology::junctions_and_topology(&vertices, &faces);
         Ok(Mesh {
             vertices,

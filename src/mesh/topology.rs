@@ -124,7 +124,11 @@ fn sort(uses: &mut Vec<(u64, u32)>) {
 /// vertex in one counting pass (linear in the items and the vertices), then each vertex's few
 /// items by key. The result is that of a stable comparison sort, which costs several times
 /// more on a large mesh (and in parallel, more than the counting pass alone).
-pub(crate) fn sort_by_edge<T: Copy>(items: &mut Vec<T>, key: impl Fn(&T) -> u64) {
+pub(crate) fn sort_by_edge<T: Copy + Send + Sync>(
+    items: &mut Vec<T>,
+    key: impl Fn(&T) -> u64 + Sync,
+) {
+    use rayon::prelude::*;
     let lower = |u: &T| (key(u) >> 32) as usize;
     let Some(vertices) = items.iter().map(lower).max().map(|m| m + 1) else {
         return;
@@ -134,11 +138,26 @@ pub(crate) fn sort_by_edge<T: Copy>(items: &mut Vec<T>, key: impl Fn(&T) -> u64)
         return;
     }
     let (start, mut sorted) = super::by_bucket(vertices, items, lower, |u| *u);
-    for v in 0..vertices {
-        sorted[start[v]..start[v + 1]].sort_by_key(&key);
+    // Each vertex's few items by key, in blocks of vertices in parallel.
+    let mut blocks = Vec::new();
+    let mut rest = &mut sorted[..];
+    for first in (0..vertices).step_by(VERTEX_BLOCK) {
+        let last = (first + VERTEX_BLOCK).min(vertices);
+        let (here, after) = rest.split_at_mut(start[last] - start[first]);
+        blocks.push((first..last, here));
+        rest = after;
     }
+    blocks.into_par_iter().for_each(|(range, block)| {
+        let base = start[range.start];
+        for v in range {
+            block[start[v] - base..start[v + 1] - base].sort_by_key(&key);
+        }
+    });
     *items = sorted;
 }
+
+/// Vertices whose items [`sort_by_edge`] sorts as one parallel task.
+const VERTEX_BLOCK: usize = 1 << 14;
 
 /// A use of the edge from `a` to `b` by side `index` of the mesh's faces: the undirected key
 /// (low vertex, high vertex) and the index with the direction in its low bit (1 when `a < b`).
@@ -273,6 +292,8 @@ mod tests {
             (1000, 40),
             (5000, 3000),
             (300, 5000),
+            // Many: placed in parallel, and sorted in several blocks of vertices.
+            (200_000, 3 * VERTEX_BLOCK as u64 + 5),
         ] {
             let mut uses: Vec<(u64, u32)> = (0..len)
                 .map(|i| {
