@@ -121,12 +121,17 @@ impl<'s> IncludeIndex<'s> {
         for &id in objects {
             check_closed(scene, id)?;
         }
-        scene.compute_bounds_of(objects);
+        // The bounds and the grids need only the meshes: built side by side.
         let leaves = scene.mesh_objects(objects);
-        let built: Vec<(ObjectId, ProjectionGrid<'s>)> = leaves
-            .par_iter()
-            .map(|&(id, mesh)| (id, ProjectionGrid::new(mesh)))
-            .collect();
+        let ((), built) = rayon::join(
+            || scene.compute_bounds_of(objects),
+            || -> Vec<(ObjectId, ProjectionGrid<'s>)> {
+                leaves
+                    .par_iter()
+                    .map(|&(id, mesh)| (id, ProjectionGrid::new(mesh)))
+                    .collect()
+            },
+        );
         let mut grids = SecondaryMap::new();
         grids.extend(built);
         Ok(IncludeIndex {
