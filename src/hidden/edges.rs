@@ -629,6 +629,7 @@ impl Pass<'_> {
         leaf.pictures = pictures;
         leaf.front = front;
         leaf.lines = first..self.lines.len();
+        leaf.away = away;
         (behind, outside_tile)
     }
 

@@ -22,7 +22,15 @@ impl Pass<'_> {
         let meshes: Vec<PicturedMesh> = self
             .leaves
             .iter()
-            .map(|l| (l.id, l.mesh, l.pictures.as_slice(), l.front.as_slice()))
+            .map(|l| {
+                (
+                    l.id,
+                    l.mesh,
+                    l.pictures.as_slice(),
+                    l.front.as_slice(),
+                    l.away,
+                )
+            })
             .collect();
         let queries = self.lines.iter().filter(|l| !l.back).count() + self.cuts.len();
         let occluders = Occluders::new(
@@ -35,18 +43,29 @@ impl Pass<'_> {
         );
         let large = meshes
             .iter()
-            .filter(|(_, m, _, _)| m.triangles().len() > INBOX_LIMIT)
+            .filter(|(_, m, ..)| m.triangles().len() > INBOX_LIMIT)
             .count();
         let done = format!(
             "{} meshes' triangles listed by picture cells ({} entries)",
             meshes.len(),
             occluders.entries()
         );
-        let skipped = (large > 0).then(|| {
-            format!(
-                "INBOX of {large} meshes of more than {INBOX_LIMIT} triangles (their picture \
-                 cells answer directly)"
-            )
+        let away = occluders.turned_away();
+        let skipped = (large > 0 || away > 0).then(|| {
+            let mut parts = Vec::new();
+            if away > 0 {
+                parts.push(format!(
+                    "{away} triangles turned away from the eye (their own solid hides what \
+                     they would)"
+                ));
+            }
+            if large > 0 {
+                parts.push(format!(
+                    "INBOX of {large} meshes of more than {INBOX_LIMIT} triangles (their \
+                     picture cells answer directly)"
+                ));
+            }
+            parts.join("; ")
         });
         timed(&mut self.stages, "occluders", clock, done, skipped);
 

@@ -50,6 +50,8 @@ pub(crate) struct PictureGrid<'a> {
     /// The triangles round crowded vertices, listed by angle instead of in the cells (see
     /// [`hubs`](super::hubs)).
     hubs: Vec<Hub>,
+    /// The triangles turned away from the eye, left out (see [`PictureGrid::new`]).
+    away: usize,
 }
 
 /// The window of a view that clips (half its width and height, grown), with the picture map:
@@ -65,17 +67,33 @@ impl<'a> PictureGrid<'a> {
     /// no vertex in front hides nothing in front of the eye and is left out; the picture of
     /// the front part of one that crosses the plane of the eye is unbounded along the pictures
     /// of its edges towards the eye's plane (see [`Clip::framed`](crate::sight::frustum)).
+    ///
+    /// With `away` (the eye and a side), the mesh bounds a solid seen from outside that does
+    /// not pierce itself, and its triangles on that side of the eye (turned away, decided
+    /// exactly) are not listed: whatever one of them hides, a triangle turned towards the eye
+    /// hides too. Say the closed triangle B, turned away, meets the line of sight from a point
+    /// P to the eye at X, strictly between them. Move P a little so that its line of sight
+    /// crosses the inside of B and no edge of the mesh: going towards the eye, it enters the
+    /// solid at B, so it must leave it through a triangle turned towards the eye before
+    /// reaching the eye, which is outside. As the move shrinks to nothing, one such triangle F
+    /// is met each time (there are finitely many), at points that tend to a point Y of the
+    /// closed F between X and the eye: F hides P as B does (the closed test of
+    /// [`hides_at`](crate::sight::along::hides_at)). (`cover/tests.rs` checks the answers.)
     pub(crate) fn new(
         mesh: &'a Mesh,
         pictures: &'a [[f64; 2]],
         (front, window): (&'a [bool], Option<ClipWindow>),
+        away: Option<(&Eye, Ordering)>,
         queries: usize,
     ) -> PictureGrid<'a> {
         let in_front = |v: u32| front.get(v as usize).is_none_or(|&f| f);
+        let turned = turned_away(mesh, away);
         let boxes: Vec<Option<[[f64; 2]; 2]>> = mesh
             .triangles()
             .par_iter()
-            .map(|tri| match window {
+            .enumerate()
+            .map(|(t, tri)| match window {
+                _ if turned.get(t) == Some(&true) => None,
                 None => Some(bounding_box(tri.map(|v| pictures[v as usize]))),
                 Some((picture, w)) => framed_box(mesh, tri, pictures, &in_front, picture, w),
             })
@@ -128,6 +146,7 @@ impl<'a> PictureGrid<'a> {
         let cells = Cells::new(lo, extent, cell_shape(side, extent, n));
         let pairs = listed_pairs(mesh, pictures, &boxes, (&cells, margin), whole);
         PictureGrid {
+            away: turned.iter().filter(|&&t| t).count(),
             lists: CellLists::new(cells.count(), pairs),
             cells,
             triangles: mesh.triangles(),
@@ -188,6 +207,21 @@ fn cell_shape(side: f64, extent: [f64; 2], n: usize) -> [usize; 2] {
         shape = [1, 1];
     }
     shape
+}
+
+/// Whether each triangle of `mesh` lies on the side `away` of the eye (exactly), or nothing
+/// without a side.
+fn turned_away(mesh: &Mesh, away: Option<(&Eye, Ordering)>) -> Vec<bool> {
+    let Some((eye, side)) = away else {
+        return Vec::new();
+    };
+    mesh.triangles()
+        .par_iter()
+        .map(|tri| {
+            let [p, q, r] = tri.map(|v| &mesh.vertices()[v as usize]);
+            eye.orient3d(p, q, r) == side
+        })
+        .collect()
 }
 
 /// Every `(cell, triangle)` listing of the triangles of `mesh` with a box in `boxes`: a
@@ -309,7 +343,13 @@ fn cbox_picture(picture: &Picture, cbox: &Aabb) -> Option<[[f64; 2]; 2]> {
 
 /// A mesh object with its vertices' pictures and, when the view clips, which vertices are in
 /// front of the eye.
-pub(crate) type PicturedMesh<'a> = (ObjectId, &'a Mesh, &'a [[f64; 2]], &'a [bool]);
+pub(crate) type PicturedMesh<'a> = (
+    ObjectId,
+    &'a Mesh,
+    &'a [[f64; 2]],
+    &'a [bool],
+    Option<Ordering>,
+);
 
 /// VISP for the hidden-line pass: Franklin's steps (CBOX rejects, INBOX accepts, faces decide)
 /// for each mesh object whose CBOX's picture reaches the point's, with the mesh's faces
@@ -357,7 +397,7 @@ impl<'s> Occluders<'s> {
             .max(1);
         let built: Vec<(ObjectId, PictureGrid<'s>)> = meshes
             .par_iter()
-            .map(|&(id, mesh, pictures, front)| {
+            .map(|&(id, mesh, pictures, front, away)| {
                 // The bounds VISP will ask for, built here in parallel (each is built once, on
                 // first use: left to the queries, the first would wait for all of them).
                 scene.cbox(id);
@@ -371,6 +411,7 @@ impl<'s> Occluders<'s> {
                         mesh,
                         pictures,
                         (front, window),
+                        away.map(|side| (&eye, side)),
                         (queries as f64 * mesh.triangles().len() as f64 / total as f64) as usize,
                     ),
                 )
@@ -420,6 +461,11 @@ impl<'s> Occluders<'s> {
         }
     }
 
+    /// The number of triangles left out of the grids as turned away from the eye.
+    pub(crate) fn turned_away(&self) -> usize {
+        self.grids.values().map(|g| g.away).sum()
+    }
+
     /// The number of (cell, triangle) entries of all the grids.
     pub(crate) fn entries(&self) -> usize {
         self.grids.values().map(PictureGrid::entries).sum()
@@ -466,3 +512,6 @@ impl<'s> Occluders<'s> {
         answer
     }
 }
+
+#[cfg(test)]
+mod tests;
