@@ -27,7 +27,7 @@ use crate::geometry::predicates::{orient2d, orient3d, project};
 use crate::geometry::{Point3, Vector3};
 use crate::mesh::Mesh;
 use crate::sight::frustum::{Clip, TilePlanes};
-use crate::sight::own_solid::turned_away;
+use crate::sight::own_solid::{triangles_on_side, turned_away};
 use crate::union_find::UnionFind;
 use crate::views::{Eye, Picture};
 use rayon::prelude::*;
@@ -580,7 +580,10 @@ impl Pass<'_> {
             (leaf.id, leaf.mesh, leaf.global)
         };
         let (mut behind, mut outside_tile) = (0, 0);
-        let away = turned_away(self.scene, id, mesh, eye);
+        // Each triangle's side once (an edge would ask for each of its two).
+        let turned = turned_away(self.scene, id, mesh, eye)
+            .map(|side| triangles_on_side(mesh, eye, side))
+            .unwrap_or_default();
         let first = self.lines.len();
         for (k, e) in edges.into_iter().enumerate() {
             let (a, b) = (e.a as usize, e.b as usize);
@@ -599,12 +602,8 @@ impl Pass<'_> {
             }
             let clipped = !(inside.is_empty() || inside[a] && inside[b]);
             let back = e.class != EdgeClass::Boundary
-                && away.is_some_and(|away| {
-                    e.triangles.iter().all(|&t| {
-                        let [p, q, r] = mesh.triangle(t as usize);
-                        eye.orient3d(&p, &q, &r) == away
-                    })
-                });
+                && !turned.is_empty()
+                && e.triangles.iter().all(|&t| turned[t as usize]);
             self.lines.push(Line {
                 a: mesh.vertices()[a],
                 b: mesh.vertices()[b],
@@ -629,7 +628,7 @@ impl Pass<'_> {
         leaf.pictures = pictures;
         leaf.front = front;
         leaf.lines = first..self.lines.len();
-        leaf.away = away;
+        leaf.turned = turned;
         (behind, outside_tile)
     }
 

@@ -77,7 +77,7 @@ impl Pass<'_> {
         for i in self_intersecting {
             let range = self.leaves[i].lines.clone();
             self.lines[range].iter_mut().for_each(|l| l.back = false);
-            self.leaves[i].away = None;
+            self.leaves[i].turned = Vec::new();
         }
         let done = format!(
             "{segments} segments from {} object pairs with overlapping CBOXes (each object with \

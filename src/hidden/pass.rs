@@ -43,11 +43,11 @@ pub(super) struct Leaf<'a> {
     /// pictures mean nothing).
     pub(super) front: Vec<bool>,
     pub(super) lines: std::ops::Range<usize>,
-    /// When its mesh bounds a solid seen from outside that does not pierce itself: the side
-    /// ([`Eye::orient3d`] sign) of the triangles turned away from the eye, which its own solid
-    /// hides (see [`turned_away`](crate::sight::own_solid::turned_away)). Set with the edges,
-    /// cleared where the intersections stage finds the mesh piercing itself.
-    pub(super) away: Option<std::cmp::Ordering>,
+    /// When its mesh bounds a solid seen from outside that does not pierce itself: whether
+    /// each triangle is turned away from the eye, hidden by its own solid (see
+    /// [`turned_away`](crate::sight::own_solid::turned_away)); else empty. Set with the
+    /// edges, cleared where the intersections stage finds the mesh piercing itself.
+    pub(super) turned: Vec<bool>,
 }
 
 /// The state of one hidden-line pass, stage by stage.
@@ -116,7 +116,7 @@ impl<'a> Pass<'a> {
                 pictures: Vec::new(),
                 front: Vec::new(),
                 lines: 0..0,
-                away: None,
+                turned: Vec::new(),
             })
             .collect();
         let slack = picture_slack(scene, &picture, leaves.iter().map(|l| l.id));

@@ -28,7 +28,7 @@ impl Pass<'_> {
                     l.mesh,
                     l.pictures.as_slice(),
                     l.front.as_slice(),
-                    l.away,
+                    l.turned.as_slice(),
                 )
             })
             .collect();

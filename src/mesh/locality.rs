@@ -7,6 +7,7 @@
 //! because it is a bit interleaving of a few lines.
 
 use super::Mesh;
+use crate::geometry::Aabb;
 
 /// Bits per axis of the Morton key: 21, so that three fit in a `u64`.
 const BITS: u32 = 21;
@@ -15,13 +16,7 @@ const BITS: u32 = 21;
 /// faces whose vertex is not finite in the box's scale, by index).
 pub(crate) fn faces_in_space_order(mesh: &Mesh) -> Vec<u32> {
     let vertices = mesh.vertices();
-    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-    for v in vertices {
-        for k in 0..3 {
-            lo[k] = lo[k].min(v[k]);
-            hi[k] = hi[k].max(v[k]);
-        }
-    }
+    let Aabb { min: lo, max: hi } = Aabb::from_points(vertices);
     // The scale of each axis in cells per unit; a flat axis (or an overflowing extent) gets 0.
     let scale = [0, 1, 2].map(|k| {
         let s = f64::from((1u32 << BITS) - 1) / (hi[k] - lo[k]);

@@ -68,8 +68,8 @@ impl<'a> PictureGrid<'a> {
     /// the front part of one that crosses the plane of the eye is unbounded along the pictures
     /// of its edges towards the eye's plane (see [`Clip::framed`](crate::sight::frustum)).
     ///
-    /// With `away` (the eye and a side), the mesh bounds a solid seen from outside that does
-    /// not pierce itself, and its triangles on that side of the eye (turned away, decided
+    /// With `turned` (not empty), the mesh bounds a solid seen from outside that does not
+    /// pierce itself, and its triangles marked in it (turned away from the eye, decided
     /// exactly) are not listed: whatever one of them hides, a triangle turned towards the eye
     /// hides too. Say the closed triangle B, turned away, meets the line of sight from a point
     /// P to the eye at X, strictly between them. Move P a little so that its line of sight
@@ -83,11 +83,10 @@ impl<'a> PictureGrid<'a> {
         mesh: &'a Mesh,
         pictures: &'a [[f64; 2]],
         (front, window): (&'a [bool], Option<ClipWindow>),
-        away: Option<(&Eye, Ordering)>,
+        turned: &[bool],
         queries: usize,
     ) -> PictureGrid<'a> {
         let in_front = |v: u32| front.get(v as usize).is_none_or(|&f| f);
-        let turned = turned_away(mesh, away);
         let boxes: Vec<Option<[[f64; 2]; 2]>> = mesh
             .triangles()
             .par_iter()
@@ -209,21 +208,6 @@ fn cell_shape(side: f64, extent: [f64; 2], n: usize) -> [usize; 2] {
     shape
 }
 
-/// Whether each triangle of `mesh` lies on the side `away` of the eye (exactly), or nothing
-/// without a side.
-fn turned_away(mesh: &Mesh, away: Option<(&Eye, Ordering)>) -> Vec<bool> {
-    let Some((eye, side)) = away else {
-        return Vec::new();
-    };
-    mesh.triangles()
-        .par_iter()
-        .map(|tri| {
-            let [p, q, r] = tri.map(|v| &mesh.vertices()[v as usize]);
-            eye.orient3d(p, q, r) == side
-        })
-        .collect()
-}
-
 /// Every `(cell, triangle)` listing of the triangles of `mesh` with a box in `boxes`: a
 /// triangle wholly pictured (`whole`) in the cells its picture meets, grown by `margin`,
 /// another in those its box covers.
@@ -343,13 +327,7 @@ fn cbox_picture(picture: &Picture, cbox: &Aabb) -> Option<[[f64; 2]; 2]> {
 
 /// A mesh object with its vertices' pictures and, when the view clips, which vertices are in
 /// front of the eye.
-pub(crate) type PicturedMesh<'a> = (
-    ObjectId,
-    &'a Mesh,
-    &'a [[f64; 2]],
-    &'a [bool],
-    Option<Ordering>,
-);
+pub(crate) type PicturedMesh<'a> = (ObjectId, &'a Mesh, &'a [[f64; 2]], &'a [bool], &'a [bool]);
 
 /// VISP for the hidden-line pass: Franklin's steps (CBOX rejects, INBOX accepts, faces decide)
 /// for each mesh object whose CBOX's picture reaches the point's, with the mesh's faces
@@ -397,7 +375,7 @@ impl<'s> Occluders<'s> {
             .max(1);
         let built: Vec<(ObjectId, PictureGrid<'s>)> = meshes
             .par_iter()
-            .map(|&(id, mesh, pictures, front, away)| {
+            .map(|&(id, mesh, pictures, front, turned)| {
                 // The bounds VISP will ask for, built here in parallel (each is built once, on
                 // first use: left to the queries, the first would wait for all of them).
                 scene.cbox(id);
@@ -411,7 +389,7 @@ impl<'s> Occluders<'s> {
                         mesh,
                         pictures,
                         (front, window),
-                        away.map(|side| (&eye, side)),
+                        turned,
                         (queries as f64 * mesh.triangles().len() as f64 / total as f64) as usize,
                     ),
                 )

@@ -6,7 +6,7 @@
 use super::*;
 use crate::geometry::Vector3;
 use crate::sight::along::hides_at;
-use crate::sight::own_solid::turned_away;
+use crate::sight::own_solid::{triangles_on_side, turned_away};
 use crate::views::View;
 use crate::{random::SplitMix64, solids};
 
@@ -23,7 +23,10 @@ fn answers(
     let eye = *view.eye();
     let picture = Picture::of(view);
     let pictures: Vec<[f64; 2]> = mesh.vertices().iter().map(|v| picture.point(v)).collect();
-    let meshes = [(id, mesh, &pictures[..], &[][..], away)];
+    let turned = away
+        .map(|side| triangles_on_side(mesh, &eye, side))
+        .unwrap_or_default();
+    let meshes = [(id, mesh, &pictures[..], &[][..], &turned[..])];
     // No INBOX: the grid decides every point.
     let occluders = Occluders::new(scene, (eye, Picture::of(view)), None, &meshes, 0, 1000);
     let seen = points
