@@ -25,9 +25,10 @@
 //! Written by hand because these are VISFAC's own predicates (no crate decides signs of points
 //! built from three planes of the input exactly).
 
+use super::extent::Extent;
 use crate::geometry::exact::estimate;
 use crate::geometry::kernel::{Difference, Estimate, Exponents, Polynomial, Ring};
-use crate::geometry::predicates::{Orient3d, Orientation};
+use crate::geometry::predicates::{Orient3d, Orientation, orient2d, project};
 use crate::geometry::{Point3, Vector3};
 use crate::mesh::TextureFrame;
 use crate::sight::along::{Expanded, Filtered, Form};
@@ -103,6 +104,10 @@ pub(super) struct Frame {
     g: [Filtered; 3],
     /// The exponents of F's triangle and the eye.
     exponents: Exponents,
+    /// The coordinate F's plane holds constant, when it is perpendicular to an axis (its
+    /// triangle sharing that coordinate and not degenerate): then the form of F's plane takes
+    /// the same value at two points exactly when they share that coordinate.
+    axis: Option<usize>,
 }
 
 impl Frame {
@@ -112,13 +117,25 @@ impl Frame {
             Eye::Point(e) => points_exponents(&[*e]),
             Eye::Infinity(u) => Exponents::of(u.as_slice()),
         };
+        let [p, q, r] = &plane;
+        let axis = (0..3).find(|&k| {
+            p[k] == q[k]
+                && p[k] == r[k]
+                && orient2d(project(p, k), project(q, k), project(r, k)) != Ordering::Equal
+        });
         Frame {
             plane,
             eye,
             kind,
             g: kind.gradient(&eye),
             exponents: kind.exponents().union(eye_exponents),
+            axis,
         }
+    }
+
+    /// The estimate of the gradient of F's plane's form: a normal of F's plane.
+    pub(super) fn normal(&self) -> [Estimate; 3] {
+        self.g.map(|f| f.0)
     }
 
     /// The origin of the forms, F's first vertex.
@@ -157,7 +174,11 @@ impl ArrangementLine {
     /// one value at the points that define the plane (and the eye, for a sight plane). Exact.
     pub(super) fn parallel(&self, frame: &Frame) -> bool {
         let f = |x: &Point3| frame.kind.at(&frame.eye, x);
-        let same = |x: &Point3, y: &Point3| Difference(f(x), f(y)).sign() == Ordering::Equal;
+        // The form of a plane `x_k = c` is a nonzero multiple of `x_k − c`.
+        let same = |x: &Point3, y: &Point3| match frame.axis {
+            Some(k) => x[k] == y[k],
+            None => Difference(f(x), f(y)).sign() == Ordering::Equal,
+        };
         match (&self.kind, &frame.eye) {
             (Kind::Plane([p, q, r]), _) => same(p, q) && same(p, r),
             (Kind::Sight(a, b), Eye::Point(e)) => same(a, b) && same(a, e),
@@ -175,6 +196,17 @@ impl ArrangementLine {
     /// [`parallel`](Self::parallel) to it).
     pub(super) fn sign_at_origin(&self, frame: &Frame) -> Ordering {
         self.kind.at(&frame.eye, frame.origin()).sign()
+    }
+
+    /// The estimates of the form's value at F's first vertex and of its gradient:
+    /// `s_L(x) = c_L + g_L·(x − O)`.
+    pub(super) fn coefficients(&self) -> (Estimate, [Estimate; 3]) {
+        (self.c.0, self.g.map(|f| f.0))
+    }
+
+    /// The estimate of the trace's direction `q_L`.
+    pub(super) fn direction_estimate(&self) -> [Estimate; 3] {
+        self.q.map(|f| f.0)
     }
 
     /// The direction of the trace, `q_L`, rounded (for angles, not for decisions).
@@ -235,6 +267,11 @@ impl Crossing {
             w: dot(&b.g, &a.q),
             n: [0, 1, 2].map(|k| a.c * b.q[k] - b.c * a.q[k]),
         }
+    }
+
+    /// A box certified to hold the point `O + N / W`, when `W` is certified nonzero.
+    pub(super) fn extent(&self) -> Option<Extent> {
+        Extent::of_quotient(self.n.map(|f| f.0), self.w.0)
     }
 }
 

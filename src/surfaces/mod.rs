@@ -59,6 +59,7 @@ use geo::{Coord, MapCoords, MultiPolygon};
 use rayon::prelude::*;
 use std::cmp::Ordering;
 
+mod extent;
 mod face_grid;
 pub mod hatch;
 mod index;

@@ -4,7 +4,7 @@
 
 use super::face_grid::{GRID_MARGIN, window};
 use crate::geometry::polygon::bounding_box;
-use crate::geometry::predicates::orient3d;
+use crate::geometry::predicates::{orient2d, orient3d, project};
 use crate::geometry::{Aabb, Point3};
 use crate::mesh::Mesh;
 use crate::sight::frustum::Clip;
@@ -30,6 +30,9 @@ pub(super) struct Target {
     pub(super) extent: [[f64; 2]; 2],
     /// Where it lies against the frustum of a view that clips.
     pub(super) framing: Framing,
+    /// The exact signs of the components of the normal `(q − p) × (r − p)` of its plane's
+    /// triangle `[p, q, r]`.
+    normal: [Ordering; 3],
 }
 
 /// Where a face lies against the frustum of a view that clips (decided exactly at its
@@ -77,7 +80,15 @@ impl Target {
             (Some(c), Some(w)) if !vertices.iter().all(|x| c.in_front(x)) => w,
             _ => bounding_box(vertices.iter().map(|v| picture.point(v))),
         };
+        let normal = [0, 1, 2].map(|k| {
+            orient2d(
+                project(&plane[0], k),
+                project(&plane[1], k),
+                project(&plane[2], k),
+            )
+        });
         Target {
+            normal,
             eye_side: eye.orient3d(&plane[0], &plane[1], &plane[2]),
             canonical: canonical_loop(mesh, face),
             vertices,
@@ -109,11 +120,7 @@ impl Target {
         b: &Aabb,
         pictured: Option<Option<[[f64; 2]; 2]>>,
     ) -> bool {
-        let [p, q, r] = &self.plane;
-        if b.corners()
-            .iter()
-            .all(|c| orient3d(p, q, r, c) != self.eye_side)
-        {
+        if !self.has_corner_on_eye_side(b) {
             return true;
         }
         // The picture of the box holds the pictures of all it holds when every corner is in
@@ -126,6 +133,28 @@ impl Target {
         let scale = low.iter().chain(&high).chain(&f_low).chain(&f_high);
         let margin = GRID_MARGIN * scale.fold(0.0f64, |m, v| m.max(v.abs()));
         (0..2).any(|k| low[k] > f_high[k] + margin || high[k] < f_low[k] - margin)
+    }
+
+    /// Whether some corner of the box lies strictly on the eye's side of the face's plane.
+    /// `orient3d(p, q, r, x)` has the sign of `−n·(x − p)` for the normal `n` of
+    /// `[p, q, r]`, so it is greatest, times the eye's side `s`, at the corner taking the low
+    /// end of each axis where `s·n_k > 0` and the high end where `s·n_k < 0` (either where
+    /// `n_k = 0`: the form does not depend on that coordinate). One exact `orient3d` there
+    /// decides for all eight corners.
+    pub(super) fn has_corner_on_eye_side(&self, b: &Aabb) -> bool {
+        let [p, q, r] = &self.plane;
+        let s = self.eye_side;
+        if s == Ordering::Equal {
+            return b.corners().iter().any(|c| orient3d(p, q, r, c) == s);
+        }
+        let corner = Point3::from([0, 1, 2].map(|k| {
+            if self.normal[k] == s {
+                b.min[k]
+            } else {
+                b.max[k]
+            }
+        }));
+        orient3d(p, q, r, &corner) == s
     }
 
     /// Whether the polygon `corners` (a face of an occluder, with a triangle `g` spanning its
@@ -216,4 +245,63 @@ pub(super) fn spanning_triangle(mesh: &Mesh, face: usize, eye: &Eye) -> ([Point3
 pub(super) fn ring(points: Vec<[f64; 2]>) -> MultiPolygon<f64> {
     let coords: Vec<Coord<f64>> = points.into_iter().map(|[x, y]| Coord { x, y }).collect();
     MultiPolygon::new(vec![Polygon::new(LineString::new(coords), Vec::new())])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Vector3;
+    use crate::random::SplitMix64;
+
+    /// The one corner tested stands for all eight: random faces (general and perpendicular to
+    /// an axis, either way round), boxes crossing, touching and missing their planes, flat
+    /// boxes, and both kinds of eye.
+    #[test]
+    fn one_corner_decides_for_the_box() {
+        let mut rng = SplitMix64(5);
+        let mut answers = [0usize; 2];
+        for round in 0..3_000 {
+            let point =
+                |rng: &mut SplitMix64| Point3::new(rng.int(-4, 4), rng.int(-4, 4), rng.int(-4, 4));
+            let mut t = [point(&mut rng), point(&mut rng), point(&mut rng)];
+            if round % 3 == 0 {
+                let (k, v) = (rng.below(3), rng.int(-2, 2));
+                t.iter_mut().for_each(|p| p[k] = v);
+            }
+            let Ok(mesh) = Mesh::from_polygons(t.to_vec(), vec![vec![0, 1, 2]]) else {
+                continue;
+            };
+            if mesh.faces().is_empty() {
+                continue;
+            }
+            let view = if round % 2 == 0 {
+                View::orthographic(rng.vector(1.0) + Vector3::new(0.0, 0.0, 0.1), Vector3::z())
+            } else {
+                View::perspective(
+                    Point3::new(rng.int(-9, 9), rng.int(-9, 9), rng.int(5, 9)),
+                    Point3::origin(),
+                    Vector3::z(),
+                    40.0,
+                )
+            };
+            let Ok(view) = view else { continue };
+            let target = Target::new(&mesh, 0, &view, None);
+            let [low, high] = [point(&mut rng), point(&mut rng)];
+            let mut b = Aabb {
+                min: [0, 1, 2].map(|k| low[k].min(high[k])),
+                max: [0, 1, 2].map(|k| low[k].max(high[k])),
+            };
+            if round % 5 == 0 {
+                b.max[round % 3] = b.min[round % 3];
+            }
+            let [p, q, r] = &target.plane;
+            let brute = b
+                .corners()
+                .iter()
+                .any(|c| orient3d(p, q, r, c) == target.eye_side);
+            assert_eq!(target.has_corner_on_eye_side(&b), brute, "{round}");
+            answers[usize::from(brute)] += 1;
+        }
+        assert!(answers.iter().all(|&n| n > 300), "{answers:?}");
+    }
 }

@@ -11,7 +11,10 @@
 //! them goes), and leaves the cell whole when the piece's interior misses it: a line with every
 //! vertex of the cell weakly outside, or an empty remainder. Every decision is the exact sign
 //! of a line's form at a vertex, so a cell is kept exactly when it has area, and VTP(F) is
-//! empty exactly when the union of the pieces covers F.
+//! empty exactly when the union of the pieces covers F. Most pieces miss most cells: a box
+//! certified to hold each cell ([`Extent`]) on which one of the piece's forms is certified
+//! negative tells such a miss before any sign is taken (on the bundled metropolis the rows
+//! of signs taken fall from 11.0 M to 1.3 M).
 //!
 //! The cells are then merged into polygons: along each line, the cells' edges are cut where
 //! their endpoints fall (in an exact order along the line); a piece of line is part of the
@@ -35,7 +38,9 @@
 //! - [`subtract`]: cell subtraction (occluder pieces and the clip);
 //! - [`merge`]: merging the cells into polygons (disjoint sets of equal points and of
 //!   connected cells, `crate::union_find`), and the construction of their vertices;
-//! - [`rings`]: linking boundary pieces into rings.
+//! - [`rings`]: linking boundary pieces into rings;
+//! - [`traces`]: the lines that bound cells, filed by the angle and distance of their traces,
+//!   so that a line is compared only with those that may be the same line.
 
 /// Merging the cells into polygons.
 mod merge;
@@ -45,13 +50,22 @@ mod rings;
 mod signs;
 /// Cell subtraction.
 mod subtract;
+/// The lines that bound cells, by where they lie.
+mod traces;
 
+use super::extent::Extent;
 use super::lines::{ArrangementLine, Crossing, Frame, Kind};
 use crate::geometry::Point3;
 use crate::views::{Eye, Picture};
+use foldhash::fast::FixedState;
 use std::cell::RefCell;
 use std::cmp::Ordering;
 use std::collections::HashMap;
+use traces::Traces;
+
+/// The maps of VTP(F): keys are ids and bits of coordinates, hashed fast and the same in
+/// every run (nothing depends on their order).
+type Map<K, V> = HashMap<K, V, FixedState>;
 
 /// A point of F's plane where two lines cross.
 #[derive(Debug, Clone)]
@@ -64,6 +78,8 @@ struct Vertex {
     turn: Ordering,
     /// The estimates of `W` and `N`.
     crossing: Crossing,
+    /// A box certified to hold it, when `W` is certified nonzero.
+    extent: Option<Extent>,
 }
 
 /// What is known of a vertex beyond its two lines: it decides the cheapest exact sign of a
@@ -83,10 +99,12 @@ enum At {
 
 /// A convex cell: vertex `v[i]` to `v[i + 1]` runs along line `e[i].0`, the cell lying where
 /// that line's form has sign `e[i].1`.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 struct Cell {
     v: Vec<u32>,
     e: Vec<(u32, Ordering)>,
+    /// A box certified to hold it (the box of its vertices' boxes), when they all have one.
+    extent: Option<Extent>,
 }
 
 /// VTP(F) being built.
@@ -101,20 +119,20 @@ pub(super) struct Vtp<'a> {
     lines: Vec<ArrangementLine>,
     /// The line for each plane met, by the plane's key, with the sign relating the line's
     /// form to the key's.
-    kinds: HashMap<[u64; 9], (u32, Ordering)>,
+    kinds: Map<[u64; 9], (u32, Ordering)>,
     /// For each line, once resolved, the line standing for it in the cells and the sign
     /// relating their forms.
     alias: Vec<Option<(u32, Ordering)>>,
-    /// The lines that bound cells: distinct as lines.
-    bounding: Vec<u32>,
+    /// The lines that bound cells: distinct as lines, filed by where they lie.
+    bounding: Traces,
     vertices: Vec<Vertex>,
     /// The vertex where two lines cross, by the pair.
-    crossings: HashMap<(u32, u32), u32>,
+    crossings: Map<(u32, u32), u32>,
     /// Whether an input point lies on F's plane, by the bits of its coordinates (F's corners
     /// known at once: the exact test is slow for points on the plane).
-    on_plane: RefCell<HashMap<[u64; 3], bool>>,
+    on_plane: RefCell<Map<[u64; 3], bool>>,
     /// Signs that needed exact arithmetic, by (vertex, line).
-    exact: HashMap<(u32, u32), Ordering>,
+    exact: Map<(u32, u32), Ordering>,
     cells: Vec<Cell>,
     /// Whether some occluder (or the frustum) took area away.
     changed: bool,
@@ -138,17 +156,22 @@ impl<'a> Vtp<'a> {
         turn: Ordering,
         picture: &'a Picture,
     ) -> Vtp<'a> {
+        let frame = Frame::new(*plane, eye);
+        let radius = corners
+            .iter()
+            .map(|c| (c - plane[0]).norm())
+            .fold(0.0, f64::max);
         let mut vtp = Vtp {
-            frame: Frame::new(*plane, eye),
+            bounding: Traces::new(frame.normal(), radius),
+            frame,
             eye_side: turn,
             face: corners.to_vec(),
             picture,
             lines: Vec::new(),
-            kinds: HashMap::new(),
+            kinds: Map::default(),
             alias: Vec::new(),
-            bounding: Vec::new(),
             vertices: Vec::new(),
-            crossings: HashMap::new(),
+            crossings: Map::default(),
             on_plane: RefCell::new(
                 plane
                     .iter()
@@ -156,7 +179,7 @@ impl<'a> Vtp<'a> {
                     .map(|c| (c.coords.map(f64::to_bits).into(), true))
                     .collect(),
             ),
-            exact: HashMap::new(),
+            exact: Map::default(),
             cells: Vec::new(),
             changed: false,
             behind: false,

@@ -3,11 +3,12 @@
 //! lines is a vertex built once, and every decision is the exact sign of a line's form at a
 //! vertex.
 
-use super::{At, Cell, Trace, Vertex, Vtp};
+use super::{At, Cell, Extent, Trace, Vertex, Vtp};
 use crate::geometry::Point3;
 use crate::geometry::kernel::{Difference, Polynomial, Product};
 use crate::geometry::predicates::orient3d;
 use crate::sight::along::Form;
+use crate::surfaces::extent::SignedForm;
 use crate::surfaces::lines::{
     self, Alignment, ArrangementLine, Crossing, Kind, SideAtVertex, Turn,
 };
@@ -62,7 +63,8 @@ impl<'a> Vtp<'a> {
             .into_iter()
             .map(|(l, s)| (l, times(turn, s)))
             .collect();
-        self.cells.push(Cell { v, e });
+        let extent = self.extent_of(&v);
+        self.cells.push(Cell { v, e, extent });
     }
 
     /// The trace of the plane `kind` in F's plane: a line (the same id as for the same plane
@@ -93,16 +95,16 @@ impl<'a> Vtp<'a> {
         }
         let frame = &self.frame;
         let new = &self.lines[l as usize];
+        let (q, (c, _)) = (new.direction_estimate(), new.coefficients());
         let found = self
             .bounding
-            .iter()
-            .find(|&&u| self.same_trace(u, l))
-            .map_or((l, Ordering::Greater), |&u| {
+            .find(&c, &q, |u| self.same_trace(u, l))
+            .map_or((l, Ordering::Greater), |u| {
                 let a = &self.lines[u as usize];
                 (u, Alignment { frame, a, b: new }.sign())
             });
         if found.0 == l {
-            self.bounding.push(l);
+            self.bounding.insert(l, &c, &q);
         }
         self.alias[l as usize] = Some(found);
         found
@@ -134,6 +136,16 @@ impl<'a> Vtp<'a> {
     pub(super) fn same_trace(&self, a: u32, b: u32) -> bool {
         let eye = &self.frame.eye;
         let (la, lb) = (&self.lines[a as usize], &self.lines[b as usize]);
+        // Traces that cross are not the same line: the estimate of `W` tells most pairs.
+        let w = Turn {
+            frame: &self.frame,
+            a: la,
+            b: lb,
+        }
+        .estimate();
+        if w.value.is_finite() && w.value.abs() > w.bound {
+            return false;
+        }
         match (la.kind, lb.kind) {
             (Kind::Sight(..), Kind::Sight(p, q)) => {
                 la.kind.sign_at(eye, &p) == Ordering::Equal
@@ -171,11 +183,13 @@ impl<'a> Vtp<'a> {
             b: lb,
         }
         .sign();
+        let crossing = Crossing::new(la, lb);
         self.vertices.push(Vertex {
             lines: [a, b],
             at,
             turn,
-            crossing: Crossing::new(la, lb),
+            crossing,
+            extent: crossing.extent(),
         });
         let v = (self.vertices.len() - 1) as u32;
         self.crossings.insert(key, v);
@@ -277,6 +291,20 @@ impl<'a> Vtp<'a> {
                     .copied()
             }
         }
+    }
+
+    /// The box of the cell with vertices `v`: the box of their boxes, when they all have one.
+    pub(super) fn extent_of(&self, v: &[u32]) -> Option<Extent> {
+        let mut boxes = v.iter().map(|&v| self.vertices[v as usize].extent);
+        let first = boxes.next()??;
+        boxes.try_fold(first, |all, b| Some(all.union(&b?)))
+    }
+
+    /// Line `l`'s form times `side`, for the box filter (see
+    /// [`extent`](crate::surfaces::extent)).
+    pub(super) fn signed_form(&self, l: u32, side: Ordering) -> Option<SignedForm> {
+        let (c, g) = self.lines[l as usize].coefficients();
+        SignedForm::new(c, g, side)
     }
 
     /// The exact sign of line `l`'s form at vertex `v`.

@@ -8,7 +8,9 @@ use crate::geometry::Point3;
 use crate::geometry::predicates::orient3d;
 use crate::sight::along::Form;
 use crate::sight::frustum::Clip;
+use crate::surfaces::extent::SignedForm;
 use crate::surfaces::lines::Kind;
+use smallvec::SmallVec;
 use std::cmp::Ordering;
 
 impl<'a> Vtp<'a> {
@@ -59,18 +61,23 @@ impl<'a> Vtp<'a> {
         plane_turn: Ordering,
     ) {
         let [g0, g1, g2] = plane;
-        let sides: Vec<Ordering> = self.face.iter().map(|v| orient3d(g0, g1, g2, v)).collect();
-        if !sides.contains(&plane_turn.reverse()) {
+        let (mut behind, mut in_front) = (false, false);
+        for v in &self.face {
+            let side = orient3d(g0, g1, g2, v);
+            behind |= side == plane_turn.reverse();
+            in_front |= side == plane_turn;
+        }
+        if !behind {
             return;
         }
         let n = corners.len();
-        let mut kinds: Vec<(Kind, Ordering)> = (0..n)
+        let mut kinds: SmallVec<[(Kind, Ordering); 8]> = (0..n)
             .map(|i| (Kind::Sight(corners[i], corners[(i + 1) % n]), turn))
             .collect();
-        if sides.contains(&plane_turn) {
+        if in_front {
             kinds.push((Kind::Plane(*plane), plane_turn.reverse()));
         }
-        let mut piece: Vec<(u32, Ordering)> = Vec::with_capacity(kinds.len());
+        let mut piece: SmallVec<[(u32, Ordering); 8]> = SmallVec::with_capacity(kinds.len());
         for (kind, side) in kinds {
             match self.line(kind) {
                 Trace::Line(l, s) => piece.push((l, times(side, s))),
@@ -79,15 +86,43 @@ impl<'a> Vtp<'a> {
                 Trace::Constant(_) => return,
             }
         }
-        let cells = std::mem::take(&mut self.cells);
-        for cell in cells {
-            match self.without(&cell, &piece) {
-                Some(parts) => {
-                    self.changed = true;
-                    self.cells.extend(parts);
+        // The piece's lines' forms, each times the piece's side: a cell whose box is certified
+        // negative on one of them lies wholly outside the piece (see `extent`).
+        let forms: SmallVec<[SignedForm; 8]> = piece
+            .iter()
+            .filter_map(|&(k, side)| self.signed_form(k, side))
+            .collect();
+        // The cells stay where they are until one is cut; from then on they are moved, in
+        // order, to a new list with the parts in place of the cut ones.
+        let mut rebuilt: Option<Vec<Cell>> = None;
+        for i in 0..self.cells.len() {
+            let missed = self.cells[i]
+                .extent
+                .as_ref()
+                .is_some_and(|e| forms.iter().any(|f| e.surely_negative(f)));
+            let parts = if missed {
+                None
+            } else {
+                let cell = std::mem::take(&mut self.cells[i]);
+                let parts = self.without(&cell, &piece);
+                self.cells[i] = cell;
+                parts
+            };
+            match (parts, &mut rebuilt) {
+                (Some(parts), None) => {
+                    let mut cells = Vec::with_capacity(self.cells.len() + parts.len());
+                    cells.extend(self.cells[..i].iter_mut().map(std::mem::take));
+                    cells.extend(parts);
+                    rebuilt = Some(cells);
                 }
-                None => self.cells.push(cell),
+                (Some(parts), Some(cells)) => cells.extend(parts),
+                (None, Some(cells)) => cells.push(std::mem::take(&mut self.cells[i])),
+                (None, None) => {}
             }
+        }
+        if let Some(cells) = rebuilt {
+            self.changed = true;
+            self.cells = cells;
         }
     }
 
@@ -148,22 +183,23 @@ impl<'a> Vtp<'a> {
     pub(super) fn without(&mut self, cell: &Cell, piece: &[(u32, Ordering)]) -> Option<Vec<Cell>> {
         // The signs of the cell's vertices, `Greater` on the piece's side of each line; a line
         // with the whole cell weakly outside: disjoint interiors.
-        let mut table: Vec<Vec<Ordering>> = Vec::with_capacity(piece.len());
+        // One row of signs per line, kept inline (no allocation for a cell the piece misses).
+        let n = cell.v.len();
+        let mut table: SmallVec<[Ordering; 48]> = SmallVec::with_capacity(piece.len() * n);
         for &(k, side) in piece {
-            let signs: Vec<Ordering> = cell
-                .v
-                .iter()
-                .map(|&v| times(self.sign_at(v, k), side))
-                .collect();
-            if !signs.contains(&Ordering::Greater) {
+            let start = table.len();
+            for &v in &cell.v {
+                let sign = times(self.sign_at(v, k), side);
+                table.push(sign);
+            }
+            if !table[start..].contains(&Ordering::Greater) {
                 return None;
             }
-            table.push(signs);
         }
         let mut rest = cell.clone();
         let mut parts = Vec::new();
-        for (&(k, side), known) in piece.iter().zip(&table) {
-            let signs: Vec<Ordering> = rest
+        for (&(k, side), known) in piece.iter().zip(table.chunks(n)) {
+            let signs: SmallVec<[Ordering; 16]> = rest
                 .v
                 .iter()
                 .map(|&v| match cell.v.iter().position(|&u| u == v) {
@@ -200,6 +236,7 @@ impl<'a> Vtp<'a> {
         let mut inside = Cell {
             v: Vec::new(),
             e: Vec::new(),
+            extent: None,
         };
         let mut outside = inside.clone();
         for i in 0..n {
@@ -240,6 +277,8 @@ impl<'a> Vtp<'a> {
                 }
             }
         }
+        inside.extent = self.extent_of(&inside.v);
+        outside.extent = self.extent_of(&outside.v);
         (inside, outside)
     }
 }
