@@ -27,7 +27,7 @@ use crate::geometry::predicates::{orient2d, orient3d, project};
 use crate::geometry::{Point3, Vector3};
 use crate::mesh::Mesh;
 use crate::sight::frustum::{Clip, TilePlanes};
-use crate::sight::own_solid::{triangles_on_side, turned_away};
+use crate::sight::own_solid::turned_away;
 use crate::union_find::UnionFind;
 use crate::views::{Eye, Picture};
 use rayon::prelude::*;
@@ -75,7 +75,8 @@ fn key(p: u32, q: u32) -> u64 {
     (u64::from(p.min(q)) << 32) | u64::from(p.max(q))
 }
 
-/// Every edge of `mesh` that `selection` draws, with its class as seen from `eye`;
+/// Every edge of `mesh` that `selection` draws, with its class as seen from `eye` (each
+/// triangle's turn there given by `turns`, from [`triangle_turns`]);
 /// `crease_cos` is `-cos` of the crease angle (an edge is a crease when the cosine of the
 /// angle between its faces exceeds it). Coplanar (except polygon edges for
 /// [`EdgeSelection::Mesh`], drawn as smooth edges), end-on and unselected edges are left out
@@ -84,12 +85,19 @@ fn key(p: u32, q: u32) -> u64 {
 pub(crate) fn classify(
     mesh: &Mesh,
     eye: &Eye,
+    turns: &[Ordering],
     crease_cos: f64,
     selection: EdgeSelection,
 ) -> (Vec<MeshEdge>, EdgeCounts) {
     let mut sides = face_sides(mesh);
     crate::mesh::sort_by_edge(&mut sides, |s| s.key);
     let vertices = mesh.vertices();
+    let seen = Seen {
+        vertices,
+        triangles: mesh.triangles(),
+        turns,
+        eye,
+    };
     let same_edge = |x: &FaceSide, y: &FaceSide| x.key == y.key;
     if mesh.t_junctions() == 0 {
         // Each edge decided on its own: only the drawn ones are kept (for feature edges, a
@@ -99,7 +107,7 @@ pub(crate) fn classify(
             .fold(
                 || (Vec::new(), EdgeCounts::default()),
                 |(mut edges, mut counts), group| {
-                    let decided = decide(group, vertices, eye, crease_cos, selection);
+                    let decided = decide(group, &seen, crease_cos, selection);
                     counts.count(&decided);
                     edges.extend(decided.ok());
                     (edges, counts)
@@ -116,7 +124,7 @@ pub(crate) fn classify(
     let groups: Vec<&[FaceSide]> = sides.chunk_by(same_edge).collect();
     let mut decided: Vec<Result<MeshEdge, Left>> = groups
         .par_iter()
-        .map(|group| decide(group, vertices, eye, crease_cos, selection))
+        .map(|group| decide(group, &seen, crease_cos, selection))
         .collect();
     join_pieces(mesh, eye, &groups, &mut decided);
     let mut counts = EdgeCounts::default();
@@ -169,23 +177,68 @@ fn face_sides(mesh: &Mesh) -> Vec<FaceSide> {
         .collect()
 }
 
+/// What [`decide`] reads of a mesh seen from an eye: its vertices and triangles, and each
+/// triangle's turn in the picture (its exact [`Eye::orient3d`]).
+struct Seen<'a> {
+    vertices: &'a [Point3],
+    triangles: &'a [[u32; 3]],
+    turns: &'a [Ordering],
+    eye: &'a Eye,
+}
+
+impl Seen<'_> {
+    /// `eye.orient3d(a, b, c)` for the side `ab` of triangle `t` whose third vertex is `c`:
+    /// when `a` and `b` are vertices of `t`, its turn, reversed when `a` to `b` runs against
+    /// its order (an exact sign keeps under cyclic shifts and reverses under a swap); for a
+    /// piece of a side cut at T-junctions, the sign itself.
+    fn side(&self, t: u32, [a, b, c]: [u32; 3]) -> Ordering {
+        let tri = self.triangles[t as usize];
+        let turn = self.turns[t as usize];
+        if (0..3).any(|i| tri[i] == a && tri[(i + 1) % 3] == b) {
+            turn
+        } else if (0..3).any(|i| tri[i] == b && tri[(i + 1) % 3] == a) {
+            turn.reverse()
+        } else {
+            let [pa, pb, pc] = [a, b, c].map(|v| &self.vertices[v as usize]);
+            self.eye.orient3d(pa, pb, pc)
+        }
+    }
+}
+
+/// Each triangle's turn in the picture, its exact [`Eye::orient3d`]: taken once per triangle,
+/// and read by the edges on its three sides.
+pub(crate) fn triangle_turns(mesh: &Mesh, eye: &Eye) -> Vec<Ordering> {
+    let turn = |tri: &[u32; 3]| {
+        let [p, q, r] = tri.map(|v| &mesh.vertices()[v as usize]);
+        eye.orient3d(p, q, r)
+    };
+    if mesh.triangles().len() >= crate::mesh::PARALLEL_POLYGONS {
+        mesh.triangles().par_iter().map(turn).collect()
+    } else {
+        mesh.triangles().iter().map(turn).collect()
+    }
+}
+
 /// The edge that the faces' sides `group` (one edge's) make, or why it is not drawn.
 fn decide(
     group: &[FaceSide],
-    vertices: &[Point3],
-    eye: &Eye,
+    seen: &Seen,
     crease_cos: f64,
     selection: EdgeSelection,
 ) -> Result<MeshEdge, Left> {
+    let (vertices, eye) = (seen.vertices, seen.eye);
     let (a, b) = ((group[0].key >> 32) as u32, group[0].key as u32);
     let (pa, pb) = (&vertices[a as usize], &vertices[b as usize]);
-    if eye.sees_end_on(pa, pb) {
+    let sides =
+        [0, group.len().min(2) - 1].map(|k| seen.side(group[k].triangle, [a, b, group[k].third]));
+    // Seen end-on, every face at the edge is seen edge-on: one that is not tells at once.
+    if sides[0] == Ordering::Equal && eye.sees_end_on(pa, pb) {
         return Err(Left::EndOn);
     }
     let third = |k: usize| &vertices[group[k].third as usize];
     let class = match group.len() {
         1 => Some(EdgeClass::Boundary),
-        2 => class_of(pa, pb, [third(0), third(1)], eye, crease_cos),
+        2 => class_of(pa, pb, [third(0), third(1)], sides, crease_cos),
         _ => Some(class_of_many(
             pa,
             pb,
@@ -425,18 +478,18 @@ fn class_of_many<'a>(
     }
 }
 
-/// The class of the edge `ab` of two faces whose third vertices are `c1` and `c2`, or `None`
-/// for an edge between two coplanar faces on either side of it, in every view (seen edge-on,
-/// such faces are one flat face seen edge-on: its outline is drawn, not the edge, as for a
-/// face that is not split).
+/// The class of the edge `ab` of two faces whose third vertices are `c1` and `c2` and whose
+/// sides of the edge's picture are `s1` and `s2` (`eye.orient3d(a, b, c_k)`), or `None` for an
+/// edge between two coplanar faces on either side of it, in every view (seen edge-on, such
+/// faces are one flat face seen edge-on: its outline is drawn, not the edge, as for a face
+/// that is not split).
 fn class_of(
     a: &Point3,
     b: &Point3,
     [c1, c2]: [&Point3; 2],
-    eye: &Eye,
+    [s1, s2]: [Ordering; 2],
     crease_cos: f64,
 ) -> Option<EdgeClass> {
-    let (s1, s2) = (eye.orient3d(a, b, c1), eye.orient3d(a, b, c2));
     let coplanar = || orient3d(a, b, c1, c2) == Ordering::Equal;
     if s1 == Ordering::Equal && s2 == Ordering::Equal && coplanar() && on_either_side(a, b, c1, c2)
     {
@@ -488,6 +541,8 @@ struct LeafEdges {
     pictures: Vec<[f64; 2]>,
     front: Vec<bool>,
     inside: Vec<bool>,
+    /// Each triangle's turn in the picture.
+    turns: Vec<Ordering>,
 }
 
 /// The edges of `leaf` classified from `eye` (see [`LeafEdges`]), its vertices pictured by
@@ -522,13 +577,15 @@ fn leaf_edges(
             _ => picture.point(p),
         })
         .collect();
-    let (edges, counts) = classify(leaf.mesh, eye, crease_cos, selection);
+    let turns = triangle_turns(leaf.mesh, eye);
+    let (edges, counts) = classify(leaf.mesh, eye, &turns, crease_cos, selection);
     LeafEdges {
         edges,
         counts,
         pictures,
         front,
         inside,
+        turns,
     }
 }
 
@@ -573,6 +630,7 @@ impl Pass<'_> {
             pictures,
             front,
             inside,
+            turns,
             ..
         } = found;
         let (id, mesh, global) = {
@@ -581,8 +639,8 @@ impl Pass<'_> {
         };
         let (mut behind, mut outside_tile) = (0, 0);
         // Each triangle's side once (an edge would ask for each of its two).
-        let turned = turned_away(self.scene, id, mesh, eye)
-            .map(|side| triangles_on_side(mesh, eye, side))
+        let turned: Vec<bool> = turned_away(self.scene, id, mesh, eye)
+            .map(|side| turns.iter().map(|&t| t == side).collect())
             .unwrap_or_default();
         let first = self.lines.len();
         for (k, e) in edges.into_iter().enumerate() {

@@ -23,21 +23,6 @@ pub(crate) fn hidden_by_own_solid(
         .then_some(side)
 }
 
-/// Whether each triangle of `mesh` is on the side `side` of the eye (exact [`Eye::orient3d`]):
-/// with the side from [`turned_away`], the triangles the solid turns away from the eye.
-pub(crate) fn triangles_on_side(mesh: &Mesh, eye: &Eye, side: Ordering) -> Vec<bool> {
-    use rayon::prelude::*;
-    let on_side = |tri: &[u32; 3]| {
-        let [p, q, r] = tri.map(|v| &mesh.vertices()[v as usize]);
-        eye.orient3d(p, q, r) == side
-    };
-    if mesh.triangles().len() >= crate::mesh::PARALLEL_POLYGONS {
-        mesh.triangles().par_iter().map(on_side).collect()
-    } else {
-        mesh.triangles().iter().map(on_side).collect()
-    }
-}
-
 /// For a mesh that bounds a solid the eye is outside of (closed, consistently oriented, not
 /// flat; the eye outside its CBOX), the sign of [`Eye::orient3d`] of a face turned away from
 /// the eye; `None` otherwise. Every point of an edge between two faces turned away is then

@@ -5,8 +5,9 @@
 
 use super::*;
 use crate::geometry::Vector3;
+use crate::hidden::edges::triangle_turns;
 use crate::sight::along::hides_at;
-use crate::sight::own_solid::{triangles_on_side, turned_away};
+use crate::sight::own_solid::turned_away;
 use crate::views::View;
 use crate::{random::SplitMix64, solids};
 
@@ -23,8 +24,13 @@ fn answers(
     let eye = *view.eye();
     let picture = Picture::of(view);
     let pictures: Vec<[f64; 2]> = mesh.vertices().iter().map(|v| picture.point(v)).collect();
-    let turned = away
-        .map(|side| triangles_on_side(mesh, &eye, side))
+    let turned: Vec<bool> = away
+        .map(|side| {
+            triangle_turns(mesh, &eye)
+                .iter()
+                .map(|&t| t == side)
+                .collect()
+        })
         .unwrap_or_default();
     let meshes = [(id, mesh, &pictures[..], &[][..], &turned[..])];
     // No INBOX: the grid decides every point.
