@@ -204,10 +204,14 @@ mod tests {
             let c = rng.range(-1.0, 1.0);
             let q = cross(normal, g);
             let scale = if round % 2 == 0 { -3.5 } else { 2f64.powi(40) };
-            let bound = if round % 3 == 0 { 1e-6 } else { 0.0 };
-            let mut noisy = |x: f64| Estimate {
-                value: x * scale + bound * (rng.unit() - 0.5),
-                bound,
+            // Errors up to a tenth of a bucket's width in angle, and none.
+            let relative = [0.0, 1e-9, 1e-3][round % 3];
+            let mut noisy = |x: f64| {
+                let bound = (x * scale).abs() * relative;
+                Estimate {
+                    value: x * scale + bound * (2.0 * rng.unit() - 1.0),
+                    bound,
+                }
             };
             let (c_noisy, q_noisy) = (noisy(c), q.map(&mut noisy));
             traces.insert(7, &c_noisy, &q_noisy);
