@@ -173,6 +173,7 @@ impl<'a> Vtp<'a> {
                 rest = self.split(&rest, k, times(side, s), &signs).0;
             }
             if kept {
+                rest.extent = self.extent_of(&rest.v);
                 self.cells.push(rest);
             }
         }
@@ -215,7 +216,8 @@ impl<'a> Vtp<'a> {
             }
             // Signs against `k` are signs against the line standing for it, times `s`.
             let (k, s) = self.resolve(k);
-            let (inside, outside) = self.split(&rest, k, times(side, s), &signs);
+            let (inside, mut outside) = self.split(&rest, k, times(side, s), &signs);
+            outside.extent = self.extent_of(&outside.v);
             parts.push(outside);
             rest = inside;
         }
@@ -224,7 +226,7 @@ impl<'a> Vtp<'a> {
 
     /// The cell cut by line `k` into its part on side `side` and the part on the other, given
     /// the signs of its vertices (`Greater` on side `side`); both have vertices strictly on
-    /// their sides.
+    /// their sides. Neither has its box yet: the caller gives one to the part it keeps.
     pub(super) fn split(
         &mut self,
         cell: &Cell,
@@ -277,8 +279,6 @@ impl<'a> Vtp<'a> {
                 }
             }
         }
-        inside.extent = self.extent_of(&inside.v);
-        outside.extent = self.extent_of(&outside.v);
         (inside, outside)
     }
 }
