@@ -99,6 +99,7 @@ pub mod bounds;
 #[cfg(feature = "lab")]
 pub mod clip;
 pub mod error;
+pub(crate) mod fnv;
 pub mod geometry;
 pub mod grid;
 pub mod hidden;

@@ -80,6 +80,23 @@ pub fn write_dxf(
     let [dash, gap] = options.hidden_dash.map(|mm| mm / t.scale);
     let mut dxf = dxf::Drawing::new();
     dxf.header.version = AcadVersion::R2000;
+    // The GUIDs that would be drawn at random, from the drawing, and the dates that would be
+    // now, DXF's epoch (1900-01-01, Julian day 2415021 in every time zone): the same file
+    // every run.
+    let guid = content_guid(drawing, options);
+    dxf.header.fingerprint_guid = guid;
+    dxf.header.version_guid = guid;
+    use chrono::TimeZone;
+    if let (Some(local), Some(utc)) = (
+        chrono::Local.with_ymd_and_hms(1900, 1, 1, 0, 0, 0).single(),
+        chrono::Utc.with_ymd_and_hms(1900, 1, 1, 0, 0, 0).single(),
+    ) {
+        (dxf.header.creation_date, dxf.header.update_date) = (local, local);
+        (
+            dxf.header.creation_date_universal,
+            dxf.header.update_date_universal,
+        ) = (utc, utc);
+    }
     let pattern = if dash.is_finite() && gap.is_finite() {
         vec![dash, -gap]
     } else {
@@ -138,4 +155,25 @@ pub fn write_dxf(
     };
     written.map_err(|e| io::Error::other(e.to_string()))?;
     out.flush()
+}
+
+/// A GUID for the drawing written with `options`: a hash (the same in every build) of every
+/// point's bits, class and visibility, and of the page.
+fn content_guid(drawing: &Drawing, options: &SvgOptions) -> uuid::Uuid {
+    let half = |seed: u64| {
+        let mut h = crate::fnv::Fnv::new(seed);
+        for p in &drawing.polylines {
+            h.word((p.class as u64) << 1 | u64::from(p.visible));
+            h.word(p.points.len() as u64);
+            p.points.iter().flatten().for_each(|c| h.word(c.to_bits()));
+        }
+        let page = options
+            .page
+            .iter()
+            .chain([&options.margin])
+            .chain(&options.hidden_dash);
+        page.for_each(|c| h.word(c.to_bits()));
+        h.finish()
+    };
+    uuid::Uuid::from_u128(u128::from(half(1)) << 64 | u128::from(half(2)))
 }

@@ -506,6 +506,21 @@ impl View {
         &self.eye
     }
 
+    /// Every number that defines the view, as bits (for fingerprints: two views with the
+    /// same bits are the same view).
+    pub(crate) fn bits(&self) -> Vec<u64> {
+        let (tag, eye) = match self.eye {
+            Eye::Point(p) => (0, p.coords),
+            Eye::Infinity(u) => (1, u),
+        };
+        let vectors = [eye, self.forward, self.right, self.up];
+        let mut bits = vec![tag];
+        bits.extend(vectors.iter().flat_map(|v| v.iter().map(|c| c.to_bits())));
+        bits.extend([self.fov.map_or(u64::MAX, f64::to_bits), self.near.to_bits()]);
+        bits.extend([i64::from(self.near_exponent) as u64, self.aspect.to_bits()]);
+        bits
+    }
+
     /// A perspective view's vertical field of view in degrees (`None` for an orthographic
     /// view).
     ///

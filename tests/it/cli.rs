@@ -5,7 +5,7 @@ use serde_json::{Value, json};
 use std::process::{Command, Output};
 
 /// Runs the built binary in the crate's directory (so `scenes/...` resolves).
-fn kepler(args: &[&str]) -> Output {
+pub(super) fn kepler(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_kepler"))
         .args(args)
         .current_dir(env!("CARGO_MANIFEST_DIR"))
@@ -17,12 +17,12 @@ fn stdout(o: &Output) -> String {
     String::from_utf8(o.stdout.clone()).expect("UTF-8 output")
 }
 
-fn stderr(o: &Output) -> String {
+pub(super) fn stderr(o: &Output) -> String {
     String::from_utf8(o.stderr.clone()).expect("UTF-8 output")
 }
 
 /// Runs successfully and returns the standard output.
-fn ok(args: &[&str]) -> String {
+pub(super) fn ok(args: &[&str]) -> String {
     let o = kepler(args);
     assert!(
         o.status.success(),
@@ -36,7 +36,7 @@ fn ok(args: &[&str]) -> String {
 
 /// Fails cleanly (exit code 1, nothing on stdout, one `error: ` line, no panic) and returns
 /// the error message after `error: `.
-fn fails(args: &[&str]) -> String {
+pub(super) fn fails(args: &[&str]) -> String {
     let o = kepler(args);
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(1), "kepler {args:?}: {err}");

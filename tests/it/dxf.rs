@@ -141,3 +141,37 @@ fn a_rendered_scene_comes_back_whole() {
     check(&drawing, DxfFormat::Binary);
     check(&drawing, DxfFormat::Text);
 }
+
+/// The same drawing writes the same bytes every time (the GUIDs come from the drawing, the
+/// dates are DXF's epoch), and another drawing gets another GUID.
+#[test]
+fn the_same_drawing_writes_the_same_bytes() {
+    let mut scene = Scene::new();
+    scene
+        .add_mesh(None, "cube", kepler::solids::cube(2.0).unwrap())
+        .unwrap();
+    let view = View::orthographic(Vector3::new(-1.0, -2.0, -3.0), Vector3::z()).unwrap();
+    let drawing = draw(&scene, &view, &Options::default()).unwrap();
+    let bytes = |d: &Drawing, format: DxfFormat| {
+        let mut out = Vec::new();
+        write_dxf(d, &SvgOptions::default(), format, &mut out).unwrap();
+        out
+    };
+    for format in [DxfFormat::Text, DxfFormat::Binary] {
+        let first = bytes(&drawing, format);
+        std::thread::sleep(std::time::Duration::from_millis(1100));
+        assert!(
+            first == bytes(&drawing, format),
+            "written twice, differently"
+        );
+    }
+    let read = |d: &Drawing| dxf::Drawing::load(&mut bytes(d, DxfFormat::Text).as_slice()).unwrap();
+    let mut other = drawing.clone();
+    other.polylines.pop();
+    let (a, b) = (read(&drawing), read(&other));
+    assert_ne!(a.header.fingerprint_guid, b.header.fingerprint_guid);
+    assert_eq!(
+        a.header.creation_date_universal,
+        b.header.creation_date_universal
+    );
+}

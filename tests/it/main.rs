@@ -24,6 +24,8 @@ mod boxtree;
 // default feature, so plain `cargo test --release` runs these).
 #[cfg(feature = "cli")]
 mod cli;
+#[cfg(feature = "cli")]
+mod cli_tiles;
 #[cfg(feature = "lab")]
 mod clip;
 mod collinear_cuts;

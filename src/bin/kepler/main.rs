@@ -5,12 +5,14 @@ mod args;
 mod bounds;
 mod boxtree;
 mod cull;
+mod finish;
 mod r#gen;
 mod include;
 mod output;
 mod render;
 mod report;
 mod segx;
+mod stitch;
 mod surfaces;
 mod triboxes;
 mod visobj;
@@ -34,6 +36,7 @@ enum Command {
     Include(include::Args),
     Segx(segx::Args),
     Render(render::Args),
+    Stitch(stitch::Args),
     Surfaces(surfaces::Args),
     Visobj(visobj::Args),
     Cull(cull::Args),
@@ -50,6 +53,7 @@ fn main() -> ExitCode {
         Command::Include(args) => include::run(args),
         Command::Segx(args) => segx::run(args),
         Command::Render(args) => render::run(args),
+        Command::Stitch(args) => stitch::run(args),
         Command::Surfaces(args) => surfaces::run(args),
         Command::Visobj(args) => visobj::run(args),
         Command::Cull(args) => cull::run(args),

@@ -1,18 +1,18 @@
 //! `kepler render`: the exact hidden-line drawing of a scene, as SVG (and JSON).
 
-use crate::args::{
-    FaceArgs, PageArgs, ViewArgs, load_drawable, parse_area, parse_stroke, parse_triple,
-};
+use crate::args::{FaceArgs, ViewArgs, load_drawable, parse_area, parse_triple};
+use crate::finish::{FinishArgs, Hidden, is_dxf};
 use crate::output::{progress_bar, write_file};
 use anyhow::Result;
 use kepler::geometry::Vector3;
 use kepler::geometry::polygon::bounding_box;
 use kepler::hidden::ideographs::{Ideograph, ideographs};
+use kepler::hidden::tiles::TileFile;
 use kepler::hidden::verify::{Traced, draw_traced, verify};
-use kepler::hidden::{self, Drawing, EdgeClass, EdgeSelection, Overlaps};
+use kepler::hidden::{self, Drawing, EdgeClass, EdgeSelection};
 use kepler::output::{
-    DxfFormat, Finishing, HatchLayer, PageTransform, Shading, SvgOptions, finish, ordered_paths,
-    page_transform, write_dxf, write_json, write_svg_with_hatches,
+    Finishing, HatchLayer, PageTransform, Shading, SvgOptions, finish, ordered_paths,
+    page_transform,
 };
 use kepler::scene::Scene;
 use kepler::surfaces::hatch::{Hatching, hatch_faces};
@@ -28,7 +28,7 @@ pub struct Args {
     /// A scene file (.toml) or a mesh file (.obj, .stl, .off, .ply).
     scene: PathBuf,
     /// The file to write: SVG, or DXF when its name ends in `.dxf` (`-` writes SVG to
-    /// standard output).
+    /// standard output); with `--tile`, the tile file (`.kpt`) that `kepler stitch` reads.
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     output: PathBuf,
     /// Which edges: `feature` (silhouette, boundary, crease, intersection), `all` (smooth
@@ -39,32 +39,8 @@ pub struct Args {
     /// An edge whose faces bend by more than this many degrees is a crease.
     #[arg(long, value_name = "DEGREES", default_value_t = 30.0)]
     crease_angle: f64,
-    /// Hidden lines: `dashed` (their own grey dashed layers) or `omit`.
-    #[arg(long, value_enum, default_value_t = Hidden::Dashed)]
-    hidden: Hidden,
     #[command(flatten)]
-    page: PageArgs,
-    /// A stroke width in millimetres for one class, `CLASS=MM` (classes: silhouette,
-    /// boundary, crease, intersection, smooth); repeat for several.
-    #[arg(long, value_name = "CLASS=MM", value_parser = parse_stroke)]
-    stroke: Vec<(EdgeClass, f64)>,
-    /// Keep lines drawn twice: by default a stretch of line that several edges run along
-    /// (touching objects, T-junctions, a line right behind a contour) is written once, as
-    /// the one drawn on top (visible over hidden, then silhouette, boundary, intersection,
-    /// crease, smooth).
-    #[arg(long)]
-    keep_overlaps: bool,
-    /// Order and turn each layer's paths to shorten the pen's travel between them (greedy
-    /// nearest end); `--stats` prints the travel before and after.
-    #[arg(long)]
-    order: bool,
-    /// DXF encoding: `text` (ASCII, numbers to 12 decimal places) or `binary` (every double
-    /// exact).
-    #[arg(long, value_enum, default_value_t = DxfEncoding::Text)]
-    dxf: DxfEncoding,
-    /// Also write the polylines as JSON, in view coordinates, to this file.
-    #[arg(long, value_name = "FILE")]
-    json: Option<PathBuf>,
+    finish: FinishArgs,
     /// Print the degenerate faces dropped and the polygons split, what each stage computed
     /// and skipped, its time, and the visible and hidden length of each edge class (to
     /// stderr).
@@ -110,8 +86,38 @@ pub struct Args {
     /// With `--hatch`: the hatch lines' stroke width in millimetres.
     #[arg(long, value_name = "MM", default_value_t = 0.1)]
     hatch_stroke: f64,
+    /// Draw one tile of a grid of `COLUMNSxROWS` windows over the picture (with `--tile`):
+    /// each tile can be drawn by another process or machine, and `kepler stitch` joins the
+    /// tile files into this drawing, bit for bit.
+    #[arg(long, value_name = "CxR", value_parser = parse_grid, requires = "tile")]
+    tiles: Option<[usize; 2]>,
+    /// With `--tiles`: the tile to draw, `COLUMN,ROW`, counted from 0 from the bottom left.
+    #[arg(long, value_name = "I,J", value_parser = parse_tile, requires = "tiles")]
+    tile: Option<[usize; 2]>,
     #[command(flatten)]
     view: ViewArgs,
+}
+
+/// Parses a grid `CxR` (columns and rows, at least 1 each).
+fn parse_grid(text: &str) -> Result<[usize; 2], String> {
+    match text
+        .split_once(['x', 'X'])
+        .map(|(c, r)| (c.trim().parse(), r.trim().parse()))
+    {
+        Some((Ok(c), Ok(r))) if c > 0 && r > 0 => Ok([c, r]),
+        _ => Err(format!("expected COLUMNSxROWS (like 4x4), got '{text}'")),
+    }
+}
+
+/// Parses a tile `I,J` (column and row, from 0).
+fn parse_tile(text: &str) -> Result<[usize; 2], String> {
+    match text
+        .split_once(',')
+        .map(|(i, j)| (i.trim().parse(), j.trim().parse()))
+    {
+        Some((Ok(i), Ok(j))) => Ok([i, j]),
+        _ => Err(format!("expected COLUMN,ROW (like 2,3), got '{text}'")),
+    }
 }
 
 /// Parses `MIN,MAX` (millimetres, `0 < MIN ≤ MAX`, finite).
@@ -126,39 +132,16 @@ fn parse_spacing(text: &str) -> Result<[f64; 2], String> {
     }
 }
 
-/// `--hidden`: the library keeps hidden lines or not (`hidden::Options::hidden`).
-#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-enum Hidden {
-    Dashed,
-    Omit,
-}
-
-/// `--dxf`: the DXF file's encoding (`output::DxfFormat`).
-#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-enum DxfEncoding {
-    Text,
-    Binary,
-}
-
 /// Draws the scene and writes the drawing.
 pub fn run(args: Args) -> Result<()> {
-    let dxf = checked(&args)?;
+    checked(&args)?;
     let crease_angle = args.crease_angle;
     let started = Instant::now();
     let scene = load_drawable(&args.scene, args.faces.validation())?;
     let repairs = repairs(&scene);
-    let svg_options = svg_options(&args);
+    let svg_options = args.finish.svg_options();
     let view = args.view.view_on(&scene, svg_options.drawing_aspect())?;
-    let options = hidden::Options {
-        edges: args.edges,
-        crease_angle,
-        hidden: args.hidden == Hidden::Dashed,
-        overlaps: if args.keep_overlaps {
-            Overlaps::Keep
-        } else {
-            Overlaps::Once
-        },
-    };
+    let options = args.finish.options(args.edges, crease_angle);
     let (scene, culled) = match args.ideograph_below {
         Some(mm2) => {
             let min_area = picture_area(&scene, &view, &svg_options, mm2);
@@ -169,8 +152,15 @@ pub fn run(args: Args) -> Result<()> {
         None => (scene, None),
     };
     let loaded = started.elapsed();
+    if let (Some(grid), Some(at)) = (args.tiles, args.tile) {
+        let tile = TileFile::draw(&scene, &view, &options, grid, at)?;
+        let bytes = tile.to_bytes();
+        return write_file(&args.output, |out| out.write_all(&bytes));
+    }
     let traced = draw(&scene, &view, &options, args.verify)?;
-    let finishing = Finishing { order: args.order };
+    let finishing = Finishing {
+        order: args.finish.order,
+    };
     // `--verify` checks the drawing as the pass made it, and its pieces.
     let (finished, traced) = if args.verify {
         (finish(traced.drawing.clone(), &finishing), Some(traced))
@@ -183,7 +173,9 @@ pub fn run(args: Args) -> Result<()> {
     } else {
         (HatchLayer::default(), String::new())
     };
-    let written = write(&args, dxf, drawing, &hatches, &svg_options)?;
+    let written = args
+        .finish
+        .write(&args.output, drawing, &hatches, &svg_options)?;
     if args.stats {
         if let Some((objects, removed, added)) = culled {
             eprintln!(
@@ -210,35 +202,8 @@ pub fn run(args: Args) -> Result<()> {
     Ok(())
 }
 
-/// Writes the drawing (and its hatches) as SVG or DXF, and as JSON when asked; the time
-/// that took.
-fn write(
-    args: &Args,
-    dxf: bool,
-    drawing: &Drawing,
-    hatches: &HatchLayer,
-    svg_options: &SvgOptions,
-) -> Result<Duration> {
-    let clock = Instant::now();
-    write_file(&args.output, |mut out| {
-        if dxf {
-            let format = match args.dxf {
-                DxfEncoding::Text => DxfFormat::Text,
-                DxfEncoding::Binary => DxfFormat::Binary,
-            };
-            write_dxf(drawing, svg_options, format, &mut out)
-        } else {
-            write_svg_with_hatches(drawing, hatches, svg_options, &mut out)
-        }
-    })?;
-    if let Some(json) = &args.json {
-        write_file(json, |mut out| write_json(drawing, &mut out))?;
-    }
-    Ok(clock.elapsed())
-}
-
-/// The arguments' errors that clap does not catch; whether the output is DXF.
-fn checked(args: &Args) -> Result<bool> {
+/// The arguments' errors that clap does not catch.
+fn checked(args: &Args) -> Result<()> {
     let crease_angle = args.crease_angle;
     if !(crease_angle.is_finite() && (0.0..=180.0).contains(&crease_angle)) {
         anyhow::bail!("--crease-angle must be between 0 and 180 degrees, not {crease_angle}");
@@ -250,14 +215,32 @@ fn checked(args: &Args) -> Result<bool> {
     {
         anyhow::bail!("--hatch-angle and --hatch-stroke must be finite (the stroke nonnegative)");
     }
-    let dxf = args
-        .output
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("dxf"));
-    if dxf && args.hatch {
+    if is_dxf(&args.output) && args.hatch {
         anyhow::bail!("--hatch writes SVG only, not DXF");
     }
-    Ok(dxf)
+    if args.tile.is_some() {
+        let finishing = [
+            (args.hatch, "--hatch"),
+            (args.verify, "--verify"),
+            (args.stats, "--stats"),
+            (args.finish.order, "--order"),
+            (args.finish.keep_overlaps, "--keep-overlaps"),
+            (args.finish.json.is_some(), "--json"),
+            (args.finish.hidden == Hidden::Omit, "--hidden omit"),
+        ];
+        if let Some((_, option)) = finishing.iter().find(|(given, _)| *given) {
+            anyhow::bail!(
+                "{option} finishes a whole drawing, not a tile: give it to `kepler stitch`"
+            );
+        }
+        if args.output.extension().is_none_or(|e| e != "kpt") {
+            anyhow::bail!(
+                "with --tile the output is a tile file, whose name ends in .kpt, not {}",
+                args.output.display()
+            );
+        }
+    }
+    Ok(())
 }
 
 /// The hatch layer (`--hatch`): every face's visible polygons, shaded, hatched at the page
@@ -287,7 +270,7 @@ fn hatch(
         .iter()
         .flat_map(|f| f.hatch.runs.iter().map(|r| r.points.clone()))
         .collect();
-    let polylines = if args.order {
+    let polylines = if args.finish.order {
         ordered_paths(polylines)
     } else {
         polylines
@@ -325,21 +308,6 @@ fn repairs(scene: &Scene) -> String {
         sum(kepler::mesh::Mesh::t_junctions),
         meshes.len()
     )
-}
-
-/// The SVG options of the page, with the stroke widths given.
-fn svg_options(args: &Args) -> SvgOptions {
-    let mut svg_options = args.page.svg_options();
-    for &(class, width) in &args.stroke {
-        match class {
-            EdgeClass::Silhouette => svg_options.stroke.silhouette = width,
-            EdgeClass::Boundary => svg_options.stroke.boundary = width,
-            EdgeClass::Crease => svg_options.stroke.crease = width,
-            EdgeClass::Intersection => svg_options.stroke.intersection = width,
-            EdgeClass::Smooth => svg_options.stroke.smooth = width,
-        }
-    }
-    svg_options
 }
 
 /// An area of `mm2` square millimetres on the page in picture units squared, at the page

@@ -41,7 +41,10 @@
 //! crossings and one unit in the last place beside them).
 //!
 //! A tile travels between processes as bytes ([`TileDrawing::to_bytes`], see `bytes.rs`):
-//! the Python package renders tiles on Dask workers and stitches them on the client.
+//! the Python package renders tiles on Dask workers and stitches them on the client. As a
+//! file ([`TileFile`], see `file.rs`) it also carries its place in its grid and a fingerprint
+//! of its scene, view and options: `kepler render --tiles 4x4 --tile 2,3 -o t.kpt` draws one
+//! and `kepler stitch *.kpt -o out.svg` checks the set and finishes the drawing.
 //!
 //! ```
 //! use kepler::{geometry::Vector3, scene::Scene, views::View};
@@ -58,8 +61,10 @@
 //! ```
 
 mod bytes;
+mod file;
 
 pub use bytes::TileDrawing;
+pub use file::TileFile;
 
 use super::chain::chain;
 use super::marks::{Mark, MarkKey, Provenance, cut_key, point_of};
