@@ -159,8 +159,29 @@ def test_render_tiles_on_a_local_dask_cluster(tmp_path):
         for tiles in ((2, 2), (4, 4)):
             lines = kepler.dask.render_tiles(city, along, tiles=tiles, client=client, hidden=True)
             assert bits(lines) == bits(city.render(view=along, hidden=True)), tiles
+        # Issue 30: given a file's path, the tasks carry the path, not the scene, and each
+        # worker reads the file itself.
+        for path in (str(ROOT / "scenes" / "city.toml"), ROOT / "scenes" / "polyhedra.toml"):
+            lines = kepler.dask.render_tiles(path, OBLIQUE, tiles=(3, 2), client=client, hidden=True)
+            whole = kepler.Scene.load(str(path)).render(view=OBLIQUE, hidden=True)
+            assert bits(lines) == bits(whole), path
+        read = client.run(lambda: sorted(kepler.dask._read)).values()
+        polyhedra = [str(ROOT / "scenes" / "polyhedra.toml")]
+        assert polyhedra in read and all(r in ([], polyhedra) for r in read), read
+        with pytest.raises(kepler.KeplerError):
+            kepler.dask.render_tiles(tmp_path / "none.toml", tiles=(2, 2), client=client)
         # The tiles really ran in the worker processes.
         assert len(client.scheduler_info()["workers"]) == 2
+
+
+def test_a_worker_reads_a_scene_once_and_again_when_it_changes(tmp_path):
+    path = tmp_path / "cube.toml"
+    path.write_text((ROOT / "scenes" / "cube.toml").read_text())
+    first = kepler.dask._scene_at(str(path))
+    assert kepler.dask._scene_at(str(path)) is first
+    path.write_text((ROOT / "scenes" / "cube.toml").read_text() + "\n# changed\n")
+    again = kepler.dask._scene_at(str(path))
+    assert again is not first and again.objects() == first.objects()
 
 
 def test_render_tiles_starts_its_own_cluster():
