@@ -36,7 +36,7 @@ pub fn run(args: Args) -> Result<()> {
     // The pass's options that the tiles were drawn with are in their fingerprint; these
     // only finish the drawing.
     let options = args.finish.options(EdgeSelection::Feature, 0.0);
-    let drawing = TileFile::stitch(&files, &options)?;
+    let drawing = TileFile::stitch(files, &options)?;
     let finishing = Finishing {
         order: args.finish.order,
     };

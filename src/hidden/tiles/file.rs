@@ -37,10 +37,10 @@ use crate::views::{View, Window};
 ///     })
 ///     .collect();
 /// let whole = draw(&scene, &view, &options).unwrap();
-/// assert_eq!(TileFile::stitch(&tiles, &options).unwrap().polylines, whole.polylines);
 /// // Without tile 2,1: an error naming it.
-/// let err = TileFile::stitch(&tiles[..5], &options).unwrap_err().to_string();
+/// let err = TileFile::stitch(tiles[..5].to_vec(), &options).unwrap_err().to_string();
 /// assert!(err.contains("tile 2,1 of the 3x2 grid is missing"), "{err}");
+/// assert_eq!(TileFile::stitch(tiles, &options).unwrap().polylines, whole.polylines);
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct TileFile {
@@ -106,7 +106,7 @@ impl TileFile {
     ///
     /// ```
     /// let err = kepler::hidden::tiles::TileFile::from_bytes(b"<svg/>").unwrap_err();
-    /// assert_eq!(err.to_string(), "not a kepler tile file (wrong header)");
+    /// assert_eq!(err.to_string(), "tiles: not a kepler tile file (wrong header)");
     /// ```
     pub fn from_bytes(bytes: &[u8]) -> Result<TileFile> {
         let bad = |why: &str| DrawError::Tiles(format!("not a kepler tile file ({why})"));
@@ -136,13 +136,13 @@ impl TileFile {
     /// in any order: [`stitch`] of their tiles, once every tile of the grid is there exactly
     /// once and all share one grid and fingerprint. An error naming the tile missing, the
     /// file given twice for one tile, or the file of another grid or drawing.
-    pub fn stitch(files: &[(String, TileFile)], options: &Options) -> Result<Drawing> {
+    pub fn stitch(files: Vec<(String, TileFile)>, options: &Options) -> Result<Drawing> {
         let Some((first_name, first)) = files.first() else {
             return Err(DrawError::Tiles("no tile files to stitch".into()));
         };
         let [columns, rows] = first.grid;
         let mut found: Vec<Option<&str>> = vec![None; columns * rows];
-        for (name, file) in files {
+        for (name, file) in &files {
             if file.grid != first.grid {
                 return Err(DrawError::Tiles(format!(
                     "{name} is a tile of a {}x{} grid, but {first_name} of a {columns}x{rows} grid",
@@ -170,7 +170,8 @@ impl TileFile {
                 k / columns
             )));
         }
-        let tiles: Vec<TileDrawing> = files.iter().map(|(_, f)| f.tile.clone()).collect();
+        // Moved out, not copied: the tiles of a large drawing are most of the memory here.
+        let tiles: Vec<TileDrawing> = files.into_iter().map(|(_, f)| f.tile).collect();
         stitch(&tiles, options)
     }
 }
@@ -268,7 +269,7 @@ mod tests {
         let whole = draw(&scene, &view, &options).unwrap();
         assert!(!whole.polylines.is_empty());
         assert_eq!(
-            TileFile::stitch(&files, &options).unwrap().polylines,
+            TileFile::stitch(files, &options).unwrap().polylines,
             whole.polylines
         );
     }
@@ -293,6 +294,6 @@ mod tests {
             err.ends_with("its place in its grid is malformed)"),
             "{err}"
         );
-        assert!(TileFile::stitch(&[], &Options::default()).is_err());
+        assert!(TileFile::stitch(Vec::new(), &Options::default()).is_err());
     }
 }
