@@ -4,7 +4,7 @@
 use crate::finish::FinishArgs;
 use anyhow::{Result, anyhow};
 use kepler::hidden::EdgeSelection;
-use kepler::hidden::tiles::TileFile;
+use kepler::hidden::tiles::{TileFile, TileSet};
 use kepler::output::{Finishing, HatchLayer, finish};
 use std::path::PathBuf;
 
@@ -26,17 +26,18 @@ pub struct Args {
 
 /// Reads the tiles, checks that they make one grid, stitches and writes the drawing.
 pub fn run(args: Args) -> Result<()> {
-    let mut files = Vec::with_capacity(args.tiles.len());
+    // One file at a time: each tile is let go once added.
+    let mut set = TileSet::default();
     for path in &args.tiles {
         let name = path.display().to_string();
         let bytes = std::fs::read(path).map_err(|e| anyhow!("cannot read {name}: {e}"))?;
         let file = TileFile::from_bytes(&bytes).map_err(|e| anyhow!("{name}: {e}"))?;
-        files.push((name, file));
+        set.add(&name, file)?;
     }
     // The pass's options that the tiles were drawn with are in their fingerprint; these
     // only finish the drawing.
     let options = args.finish.options(EdgeSelection::Feature, 0.0);
-    let drawing = TileFile::stitch(files, &options)?;
+    let drawing = set.finish(&options)?;
     let finishing = Finishing {
         order: args.finish.order,
     };

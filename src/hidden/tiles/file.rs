@@ -14,7 +14,7 @@
 //! vertices' bits, and its triangles). Two tiles with one fingerprint were drawn from one
 //! scene, view and options, whatever process drew them.
 
-use super::{TileDrawing, draw_tile, stitch, tile_windows};
+use super::{Stitcher, TileDrawing, draw_tile, tile_windows};
 use crate::fnv::Fnv;
 use crate::hidden::{DrawError, Drawing, EdgeSelection, Options, Result};
 use crate::scene::Scene;
@@ -133,46 +133,74 @@ impl TileFile {
     }
 
     /// The drawing of a whole grid's tile files, `(name, tile)` (the names for errors), given
-    /// in any order: [`stitch`] of their tiles, once every tile of the grid is there exactly
-    /// once and all share one grid and fingerprint. An error naming the tile missing, the
-    /// file given twice for one tile, or the file of another grid or drawing.
+    /// in any order: see [`TileSet`].
     pub fn stitch(files: Vec<(String, TileFile)>, options: &Options) -> Result<Drawing> {
-        let Some((first_name, first)) = files.first() else {
+        let mut set = TileSet::default();
+        for (name, file) in files {
+            set.add(&name, file)?;
+        }
+        set.finish(options)
+    }
+}
+
+/// The tile files of one grid, added one at a time (each let go once added), then finished
+/// into the drawing: [`stitch`](super::stitch) of their tiles, once every tile of the grid
+/// is there exactly once and all share one grid and fingerprint. Errors name the tile
+/// missing, the file given twice for one tile, or the file of another grid or drawing.
+#[derive(Default)]
+pub struct TileSet {
+    /// The first file's name, grid and fingerprint, which every other must share.
+    first: Option<(String, [usize; 2], u64)>,
+    /// Which file holds each tile, row by row.
+    found: Vec<Option<String>>,
+    stitcher: Stitcher,
+}
+
+impl TileSet {
+    /// Adds the tile file named `name`; an error for a file of another grid or drawing, or
+    /// for a tile already added.
+    pub fn add(&mut self, name: &str, file: TileFile) -> Result<()> {
+        let (first_name, grid, fingerprint) = self
+            .first
+            .get_or_insert_with(|| (name.to_string(), file.grid, file.fingerprint));
+        let [columns, rows] = *grid;
+        if file.grid != *grid {
+            return Err(DrawError::Tiles(format!(
+                "{name} is a tile of a {}x{} grid, but {first_name} of a {columns}x{rows} grid",
+                file.grid[0], file.grid[1]
+            )));
+        }
+        if file.fingerprint != *fingerprint {
+            return Err(DrawError::Tiles(format!(
+                "{name} is a tile of another scene, view or options than {first_name}"
+            )));
+        }
+        self.found.resize(columns * rows, None);
+        let slot = &mut self.found[file.at[1] * columns + file.at[0]];
+        if let Some(other) = slot {
+            return Err(DrawError::Tiles(format!(
+                "{other} and {name} are both tile {},{}",
+                file.at[0], file.at[1]
+            )));
+        }
+        *slot = Some(name.to_string());
+        self.stitcher.add(&file.tile)
+    }
+
+    /// The drawing of the tiles added, finished with `options`; an error naming the first
+    /// tile of the grid missing.
+    pub fn finish(self, options: &Options) -> Result<Drawing> {
+        let Some((_, [columns, rows], _)) = self.first else {
             return Err(DrawError::Tiles("no tile files to stitch".into()));
         };
-        let [columns, rows] = first.grid;
-        let mut found: Vec<Option<&str>> = vec![None; columns * rows];
-        for (name, file) in &files {
-            if file.grid != first.grid {
-                return Err(DrawError::Tiles(format!(
-                    "{name} is a tile of a {}x{} grid, but {first_name} of a {columns}x{rows} grid",
-                    file.grid[0], file.grid[1]
-                )));
-            }
-            if file.fingerprint != first.fingerprint {
-                return Err(DrawError::Tiles(format!(
-                    "{name} is a tile of another scene, view or options than {first_name}"
-                )));
-            }
-            let slot = &mut found[file.at[1] * columns + file.at[0]];
-            if let Some(other) = slot {
-                return Err(DrawError::Tiles(format!(
-                    "{other} and {name} are both tile {},{}",
-                    file.at[0], file.at[1]
-                )));
-            }
-            *slot = Some(name);
-        }
-        if let Some(k) = found.iter().position(Option::is_none) {
+        if let Some(k) = self.found.iter().position(Option::is_none) {
             return Err(DrawError::Tiles(format!(
                 "tile {},{} of the {columns}x{rows} grid is missing (no file given holds it)",
                 k % columns,
                 k / columns
             )));
         }
-        // Moved out, not copied: the tiles of a large drawing are most of the memory here.
-        let tiles: Vec<TileDrawing> = files.into_iter().map(|(_, f)| f.tile).collect();
-        stitch(&tiles, options)
+        self.stitcher.finish(options)
     }
 }
 

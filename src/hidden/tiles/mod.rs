@@ -62,14 +62,15 @@
 
 mod bytes;
 mod file;
+mod stitcher;
 
 pub use bytes::TileDrawing;
-pub use file::TileFile;
+pub use file::{TileFile, TileSet};
+pub use stitcher::Stitcher;
 
-use super::chain::chain;
 use super::marks::{Mark, MarkKey, Provenance, cut_key, point_of};
 use super::piece::Piece;
-use super::{Cut, DrawError, Drawing, Options, Result, decided, finished, scaled_back};
+use super::{Cut, DrawError, Drawing, Options, Result, decided};
 use crate::scene::Scene;
 use crate::sight::collinear::{LinePoint, Support};
 use crate::sight::frustum::{TilePlanes, pictured};
@@ -207,30 +208,11 @@ pub fn tile_windows(scene: &Scene, view: &View, n: [usize; 2]) -> Result<Vec<Win
 /// assert!(d.polylines.is_empty());
 /// ```
 pub fn stitch(tiles: &[TileDrawing], options: &Options) -> Result<Drawing> {
-    let drawn: Vec<&TileDrawing> = tiles.iter().filter(|t| !t.is_empty()).collect();
-    let Some(first) = drawn.first() else {
-        return Ok(Drawing {
-            polylines: Vec::new(),
-            stages: Vec::new(),
-        });
-    };
-    let same_view = |t: &&TileDrawing| {
-        (t.shift, t.perspective) == (first.shift, first.perspective) && same_eye(&t.eye, &first.eye)
-    };
-    if !drawn.iter().all(same_view) {
-        return Err(DrawError::Tiles(
-            "the tiles are not of one scene and view (their scales, projections or eyes differ)"
-                .to_string(),
-        ));
+    let mut stitcher = Stitcher::default();
+    for tile in tiles {
+        stitcher.add(tile)?;
     }
-    let mut stitched = Stitched::gather(&drawn)?;
-    let pieces = stitched.joined();
-    let (pieces, _) = finished(&stitched, pieces, options);
-    let drawing = Drawing {
-        polylines: chain(&pieces),
-        stages: Vec::new(),
-    };
-    Ok(scaled_back(drawing, first.perspective, first.shift))
+    stitcher.finish(options)
 }
 
 /// Whether two eyes are the same, bit for bit.
@@ -255,57 +237,6 @@ struct Stitched {
 }
 
 impl Stitched {
-    /// The tiles' lines (each once, by name) and their pieces, an error where two tiles
-    /// describe one line differently.
-    fn gather(tiles: &[&TileDrawing]) -> Result<Stitched> {
-        // Each line once (by reference: a line's support is large), the same in every tile.
-        let mut first: HashMap<LineId, &TileLine> = HashMap::new();
-        for line in tiles.iter().flat_map(|t| &t.lines) {
-            let seen = *first.entry(line.id).or_insert(line);
-            if seen != line {
-                return Err(DrawError::Tiles(
-                    "the tiles are not of one scene (a line differs between them)".to_string(),
-                ));
-            }
-        }
-        let mut ids: Vec<LineId> = first.keys().copied().collect();
-        ids.sort_unstable();
-        let lines: Vec<TileLine> = ids.iter().map(|id| *first[id]).collect();
-        let index: HashMap<LineId, usize> =
-            ids.iter().enumerate().map(|(k, &id)| (id, k)).collect();
-        let (mut cuts, mut pieces) = (Vec::new(), Vec::new());
-        for t in tiles {
-            for p in &t.pieces {
-                let line = &t.lines[p.line as usize];
-                let mut mark = |m: &TileMark| match m {
-                    TileMark::First => Mark::First,
-                    TileMark::Last => Mark::Last,
-                    TileMark::Cut(c) => {
-                        cuts.push(*c);
-                        Mark::Cut((cuts.len() - 1) as u32)
-                    }
-                };
-                let marks = [mark(&p.marks[0]), mark(&p.marks[1])];
-                pieces.push(Piece {
-                    class: line.class,
-                    visible: p.visible,
-                    ends: p.ends,
-                    line: index[&line.id],
-                    t: p.t,
-                    border: p.border,
-                    marks,
-                });
-            }
-        }
-        Ok(Stitched {
-            eye: tiles[0].eye,
-            slack: tiles.iter().map(|t| t.slack).fold(0.0, f64::max),
-            lines,
-            cuts,
-            pieces,
-        })
-    }
-
     /// The exact order of two marks of line `l`.
     fn compare(&self, l: usize, x: Mark, y: Mark) -> Ordering {
         let rank = |m: Mark| match m {
