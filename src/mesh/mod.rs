@@ -164,6 +164,33 @@ impl Mesh {
         Ok(mesh)
     }
 
+    /// A mesh rebuilt from what [`Mesh::faces`] and [`Mesh::vertices`] hold of one (each
+    /// face's loop, diagonals and input polygon) and its counts of repairs (merged vertices,
+    /// degenerate faces dropped, polygons split): the same mesh, for a scene index read back.
+    pub(crate) fn restored(
+        vertices: Vec<Point3>,
+        faces: Vec<(Loop, u8, u32)>,
+        [merged, degenerate, split]: [usize; 3],
+    ) -> Result<Mesh, MeshError> {
+        if let Some(face) = faces
+            .iter()
+            .position(|f| f.0.iter().any(|&v| v as usize >= vertices.len()))
+        {
+            return Err(MeshError::IndexOutOfRange {
+                face,
+                index: i64::from(faces[face].0.iter().copied().max().unwrap_or(0)),
+                vertex_count: vertices.len(),
+            });
+        }
+        let mut mesh = Mesh::assemble(vertices, faces, Validation::Repair)?;
+        (
+            mesh.merged_vertices,
+            mesh.degenerate_faces,
+            mesh.split_polygons,
+        ) = (merged, degenerate, split);
+        Ok(mesh)
+    }
+
     /// The mesh of the polygons (indices valid, vertices distinct), with their faces,
     /// triangles, counts of repairs, T-junctions and topology.
     fn assemble(

@@ -83,6 +83,11 @@ pub fn load_with(path: &Path, validation: Validation) -> Result<Scene> {
             .map_err(|e| FileError::io(path.display().to_string(), e))?;
         return parse_with(&text, path, validation);
     }
+    if ext.as_deref() == Some("kix") {
+        let name = path.display().to_string();
+        let bytes = std::fs::read(path).map_err(|e| FileError::io(&name, e))?;
+        return super::index::read(&bytes, &name);
+    }
     let mesh = crate::io::read_mesh_with(path, validation)?;
     let mut scene = Scene::new();
     let name = path

@@ -24,6 +24,7 @@ mod camera;
 mod error;
 pub mod file;
 mod flatten;
+pub mod index;
 mod measures;
 mod object;
 pub mod report;

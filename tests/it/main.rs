@@ -25,6 +25,8 @@ mod boxtree;
 #[cfg(feature = "cli")]
 mod cli;
 #[cfg(feature = "cli")]
+mod cli_index;
+#[cfg(feature = "cli")]
 mod cli_tiles;
 #[cfg(feature = "lab")]
 mod clip;
@@ -61,6 +63,7 @@ mod report_reference;
 mod scan;
 mod scene;
 mod scene_file;
+mod scene_index;
 mod solids;
 #[cfg(feature = "lab")]
 mod stiff;

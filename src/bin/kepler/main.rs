@@ -8,6 +8,7 @@ mod cull;
 mod finish;
 mod r#gen;
 mod include;
+mod index;
 mod output;
 mod render;
 mod report;
@@ -34,6 +35,7 @@ struct Cli {
 enum Command {
     Bounds(bounds::Args),
     Include(include::Args),
+    Index(index::Args),
     Segx(segx::Args),
     Render(render::Args),
     Stitch(stitch::Args),
@@ -51,6 +53,7 @@ fn main() -> ExitCode {
     let result = match Cli::parse().command {
         Command::Bounds(args) => bounds::run(args),
         Command::Include(args) => include::run(args),
+        Command::Index(args) => index::run(args),
         Command::Segx(args) => segx::run(args),
         Command::Render(args) => render::run(args),
         Command::Stitch(args) => stitch::run(args),
