@@ -106,6 +106,7 @@ pub mod hidden;
 pub mod io;
 #[cfg(feature = "lab")]
 pub mod lab;
+pub(crate) mod le;
 pub mod mesh;
 pub mod output;
 pub mod queries;

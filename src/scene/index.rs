@@ -19,6 +19,7 @@
 use super::{Camera, Content, ObjectId, Projection, Result, Scene};
 use crate::geometry::{Aabb, Point3};
 use crate::io::FileError;
+use crate::le::{Reader, Writer};
 use crate::mesh::{Loop, Mesh};
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -241,7 +242,7 @@ impl MeshTable {
             let mut r = Reader(body.get(start..start.checked_add(len)?)?);
             for _ in 0..r.count()? {
                 let v = r.u32()? as usize;
-                *vertices.get_mut(v)? = Some(r.point()?);
+                *vertices.get_mut(v)? = Some(Point3::from(r.triple()?));
             }
             for _ in 0..r.count()? {
                 let f = r.u32()? as usize;
@@ -264,33 +265,11 @@ impl MeshTable {
     }
 }
 
-/// Writes an index's fields in order.
-struct Writer(Vec<u8>);
-
+/// A scene index's fields, written in order.
 impl Writer {
-    fn u8(&mut self, x: u8) {
-        self.0.push(x);
-    }
-
-    fn u32(&mut self, x: u32) {
-        self.0.extend_from_slice(&x.to_le_bytes());
-    }
-
-    fn u64(&mut self, x: u64) {
-        self.0.extend_from_slice(&x.to_le_bytes());
-    }
-
-    fn f64(&mut self, x: f64) {
-        self.0.extend_from_slice(&x.to_le_bytes());
-    }
-
     fn text(&mut self, s: &str) {
         self.u32(s.len() as u32);
         self.0.extend_from_slice(s.as_bytes());
-    }
-
-    fn triple(&mut self, t: &[f64; 3]) {
-        t.iter().for_each(|&c| self.f64(c));
     }
 
     fn camera(&mut self, camera: Option<&Camera>) {
@@ -315,47 +294,8 @@ impl Writer {
     }
 }
 
-/// Reads an index's fields in order; `None` past the end or for a malformed field.
-struct Reader<'a>(&'a [u8]);
-
+/// A scene index's fields, read in order; `None` for a malformed field.
 impl Reader<'_> {
-    fn take<const N: usize>(&mut self) -> Option<[u8; N]> {
-        let (head, rest) = self.0.split_first_chunk::<N>()?;
-        self.0 = rest;
-        Some(*head)
-    }
-
-    fn u8(&mut self) -> Option<u8> {
-        self.take::<1>().map(|b| b[0])
-    }
-
-    fn u32(&mut self) -> Option<u32> {
-        self.take().map(u32::from_le_bytes)
-    }
-
-    fn u64(&mut self) -> Option<u64> {
-        self.take().map(u64::from_le_bytes)
-    }
-
-    /// A count of items that take at least a byte each: no more than the bytes left.
-    fn count(&mut self) -> Option<usize> {
-        usize::try_from(self.u64()?)
-            .ok()
-            .filter(|&n| n <= self.0.len())
-    }
-
-    fn f64(&mut self) -> Option<f64> {
-        self.take().map(f64::from_le_bytes)
-    }
-
-    fn triple(&mut self) -> Option<[f64; 3]> {
-        Some([self.f64()?, self.f64()?, self.f64()?])
-    }
-
-    fn point(&mut self) -> Option<Point3> {
-        self.triple().map(Point3::from)
-    }
-
     fn text(&mut self) -> Option<String> {
         let len = self.u32()? as usize;
         let bytes = self.0.get(..len)?;

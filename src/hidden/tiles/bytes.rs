@@ -14,6 +14,7 @@ use super::LineId;
 use crate::geometry::{Point3, Vector3};
 use crate::hidden::marks::MarkKey;
 use crate::hidden::{Cut, DrawError, EdgeClass, Result};
+use crate::le::{Reader, Writer};
 use crate::sight::along::{Form, Zero};
 use crate::sight::collinear::Support;
 use crate::sight::meet::{Meet, OnLine};
@@ -196,26 +197,8 @@ impl TileDrawing {
     }
 }
 
-/// Writes a tile's bytes in order.
-struct Writer(Vec<u8>);
-
+/// A tile's fields, written in order.
 impl Writer {
-    fn u8(&mut self, x: u8) {
-        self.0.push(x);
-    }
-
-    fn u32(&mut self, x: u32) {
-        self.0.extend_from_slice(&x.to_le_bytes());
-    }
-
-    fn u64(&mut self, x: u64) {
-        self.0.extend_from_slice(&x.to_le_bytes());
-    }
-
-    fn f64(&mut self, x: f64) {
-        self.0.extend_from_slice(&x.to_le_bytes());
-    }
-
     fn point(&mut self, p: &Point3) {
         for k in 0..3 {
             self.f64(p[k]);
@@ -325,33 +308,8 @@ impl Writer {
     }
 }
 
-/// Reads a tile's bytes in order; `None` for what the writer never writes.
-struct Reader<'b>(&'b [u8]);
-
+/// A tile's fields, read in order; `None` for what the writer never writes.
 impl Reader<'_> {
-    /// The next `N` bytes.
-    fn take<const N: usize>(&mut self) -> Option<[u8; N]> {
-        let (head, rest) = self.0.split_first_chunk::<N>()?;
-        self.0 = rest;
-        Some(*head)
-    }
-
-    fn u8(&mut self) -> Option<u8> {
-        self.take::<1>().map(|[b]| b)
-    }
-
-    fn u32(&mut self) -> Option<u32> {
-        self.take().map(u32::from_le_bytes)
-    }
-
-    fn count(&mut self) -> Option<usize> {
-        usize::try_from(u64::from_le_bytes(self.take()?)).ok()
-    }
-
-    fn f64(&mut self) -> Option<f64> {
-        self.take().map(f64::from_le_bytes)
-    }
-
     /// A double that must be finite (the inputs of exact predicates).
     fn finite(&mut self) -> Option<f64> {
         self.f64().filter(|x| x.is_finite())
