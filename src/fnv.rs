@@ -27,7 +27,7 @@ impl Fnv {
 
 #[cfg(test)]
 mod tests {
-    use super::Fnv;
+    use crate::fnv::Fnv;
 
     #[test]
     fn words_in_another_order_or_seed_hash_differently() {

@@ -17,9 +17,11 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// The top-level modules of the library, each allowed to import only those before it.
-const ORDER: [&str; 18] = [
+const ORDER: [&str; 20] = [
     "random",
     "union_find",
+    "fnv",
+    "le",
     "geometry",
     "clip",
     "mesh",
