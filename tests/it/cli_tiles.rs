@@ -209,32 +209,31 @@ fn sets_that_are_not_one_grid_are_errors_naming_the_tile() {
             format!("{name} finishes a whole drawing, not a tile: give it to `kepler stitch`")
         );
     }
-    assert_eq!(
-        fails(&[
-            "render",
-            "scenes/cube.toml",
-            "--tiles",
-            "2x2",
-            "--tile",
+    // A tile outside its grid, and a tile written to a file that is not a tile file.
+    for (at, output, expected) in [
+        (
             "2,0",
-            "-o",
-            &tile
-        ]),
-        "tiles: tile 2,0 is not in a grid of 2x2 (columns and rows count from 0)"
-    );
-    assert_eq!(
-        fails(&[
+            &tile,
+            "tiles: tile 2,0 is not in a grid of 2x2 (columns and rows count from 0)".to_string(),
+        ),
+        (
+            "1,0",
+            &out,
+            format!("with --tile the output is a tile file, whose name ends in .kpt, not {out}"),
+        ),
+    ] {
+        let args = [
             "render",
             "scenes/cube.toml",
             "--tiles",
             "2x2",
             "--tile",
-            "1,0",
+            at,
             "-o",
-            &out
-        ]),
-        format!("with --tile the output is a tile file, whose name ends in .kpt, not {out}")
-    );
+            output,
+        ];
+        assert_eq!(fails(&args), expected);
+    }
     // `--tile` without `--tiles` is clap's usage error, exit code 2.
     let o = kepler(&["render", "scenes/cube.toml", "--tile", "1,0", "-o", &tile]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));

@@ -73,22 +73,15 @@ fn every_bundled_scene_reads_back_the_same() {
         let view = View::orthographic(Vector3::new(-1.0, -2.0, -3.0), Vector3::z()).unwrap();
         assert!(bits(&back, &view) == bits(&scene, &view), "{name}");
         // Copies still share their mesh: the index holds it once.
-        let meshes = scene.mesh_objects(scene.roots()).len();
-        let shared = back
-            .mesh_objects(back.roots())
-            .windows(2)
-            .filter(|w| std::ptr::eq(w[0].1, w[1].1))
-            .count();
-        let before = scene
-            .mesh_objects(scene.roots())
-            .windows(2)
-            .filter(|w| std::ptr::eq(w[0].1, w[1].1))
-            .count();
-        assert_eq!(
-            (back.mesh_objects(back.roots()).len(), shared),
-            (meshes, before),
-            "{name}"
-        );
+        let counts = |s: &Scene| {
+            let meshes = s.mesh_objects(s.roots());
+            let shared = meshes
+                .windows(2)
+                .filter(|w| std::ptr::eq(w[0].1, w[1].1))
+                .count();
+            (meshes.len(), shared)
+        };
+        assert_eq!(counts(&back), counts(&scene), "{name}");
     }
 }
 
